@@ -1,0 +1,84 @@
+// Constants and buffer layouts shared by GLSL and C++. Included by shaders as "carbtf_gpu_shared.h" and
+// by C++ as <carbtf_gpu_shared.h>; the C++ side checks every layout with static_assert, so a change
+// here that breaks the agreement fails to compile instead of producing garbage on the GPU.
+#ifndef CARBTF_GPU_SHARED_H
+#define CARBTF_GPU_SHARED_H
+
+#ifdef __cplusplus
+#include <cstddef>
+#include <cstdint>
+namespace carbtf::gpu {
+using uint = std::uint32_t;
+#define CARBTF_CONST_FLOAT(name, value) inline constexpr float name = value;
+#define CARBTF_CONST_UINT(name, value) inline constexpr uint name = value;
+#else
+#define CARBTF_CONST_FLOAT(name, value) const float name = value;
+#define CARBTF_CONST_UINT(name, value) const uint name = value;
+#endif
+
+// ---- Gaussian noise (DESIGN.md 4.4) -------------------------------------------------------------
+// N(0,1) at (seed, field id, row, col): Philox4x32-10 of counter (col, row, field, 0) under key
+// (seed low, seed high) gives two 32-bit words; their top 24 bits make u1 in [2^-24, 1] and u2 in
+// [0, 1); Box-Muller z = sqrt(-2 ln u1) cos(2 pi u2). ln, cos and sqrt are built from correctly
+// rounded +, -, * only (Vulkan guarantees nothing more), so float32 results agree bit for bit.
+CARBTF_CONST_UINT(CARBTF_PHILOX_M0, 0xD2511F53u)
+CARBTF_CONST_UINT(CARBTF_PHILOX_M1, 0xCD9E8D57u)
+CARBTF_CONST_UINT(CARBTF_PHILOX_W0, 0x9E3779B9u)
+CARBTF_CONST_UINT(CARBTF_PHILOX_W1, 0xBB67AE85u)
+CARBTF_CONST_UINT(CARBTF_PHILOX_ROUNDS, 10u)
+CARBTF_CONST_FLOAT(CARBTF_TWO_POW_MINUS_24, 5.9604644775390625e-08f)
+CARBTF_CONST_FLOAT(CARBTF_LN2, 6.931471806e-01f)
+CARBTF_CONST_FLOAT(CARBTF_SQRT2, 1.414213538e+00f)
+CARBTF_CONST_UINT(CARBTF_RSQRT_MAGIC, 0x5F3759DFu)
+// Polynomials from scripts/gen_noise_polynomials.py (Chebyshev interpolants, float32 coefficients):
+// ln(1+x) = x * sum_{k>=1} C_k x^(k-1), x in [sqrt(1/2)-1, sqrt(2)-1], max abs error 6.3e-10;
+// cos(2 pi r) = sum_k C_k (r^2)^k, r in [0, 1/4], max abs error 2.9e-08.
+CARBTF_CONST_FLOAT(CARBTF_LOG1P_C1, 1.000000000e+00f)
+CARBTF_CONST_FLOAT(CARBTF_LOG1P_C2, -5.000000000e-01f)
+CARBTF_CONST_FLOAT(CARBTF_LOG1P_C3, 3.333333433e-01f)
+CARBTF_CONST_FLOAT(CARBTF_LOG1P_C4, -2.499998212e-01f)
+CARBTF_CONST_FLOAT(CARBTF_LOG1P_C5, 1.999981105e-01f)
+CARBTF_CONST_FLOAT(CARBTF_LOG1P_C6, -1.666736603e-01f)
+CARBTF_CONST_FLOAT(CARBTF_LOG1P_C7, 1.429283023e-01f)
+CARBTF_CONST_FLOAT(CARBTF_LOG1P_C8, -1.249126047e-01f)
+CARBTF_CONST_FLOAT(CARBTF_LOG1P_C9, 1.098139361e-01f)
+CARBTF_CONST_FLOAT(CARBTF_LOG1P_C10, -9.961545467e-02f)
+CARBTF_CONST_FLOAT(CARBTF_LOG1P_C11, 1.017364264e-01f)
+CARBTF_CONST_FLOAT(CARBTF_LOG1P_C12, -9.827125072e-02f)
+CARBTF_CONST_FLOAT(CARBTF_LOG1P_C13, 5.083188415e-02f)
+CARBTF_CONST_FLOAT(CARBTF_COS2PI_C0, 1.000000000e+00f)
+CARBTF_CONST_FLOAT(CARBTF_COS2PI_C1, -1.973920822e+01f)
+CARBTF_CONST_FLOAT(CARBTF_COS2PI_C2, 6.493939209e+01f)
+CARBTF_CONST_FLOAT(CARBTF_COS2PI_C3, -8.545681763e+01f)
+CARBTF_CONST_FLOAT(CARBTF_COS2PI_C4, 6.024462891e+01f)
+CARBTF_CONST_FLOAT(CARBTF_COS2PI_C5, -2.642589378e+01f)
+CARBTF_CONST_FLOAT(CARBTF_COS2PI_C6, 7.896629333e+00f)
+CARBTF_CONST_FLOAT(CARBTF_COS2PI_C7, -1.645584106e+00f)
+
+// ---- noise_field.comp ---------------------------------------------------------------------------
+CARBTF_CONST_UINT(CARBTF_NOISE_GROUP_X, 16u)
+CARBTF_CONST_UINT(CARBTF_NOISE_GROUP_Y, 16u)
+CARBTF_CONST_UINT(CARBTF_NOISE_BINDING_OUTPUT, 0u)
+
+// Push constants of noise_field.comp: writes the block rows [row0, row0+height) x cols
+// [col0, col0+width) of field `field_id` to output[element_offset + r * row_pitch + c].
+struct NoiseFieldParams {
+  uint seed_lo;
+  uint seed_hi;
+  uint field_id;
+  uint row0;  // two's complement: a block may start above row 0 (burn-in margins)
+  uint col0;
+  uint width;
+  uint height;
+  uint row_pitch;       // in floats
+  uint element_offset;  // in floats, from the start of the bound range
+};
+
+#ifdef __cplusplus
+static_assert(sizeof(NoiseFieldParams) == 36, "NoiseFieldParams must match the GLSL push-constant layout");
+static_assert(offsetof(NoiseFieldParams, row0) == 12);
+static_assert(offsetof(NoiseFieldParams, element_offset) == 32);
+}  // namespace carbtf::gpu
+#endif
+
+#endif  // CARBTF_GPU_SHARED_H

@@ -1,0 +1,71 @@
+// GPU buffers and images that own their memory. One allocation per object: carbtf creates few, large
+// objects, so a sub-allocator would buy nothing yet.
+// Lifetime: destroy before the Context; do not destroy while a submitted command buffer still uses it.
+// Thread safety: externally synchronized.
+#pragma once
+
+#include <cstdint>
+
+#include "carbtf/engine/context.hpp"
+
+namespace carbtf {
+
+enum class MemoryUsage {
+  device_local,   // GPU-only
+  host_readback,  // host-visible, cached where possible; persistently mapped
+  host_upload,    // host-visible, coherent; persistently mapped
+};
+
+struct BufferCreateInfo {
+  VkDeviceSize size = 0;  // bytes, > 0
+  VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  MemoryUsage memory = MemoryUsage::device_local;
+  const char* debug_name = "carbtf buffer";
+};
+
+class Buffer {
+ public:
+  Buffer() = default;
+  static Status create(const Context& context, const BufferCreateInfo& info, Buffer& out) noexcept;
+
+  VkBuffer handle() const noexcept { return buffer_.get(); }
+  VkDeviceSize size() const noexcept { return size_; }
+  // Host pointer to the whole buffer for host-visible memory, else null. Valid for the buffer's life.
+  void* mapped() const noexcept { return mapped_; }
+  // Makes device writes visible to the host (needed for non-coherent memory; cheap otherwise).
+  Status invalidate_for_host_read() const noexcept;
+
+ private:
+  const Context* context_ = nullptr;
+  UniqueHandle<VkBuffer> buffer_;
+  UniqueHandle<VkDeviceMemory> memory_;
+  VkDeviceSize size_ = 0;
+  void* mapped_ = nullptr;
+  bool coherent_ = true;
+};
+
+struct ImageCreateInfo {
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  std::uint32_t array_layers = 1;
+  VkFormat format = VK_FORMAT_R32_SFLOAT;
+  VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+  const char* debug_name = "carbtf image";
+};
+
+// A 2D (array) image in device-local memory, optimal tiling, created in VK_IMAGE_LAYOUT_UNDEFINED.
+class Image {
+ public:
+  Image() = default;
+  static Status create(const Context& context, const ImageCreateInfo& info, Image& out) noexcept;
+
+  VkImage handle() const noexcept { return image_.get(); }
+  const ImageCreateInfo& info() const noexcept { return info_; }
+
+ private:
+  UniqueHandle<VkImage> image_;
+  UniqueHandle<VkDeviceMemory> memory_;
+  ImageCreateInfo info_{};
+};
+
+}  // namespace carbtf

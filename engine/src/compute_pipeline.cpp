@@ -1,0 +1,82 @@
+#include "compute_pipeline.hpp"
+
+#include <vector>
+
+#include "vk_check.hpp"
+
+namespace carbtf::detail {
+
+Status ComputePipeline::create(const Context& context, const ComputePipelineInfo& info, ComputePipeline& out) {
+  const VulkanFunctions& vk = context.vk();
+  const VkDevice device = context.device();
+
+  std::vector<VkDescriptorSetLayoutBinding> bindings(info.storage_buffer_count);
+  for (std::uint32_t i = 0; i < info.storage_buffer_count; ++i) {
+    bindings[i].binding = i;
+    bindings[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    bindings[i].descriptorCount = 1;
+    bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+  }
+  auto set_info = vk_struct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
+  set_info.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
+  set_info.bindingCount = info.storage_buffer_count;
+  set_info.pBindings = bindings.data();
+  VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
+  CARBTF_VK_TRY(vk.vkCreateDescriptorSetLayout(device, &set_info, nullptr, &set_layout));
+  out.set_layout = UniqueHandle<VkDescriptorSetLayout>(&vk, device, set_layout);
+  context.set_debug_name(out.set_layout, info.debug_name);
+
+  VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, info.push_constant_bytes};
+  auto layout_info = vk_struct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
+  layout_info.setLayoutCount = 1;
+  layout_info.pSetLayouts = &set_layout;
+  layout_info.pushConstantRangeCount = info.push_constant_bytes > 0 ? 1 : 0;
+  layout_info.pPushConstantRanges = &range;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  CARBTF_VK_TRY(vk.vkCreatePipelineLayout(device, &layout_info, nullptr, &layout));
+  out.layout = UniqueHandle<VkPipelineLayout>(&vk, device, layout);
+  context.set_debug_name(out.layout, info.debug_name);
+
+  auto module_info = vk_struct<VkShaderModuleCreateInfo>(VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO);
+  module_info.codeSize = info.spirv_bytes;
+  module_info.pCode = info.spirv;
+  VkShaderModule module_handle = VK_NULL_HANDLE;
+  CARBTF_VK_TRY(vk.vkCreateShaderModule(device, &module_info, nullptr, &module_handle));
+  // Only needed while the pipeline is created.
+  UniqueHandle<VkShaderModule> shader_module(&vk, device, module_handle);
+
+  auto pipeline_info = vk_struct<VkComputePipelineCreateInfo>(VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO);
+  pipeline_info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+  pipeline_info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  pipeline_info.stage.module = module_handle;
+  pipeline_info.stage.pName = "main";
+  pipeline_info.layout = layout;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  CARBTF_VK_TRY(vk.vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pipeline_info, nullptr, &pipeline));
+  out.pipeline = UniqueHandle<VkPipeline>(&vk, device, pipeline);
+  context.set_debug_name(out.pipeline, info.debug_name);
+  return {};
+}
+
+void ComputePipeline::bind(const Context& context, VkCommandBuffer command_buffer,
+                           const VkDescriptorBufferInfo* buffers, std::uint32_t buffer_count,
+                           const void* push_constants, std::uint32_t push_constant_bytes) const {
+  const VulkanFunctions& vk = context.vk();
+  vk.vkCmdBindPipeline(command_buffer, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.get());
+  std::vector<VkWriteDescriptorSet> writes(buffer_count);
+  for (std::uint32_t i = 0; i < buffer_count; ++i) {
+    writes[i] = vk_struct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
+    writes[i].dstBinding = i;
+    writes[i].descriptorCount = 1;
+    writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writes[i].pBufferInfo = &buffers[i];
+  }
+  vk.vkCmdPushDescriptorSetKHR(command_buffer, VK_PIPELINE_BIND_POINT_COMPUTE, layout.get(), 0, buffer_count,
+                               writes.data());
+  if (push_constant_bytes > 0) {
+    vk.vkCmdPushConstants(command_buffer, layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, push_constant_bytes,
+                          push_constants);
+  }
+}
+
+}  // namespace carbtf::detail

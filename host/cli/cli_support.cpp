@@ -1,0 +1,46 @@
+#include "cli/cli_support.hpp"
+
+#include <iostream>
+
+namespace carbtf::cli {
+
+void add_device_options(CLI::App& command, DeviceOptions& options) {
+  command.add_option("--device", options.device,
+                     "Vulkan device: index or part of the name, as `carbtf devices` lists them "
+                     "(default: $CARBTF_DEVICE, else the best device)");
+  command.add_flag("--validation", options.validation,
+                   "Enable the Vulkan validation layer; any message it reports fails the command");
+}
+
+std::unique_ptr<Context> make_context(const DeviceOptions& options) {
+  ContextCreateInfo info;
+  info.device_selector = options.device;
+  info.enable_validation = options.validation;
+  if (options.validation) {
+    info.on_message = [](MessageSeverity severity, const char* text) {
+      std::cerr << "carbtf: vulkan " << (severity == MessageSeverity::error ? "error" : "warning") << ": " << text
+                << "\n";
+    };
+  }
+  std::unique_ptr<Context> context;
+  check(Context::create(info, context), "cannot start Vulkan");
+  return context;
+}
+
+void check_validation(const Context& context) {
+  const ValidationReport report = context.validation_report();
+  if (!report.clean()) {
+    throw CommandError("the Vulkan validation layer reported " + std::to_string(report.errors) + " errors and " +
+                       std::to_string(report.warnings) + " warnings");
+  }
+}
+
+void check(const Status& status, const std::string& what) {
+  if (!status.ok()) throw CommandError(what + ": " + status.message());
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace carbtf::cli

@@ -1,0 +1,37 @@
+// Shared plumbing of the carbtf commands: one-line errors, device options, context creation.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "carbtf/engine/context.hpp"
+
+namespace carbtf::cli {
+
+// Thrown by a command to stop with one line on stderr and a non-zero exit status.
+class CommandError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Options every GPU command takes.
+struct DeviceOptions {
+  std::string device;       // selector; empty: CARBTF_DEVICE, then the best device
+  bool validation = false;  // enable the Vulkan validation layer and fail on its messages
+};
+void add_device_options(CLI::App& command, DeviceOptions& options);
+
+// Creates the context or throws CommandError with the engine's message.
+std::unique_ptr<Context> make_context(const DeviceOptions& options);
+// Throws when validation was on and reported anything.
+void check_validation(const Context& context);
+// Throws CommandError("<what>: <status message>") unless `status` is ok.
+void check(const Status& status, const std::string& what);
+
+double seconds_since(std::chrono::steady_clock::time_point start);
+
+}  // namespace carbtf::cli

@@ -1,0 +1,13 @@
+// Each carbtf subcommand registers itself on the application; the callback runs the command.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace carbtf::cli {
+
+void register_devices_command(CLI::App& app);
+void register_noise_command(CLI::App& app);
+void register_demo_command(CLI::App& app);
+void register_bench_command(CLI::App& app);
+
+}  // namespace carbtf::cli

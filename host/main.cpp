@@ -1,0 +1,41 @@
+// carbtf: compress a measured BTF into a probabilistic model and synthesize it on the GPU.
+#include <CLI/CLI.hpp>
+
+#include <cstdlib>
+#include <iostream>
+
+#include "cli/cli_support.hpp"
+#include "commands/commands.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "carbtf: extreme BTF compression (Haindl & Filip) with Vulkan synthesis.\n"
+      "Environment: CARBTF_DEVICE picks the Vulkan device (index or part of its name)."};
+  app.name("carbtf");
+  app.require_subcommand(1);
+  app.fallthrough();
+  carbtf::cli::register_devices_command(app);
+  carbtf::cli::register_noise_command(app);
+  carbtf::cli::register_demo_command(app);
+  carbtf::cli::register_bench_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::Success& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    // One line: what was wrong, and where to look.
+    std::cerr << "carbtf: error: " << e.what() << " (see carbtf --help)\n";
+    return 2;
+  } catch (const carbtf::cli::CommandError& e) {
+    std::cerr << "carbtf: error: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "carbtf: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# Installs carbtf's Debian 12 build dependencies (only when something is missing), then configures and
+# builds in Release. Idempotent: on a machine where everything is present it costs one dpkg query and
+# an incremental build.
+#
+# Usage: scripts/setup.sh [BUILD_DIR]      (default: build)
+# Environment: CARBTF_CMAKE_ARGS  extra arguments for the CMake configure step.
+set -euo pipefail
+
+repo_root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build_dir="${1:-$repo_root/build}"
+
+# Why each package is here:
+#   build-essential cmake pkg-config ninja-build   toolchain and build system
+#   libvulkan-dev                                   Vulkan headers + loader (engine/)
+#   mesa-vulkan-drivers                             lavapipe: Vulkan on the CPU when no GPU driver is present
+#   vulkan-validationlayers                         validation in every test
+#   glslang-tools                                   GLSL -> SPIR-V at build time
+#   libglm-dev                                      vector maths in engine/
+#   libeigen3-dev libopenimageio-dev                analysis/ (model fitting, image I/O)
+#   libcli11-dev libfmt-dev nlohmann-json3-dev      command-line tool
+#   catch2                                          tests
+packages=(
+  build-essential cmake pkg-config ninja-build
+  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools libglm-dev
+  libeigen3-dev libopenimageio-dev
+  libcli11-dev libfmt-dev nlohmann-json3-dev
+  catch2
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  status="$(dpkg-query -W -f='${db:Status-Status}' "$p" 2>/dev/null || true)"
+  [ "$status" = "installed" ] || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "carbtf setup: installing ${missing[*]}"
+  sudo_cmd=()
+  [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+  export DEBIAN_FRONTEND=noninteractive
+  "${sudo_cmd[@]}" apt-get update -q
+  "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+if [ ! -f "$build_dir/CMakeCache.txt" ]; then
+  # shellcheck disable=SC2086
+  cmake -S "$repo_root" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release ${CARBTF_CMAKE_ARGS:-}
+fi
+cmake --build "$build_dir" --parallel "$(nproc)"
