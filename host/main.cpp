@@ -12,14 +12,16 @@ int main(int argc, char** argv) {
       "carbtf: extreme BTF compression (Haindl & Filip) with Vulkan synthesis.\n"
       "Environment: CARBTF_DEVICE picks the Vulkan device (index or part of its name)."};
   app.name("carbtf");
-  app.require_subcommand(1);
-  app.fallthrough();
   carbtf::cli::register_devices_command(app);
   carbtf::cli::register_noise_command(app);
   carbtf::cli::register_demo_command(app);
   carbtf::cli::register_bench_command(app);
   try {
     app.parse(argc, argv);
+    if (app.get_subcommands().empty()) {
+      std::cerr << "carbtf: error: no command given; commands are devices, noise, demo, bench (see carbtf --help)\n";
+      return 2;
+    }
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {

@@ -16,15 +16,14 @@ build_dir="${1:-$repo_root/build}"
 #   mesa-vulkan-drivers                             lavapipe: Vulkan on the CPU when no GPU driver is present
 #   vulkan-validationlayers                         validation in every test
 #   glslang-tools                                   GLSL -> SPIR-V at build time
-#   libglm-dev                                      vector maths in engine/
 #   libeigen3-dev libopenimageio-dev                analysis/ (model fitting, image I/O)
-#   libcli11-dev libfmt-dev nlohmann-json3-dev      command-line tool
+#   libcli11-dev                                    command-line parsing
 #   catch2                                          tests
 packages=(
   build-essential cmake pkg-config ninja-build
-  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools libglm-dev
+  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
   libeigen3-dev libopenimageio-dev
-  libcli11-dev libfmt-dev nlohmann-json3-dev
+  libcli11-dev
   catch2
 )
 
@@ -44,6 +43,6 @@ fi
 
 if [ ! -f "$build_dir/CMakeCache.txt" ]; then
   # shellcheck disable=SC2086
-  cmake -S "$repo_root" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release ${CARBTF_CMAKE_ARGS:-}
+  cmake -S "$repo_root" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCARBTF_WERROR=ON ${CARBTF_CMAKE_ARGS:-}
 fi
 cmake --build "$build_dir" --parallel "$(nproc)"

@@ -12,6 +12,13 @@ void add_device_options(CLI::App& command, DeviceOptions& options) {
                    "Enable the Vulkan validation layer; any message it reports fails the command");
 }
 
+const CLI::Validator& non_negative() {
+  static const CLI::Validator validator(
+      [](std::string& value) { return value.find('-') == std::string::npos ? std::string() : "must not be negative"; },
+      "NON-NEGATIVE");
+  return validator;
+}
+
 std::unique_ptr<Context> make_context(const DeviceOptions& options) {
   ContextCreateInfo info;
   info.device_selector = options.device;

@@ -25,6 +25,9 @@ struct DeviceOptions {
 };
 void add_device_options(CLI::App& command, DeviceOptions& options);
 
+// For unsigned options: CLI11 would otherwise wrap "-3" around to a huge value.
+const CLI::Validator& non_negative();
+
 // Creates the context or throws CommandError with the engine's message.
 std::unique_ptr<Context> make_context(const DeviceOptions& options);
 // Throws when validation was on and reported anything.

@@ -117,7 +117,7 @@ void register_demo_command(CLI::App& app) {
   auto* command = app.add_subcommand("demo", "Run the whole pipeline on built-in data and write an HTML report");
   command->add_option("--out", options->out, "Report folder")->capture_default_str();
   command->add_option("--size", options->size, "Field size in pixels")->check(CLI::Range(16u, 4096u))->capture_default_str();
-  command->add_option("--seed", options->seed, "Seed")->capture_default_str();
+  command->add_option("--seed", options->seed, "Seed")->check(non_negative())->capture_default_str();
   add_device_options(*command, options->device);
   command->callback([options] { run_demo(*options); });
 }

@@ -63,8 +63,9 @@ void register_noise_command(CLI::App& app) {
   command->add_option("--size", options->size, "Width and height in pixels")
       ->check(CLI::Range(1u, 16384u))
       ->capture_default_str();
-  command->add_option("--seed", options->seed, "Seed (64-bit)")->capture_default_str();
+  command->add_option("--seed", options->seed, "Seed (64-bit)")->check(non_negative())->capture_default_str();
   command->add_option("--field", options->field, "Field id (each band of each subspace has its own)")
+      ->check(non_negative())
       ->capture_default_str();
   command->add_option("--out", options->out, "Output image: .png/.jpg/.bmp (8-bit, [-4,4] -> [0,255]) or "
                                              ".exr/.tif/.pfm (32-bit float)")

@@ -1,0 +1,122 @@
+// The carbtf command line as a user meets it: exit status, one-line errors, files written.
+#include <catch2/catch.hpp>
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Run {
+  int status = -1;
+  std::string output;  // stdout and stderr together
+};
+
+Run run(const std::string& arguments, const std::string& environment = "") {
+  const std::string command = environment + " \"" CARBTF_CLI_PATH "\" " + arguments + " 2>&1";
+  Run result;
+  FILE* pipe = popen(command.c_str(), "r");
+  REQUIRE(pipe != nullptr);
+  std::array<char, 4096> buffer{};
+  while (std::fgets(buffer.data(), buffer.size(), pipe)) result.output += buffer.data();
+  const int raw = pclose(pipe);
+  result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
+  return result;
+}
+
+fs::path fresh_folder(const std::string& name) {
+  const fs::path folder = fs::temp_directory_path() / ("carbtf_cli_test_" + name);
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  return folder;
+}
+
+std::size_t line_count(const std::string& text) {
+  std::size_t lines = 0;
+  for (char c : text) lines += c == '\n';
+  return lines;
+}
+
+}  // namespace
+
+TEST_CASE("carbtf noise writes the field it was asked for", "[cli]") {
+  const fs::path folder = fresh_folder("noise");
+  const Run png = run("noise --size 64 --seed 3 --validation --out " + (folder / "sub" / "n.png").string());
+  INFO(png.output);
+  REQUIRE(png.status == 0);
+  CHECK(fs::file_size(folder / "sub" / "n.png") > 0);
+  CHECK_THAT(png.output, Catch::Contains("64x64"));
+  const Run exr = run("noise --size 32 --reference --out " + (folder / "n.exr").string());
+  INFO(exr.output);
+  REQUIRE(exr.status == 0);
+  CHECK(fs::file_size(folder / "n.exr") > 32 * 32 * 2);
+  fs::remove_all(folder);
+}
+
+TEST_CASE("bad arguments give one error line and a non-zero exit", "[cli]") {
+  const fs::path folder = fresh_folder("errors");
+  struct Case {
+    std::string arguments;
+    std::string expected;
+  };
+  for (const Case& c : {Case{"noise --size 0", "--size"}, Case{"noise --size abc", "--size"},
+                        Case{"noise --seed -3", "--seed"}, Case{"frobnicate", "frobnicate"},
+                        Case{"noise --out " + (folder / "n.xyz").string(), "unsupported image extension"},
+                        Case{"noise --size 16 --device no-such-gpu --out " + (folder / "n.png").string(),
+                             "no-such-gpu"},
+                        Case{"noise --size 16 --out /proc/carbtf/n.png", "/proc/carbtf"}}) {
+    const Run r = run(c.arguments);
+    INFO("carbtf " << c.arguments << "\n" << r.output);
+    CHECK(r.status != 0);
+    CHECK(r.status < 128);  // an error exit, not a crash
+    CHECK(line_count(r.output) == 1);
+    CHECK_THAT(r.output, Catch::StartsWith("carbtf: error: ") && Catch::Contains(c.expected));
+  }
+  CHECK_FALSE(fs::exists(folder / "n.xyz"));
+  CHECK_FALSE(fs::exists(folder / "n.png"));
+  fs::remove_all(folder);
+}
+
+TEST_CASE("with no Vulkan driver the error names the package to install", "[cli]") {
+  // Point the loader at a driver manifest that does not exist: as on a machine with no driver.
+  const std::string no_driver = "VK_DRIVER_FILES=/nonexistent/icd.json VK_ICD_FILENAMES=/nonexistent/icd.json";
+  for (const std::string arguments : {"devices", "noise --size 16 --out /tmp/carbtf_never_written.png"}) {
+    const Run r = run(arguments, no_driver);
+    INFO("carbtf " << arguments << "\n" << r.output);
+    CHECK(r.status == 1);
+    CHECK_THAT(r.output, Catch::Contains("no Vulkan driver") && Catch::Contains("mesa-vulkan-drivers"));
+  }
+  CHECK_FALSE(fs::exists("/tmp/carbtf_never_written.png"));
+}
+
+TEST_CASE("carbtf devices lists the default device", "[cli]") {
+  const Run r = run("devices");
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.output, Catch::Contains("default"));
+}
+
+TEST_CASE("carbtf demo writes a report and says where", "[cli]") {
+  const fs::path folder = fresh_folder("demo");
+  const Run r = run("demo --size 128 --validation --out " + (folder / "report").string());
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.output, Catch::Contains("report: " + (folder / "report" / "index.html").string()));
+  CHECK(fs::exists(folder / "report" / "index.html"));
+  CHECK(fs::exists(folder / "report" / "noise.png"));
+  fs::remove_all(folder);
+}
+
+TEST_CASE("--help answers for every command", "[cli]") {
+  for (const std::string command : {"", "noise", "devices", "demo", "bench noise"}) {
+    const Run r = run(command + " --help");
+    INFO("carbtf " << command << " --help\n" << r.output);
+    CHECK(r.status == 0);
+    CHECK_THAT(r.output, Catch::Contains("Usage"));
+  }
+}
