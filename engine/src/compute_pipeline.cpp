@@ -1,5 +1,8 @@
 #include "compute_pipeline.hpp"
 
+#include <algorithm>
+#include <array>
+#include <string>
 #include <vector>
 
 #include "vk_check.hpp"
@@ -9,6 +12,9 @@ namespace carbtf::detail {
 Status ComputePipeline::create(const Context& context, const ComputePipelineInfo& info, ComputePipeline& out) {
   const VulkanFunctions& vk = context.vk();
   const VkDevice device = context.device();
+  if (info.storage_buffer_count == 0 || info.storage_buffer_count > kMaxStorageBuffers) {
+    return {ErrorCode::invalid_argument, std::string(info.debug_name) + ": storage buffer count out of range"};
+  }
 
   std::vector<VkDescriptorSetLayoutBinding> bindings(info.storage_buffer_count);
   for (std::uint32_t i = 0; i < info.storage_buffer_count; ++i) {
@@ -60,10 +66,11 @@ Status ComputePipeline::create(const Context& context, const ComputePipelineInfo
 
 void ComputePipeline::bind(const Context& context, VkCommandBuffer command_buffer,
                            const VkDescriptorBufferInfo* buffers, std::uint32_t buffer_count,
-                           const void* push_constants, std::uint32_t push_constant_bytes) const {
+                           const void* push_constants, std::uint32_t push_constant_bytes) const noexcept {
   const VulkanFunctions& vk = context.vk();
   vk.vkCmdBindPipeline(command_buffer, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.get());
-  std::vector<VkWriteDescriptorSet> writes(buffer_count);
+  std::array<VkWriteDescriptorSet, kMaxStorageBuffers> writes{};
+  buffer_count = std::min(buffer_count, kMaxStorageBuffers);
   for (std::uint32_t i = 0; i < buffer_count; ++i) {
     writes[i] = vk_struct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
     writes[i].dstBinding = i;
