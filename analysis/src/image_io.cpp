@@ -1,12 +1,18 @@
 #include "carbtf/analysis/image_io.hpp"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstring>
+#include <fstream>
 #include <system_error>
 #include <vector>
+
+#include "carbtf/analysis/btf/btf_dataset.hpp"
+#include "carbtf/analysis/input_error.hpp"
 
 namespace carbtf {
 
@@ -80,6 +86,114 @@ bool write_field_image(const std::filesystem::path& path, std::span<const float>
     return false;
   }
   return true;
+}
+
+}  // namespace carbtf
+
+// ---- RGB images for BTF data ---------------------------------------------------------------------
+
+namespace carbtf {
+
+namespace {
+// Larger than any BTF image; guards against hostile headers asking for absurd allocations.
+constexpr std::uint64_t kMaxImagePixels = 1ull << 28;
+}  // namespace
+
+std::vector<std::byte> read_file_bytes(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "not a readable file");
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw InputError(path, "cannot open");
+  file.seekg(0, std::ios::end);
+  const std::streamoff size = file.tellg();
+  file.seekg(0, std::ios::beg);
+  std::vector<std::byte> bytes(static_cast<std::size_t>(std::max<std::streamoff>(size, 0)));
+  if (size > 0 && !file.read(reinterpret_cast<char*>(bytes.data()), size)) throw InputError(path, "read failed");
+  return bytes;
+}
+
+RgbImage decode_rgb_image(const std::string& name, std::span<const std::byte> bytes) {
+  if (bytes.empty()) throw InputError(name, "empty file, not an image");
+  // IOMemReader takes a non-const pointer but only reads.
+  OIIO::Filesystem::IOMemReader memory(const_cast<std::byte*>(bytes.data()), bytes.size());
+  auto input = OIIO::ImageInput::open(name, nullptr, &memory);
+  if (!input) throw InputError(name, "not a readable image (" + OIIO::geterror() + ")");
+  const OIIO::ImageSpec& spec = input->spec();
+  if (spec.width <= 0 || spec.height <= 0 || std::uint64_t(spec.width) * std::uint64_t(spec.height) > kMaxImagePixels) {
+    throw InputError(name, "implausible image size " + std::to_string(spec.width) + "x" + std::to_string(spec.height));
+  }
+  if (spec.depth > 1 || spec.nchannels < 1) throw InputError(name, "not a 2D colour or grey image");
+  RgbImage image;
+  image.width = static_cast<std::uint32_t>(spec.width);
+  image.height = static_cast<std::uint32_t>(spec.height);
+  const bool is_float = spec.format.basetype == OIIO::TypeDesc::FLOAT || spec.format.basetype == OIIO::TypeDesc::HALF ||
+                        spec.format.basetype == OIIO::TypeDesc::DOUBLE;
+  image.linear = is_float;
+  const std::size_t pixels = std::size_t{image.width} * image.height;
+  // Colour images give RGB (alpha dropped); grey (+ alpha) images give their first channel, copied.
+  const int channels = spec.nchannels >= 3 ? 3 : 1;
+  auto expand_grey = [&](auto& values) {
+    if (channels == 3) return;
+    for (std::size_t i = 0; i < pixels; ++i) values[i * 3 + 1] = values[i * 3 + 2] = values[i * 3];
+  };
+  bool read = false;
+  if (is_float) {
+    std::vector<float> values(pixels * 3);
+    read = input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, values.data(),
+                             channels == 3 ? OIIO::AutoStride : 3 * sizeof(float));
+    expand_grey(values);
+    image.linear_rgb = std::move(values);
+  } else {
+    std::vector<std::uint8_t> values(pixels * 3);
+    read = input->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, values.data(),
+                             channels == 3 ? OIIO::AutoStride : 3);
+    expand_grey(values);
+    image.srgb8 = std::move(values);
+  }
+  // Decoders such as libjpeg report truncation as a warning and still "succeed": any message fails.
+  const std::string error = input->geterror();
+  if (!read || !error.empty()) {
+    throw InputError(name, "corrupt or truncated image" + (error.empty() ? std::string() : " (" + error + ")"));
+  }
+  if (is_float) {
+    for (std::size_t i = 0; i < image.linear_rgb.size(); ++i) {
+      if (!std::isfinite(image.linear_rgb[i])) {
+        throw InputError(name, std::string(std::isnan(image.linear_rgb[i]) ? "NaN" : "Inf") + " at pixel (" +
+                                   std::to_string(i / 3 % image.width) + ", " + std::to_string(i / 3 / image.width) +
+                                   ")");
+      }
+    }
+  }
+  return image;
+}
+
+std::vector<std::byte> encode_rgb_image(const std::string& name, std::span<const float> linear_rgb,
+                                        std::uint32_t width, std::uint32_t height) {
+  const std::filesystem::path path(name);
+  const bool as_float = is_float_image_extension(path);
+  std::vector<unsigned char> encoded;
+  OIIO::Filesystem::IOVecOutput memory(encoded);
+  auto output = OIIO::ImageOutput::create(name);
+  if (!output) throw InputError(name, "no encoder for this extension");
+  output->set_ioproxy(&memory);
+  OIIO::ImageSpec spec(static_cast<int>(width), static_cast<int>(height), 3,
+                       as_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+  spec.attribute("CompressionQuality", 95);
+  if (!output->open(name, spec)) throw InputError(name, "cannot encode: " + output->geterror());
+  bool written = false;
+  if (as_float) {
+    written = output->write_image(OIIO::TypeDesc::FLOAT, linear_rgb.data());
+  } else {
+    std::vector<std::uint8_t> bytes(linear_rgb.size());
+    for (std::size_t i = 0; i < bytes.size(); ++i) {
+      bytes[i] = static_cast<std::uint8_t>(std::lround(std::clamp(linear_to_srgb(std::clamp(linear_rgb[i], 0.0f, 1.0f)), 0.0f, 1.0f) * 255.0f));
+    }
+    written = output->write_image(OIIO::TypeDesc::UINT8, bytes.data());
+  }
+  if (!written || !output->close()) throw InputError(name, "cannot encode: " + output->geterror());
+  std::vector<std::byte> result(encoded.size());
+  std::memcpy(result.data(), encoded.data(), encoded.size());
+  return result;
 }
 
 }  // namespace carbtf

@@ -1,10 +1,12 @@
 // Writing single-channel float fields and RGB images to disk through OpenImageIO.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace carbtf {
 
@@ -24,5 +26,28 @@ bool write_field_image(const std::filesystem::path& path, std::span<const float>
 bool is_supported_image_extension(const std::filesystem::path& path);
 // True when `path` names a format that keeps 32-bit floats (.exr, .tif, .tiff, .pfm).
 bool is_float_image_extension(const std::filesystem::path& path);
+
+// A decoded RGB image: 8-bit sRGB (JPEG, PNG, BMP) or linear float (EXR, TIFF float, PFM).
+struct RgbImage {
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  bool linear = false;                 // which of the two vectors holds the pixels
+  std::vector<std::uint8_t> srgb8;     // width * height * 3 when !linear
+  std::vector<float> linear_rgb;       // width * height * 3 when linear
+};
+
+// Decodes an image held in memory; `name` (a path or an archive entry) names it in errors and its
+// extension picks the decoder. Grey images become RGB; alpha is dropped. Throws InputError for
+// anything that is not a complete, finite image: unknown or non-image content, corrupt or truncated
+// data, NaN or Inf samples, a zero or absurd size.
+RgbImage decode_rgb_image(const std::string& name, std::span<const std::byte> bytes);
+
+// Reads a whole file into memory; throws InputError naming the file when it cannot.
+std::vector<std::byte> read_file_bytes(const std::filesystem::path& path);
+
+// Encodes linear RGB (width * height * 3 floats) for a file named `name`: 8-bit sRGB for .jpg/.png
+// (JPEG quality 95), 32-bit float for .exr.
+std::vector<std::byte> encode_rgb_image(const std::string& name, std::span<const float> linear_rgb,
+                                        std::uint32_t width, std::uint32_t height);
 
 }  // namespace carbtf

@@ -1,0 +1,80 @@
+// A measured BTF: one RGB image per (light direction, view direction) pair, over any direction sets.
+//
+// Pixels are kept as the source stored them, to fit a full 81 x 81 x 256^2 material in about 1.3 GB:
+// 8-bit sRGB for JPEG/PNG sources, IEEE half for linear (EXR) sources. The model always sees linear
+// float RGB: linear_rgb() converts on access. Images are row-major, row 0 at the top, RGB interleaved.
+// Pairs may be missing (partial datasets). Thread safety: concurrent reads are safe; set_* calls on
+// different pairs may run concurrently, on the same pair they must not.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "carbtf/analysis/btf/directions.hpp"
+
+namespace carbtf {
+
+enum class ColorEncoding {
+  srgb8,        // 8-bit, sRGB transfer function (JPEG, PNG)
+  linear_half,  // linear light, 16-bit float (EXR)
+};
+const char* color_encoding_name(ColorEncoding encoding);
+
+struct LightView {
+  std::uint32_t light = 0;
+  std::uint32_t view = 0;
+  bool operator==(const LightView&) const = default;
+};
+
+class BtfDataset {
+ public:
+  BtfDataset() = default;
+  BtfDataset(std::vector<Direction> lights, std::vector<Direction> views, std::uint32_t width, std::uint32_t height,
+             ColorEncoding encoding);
+
+  const std::vector<Direction>& lights() const { return lights_; }
+  const std::vector<Direction>& views() const { return views_; }
+  std::uint32_t width() const { return width_; }
+  std::uint32_t height() const { return height_; }
+  ColorEncoding encoding() const { return encoding_; }
+  std::size_t pixel_count() const { return std::size_t{width_} * height_; }
+
+  bool has_image(LightView pair) const;
+  std::vector<LightView> present_pairs() const;
+  std::vector<LightView> missing_pairs() const;
+
+  // Stores an image: width * height * 3 bytes of sRGB (srgb8 datasets) or floats of linear RGB
+  // (linear_half datasets; converted to half). Throws std::invalid_argument on a size mismatch.
+  void set_srgb8(LightView pair, std::vector<std::uint8_t> pixels);
+  void set_linear(LightView pair, std::span<const float> rgb);
+
+  // Linear RGB of a stored image into `out` (width * height * 3 floats). Throws std::out_of_range if
+  // the pair is missing.
+  void linear_rgb(LightView pair, std::span<float> out) const;
+
+  // Bytes held by pixel storage.
+  std::size_t storage_bytes() const;
+
+  // Where the data came from, e.g. "UBO2003 folder /data/wool"; shown by `carbtf info`.
+  std::string source;
+
+ private:
+  std::size_t slot(LightView pair) const;
+
+  std::vector<Direction> lights_;
+  std::vector<Direction> views_;
+  std::uint32_t width_ = 0;
+  std::uint32_t height_ = 0;
+  ColorEncoding encoding_ = ColorEncoding::srgb8;
+  std::vector<std::vector<std::uint8_t>> srgb_;    // per slot, empty when missing
+  std::vector<std::vector<std::uint16_t>> half_;   // per slot, empty when missing
+};
+
+// The sRGB transfer function and its inverse (IEC 61966-2-1), on [0, 1].
+float srgb_to_linear(float encoded);
+float linear_to_srgb(float linear);
+
+}  // namespace carbtf

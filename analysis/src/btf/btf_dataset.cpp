@@ -1,0 +1,117 @@
+#include "carbtf/analysis/btf/btf_dataset.hpp"
+
+#include <Imath/half.h>
+
+#include <array>
+#include <cmath>
+#include <stdexcept>
+
+namespace carbtf {
+
+const char* color_encoding_name(ColorEncoding encoding) {
+  return encoding == ColorEncoding::srgb8 ? "8-bit sRGB (linearised on load)" : "linear float (stored as half)";
+}
+
+float srgb_to_linear(float encoded) {
+  return encoded <= 0.04045f ? encoded / 12.92f : std::pow((encoded + 0.055f) / 1.055f, 2.4f);
+}
+
+float linear_to_srgb(float linear) {
+  return linear <= 0.0031308f ? linear * 12.92f : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
+}
+
+namespace {
+
+const std::array<float, 256>& srgb8_table() {
+  static const std::array<float, 256> table = [] {
+    std::array<float, 256> t{};
+    for (int i = 0; i < 256; ++i) t[i] = srgb_to_linear(static_cast<float>(i) / 255.0f);
+    return t;
+  }();
+  return table;
+}
+
+}  // namespace
+
+BtfDataset::BtfDataset(std::vector<Direction> lights, std::vector<Direction> views, std::uint32_t width,
+                       std::uint32_t height, ColorEncoding encoding)
+    : lights_(std::move(lights)), views_(std::move(views)), width_(width), height_(height), encoding_(encoding) {
+  const std::size_t slots = lights_.size() * views_.size();
+  if (encoding_ == ColorEncoding::srgb8) {
+    srgb_.resize(slots);
+  } else {
+    half_.resize(slots);
+  }
+}
+
+std::size_t BtfDataset::slot(LightView pair) const {
+  if (pair.light >= lights_.size() || pair.view >= views_.size()) throw std::out_of_range("BTF pair out of range");
+  return std::size_t{pair.light} * views_.size() + pair.view;
+}
+
+bool BtfDataset::has_image(LightView pair) const {
+  const std::size_t s = slot(pair);
+  return encoding_ == ColorEncoding::srgb8 ? !srgb_[s].empty() : !half_[s].empty();
+}
+
+std::vector<LightView> BtfDataset::present_pairs() const {
+  std::vector<LightView> pairs;
+  for (std::uint32_t l = 0; l < lights_.size(); ++l) {
+    for (std::uint32_t v = 0; v < views_.size(); ++v) {
+      if (has_image({l, v})) pairs.push_back({l, v});
+    }
+  }
+  return pairs;
+}
+
+std::vector<LightView> BtfDataset::missing_pairs() const {
+  std::vector<LightView> pairs;
+  for (std::uint32_t l = 0; l < lights_.size(); ++l) {
+    for (std::uint32_t v = 0; v < views_.size(); ++v) {
+      if (!has_image({l, v})) pairs.push_back({l, v});
+    }
+  }
+  return pairs;
+}
+
+void BtfDataset::set_srgb8(LightView pair, std::vector<std::uint8_t> pixels) {
+  if (encoding_ != ColorEncoding::srgb8) throw std::invalid_argument("set_srgb8 on a linear dataset");
+  if (pixels.size() != pixel_count() * 3) throw std::invalid_argument("image size does not match the dataset");
+  srgb_[slot(pair)] = std::move(pixels);
+}
+
+void BtfDataset::set_linear(LightView pair, std::span<const float> rgb) {
+  if (encoding_ != ColorEncoding::linear_half) throw std::invalid_argument("set_linear on an 8-bit dataset");
+  if (rgb.size() != pixel_count() * 3) throw std::invalid_argument("image size does not match the dataset");
+  std::vector<std::uint16_t> halves(rgb.size());
+  for (std::size_t i = 0; i < rgb.size(); ++i) halves[i] = Imath::half(rgb[i]).bits();
+  half_[slot(pair)] = std::move(halves);
+}
+
+void BtfDataset::linear_rgb(LightView pair, std::span<float> out) const {
+  const std::size_t s = slot(pair);
+  if (out.size() < pixel_count() * 3) throw std::invalid_argument("output span too small for the image");
+  if (encoding_ == ColorEncoding::srgb8) {
+    const auto& pixels = srgb_[s];
+    if (pixels.empty()) throw std::out_of_range("BTF image missing for this light/view pair");
+    const auto& table = srgb8_table();
+    for (std::size_t i = 0; i < pixels.size(); ++i) out[i] = table[pixels[i]];
+  } else {
+    const auto& halves = half_[s];
+    if (halves.empty()) throw std::out_of_range("BTF image missing for this light/view pair");
+    for (std::size_t i = 0; i < halves.size(); ++i) {
+      Imath::half h;
+      h.setBits(halves[i]);
+      out[i] = static_cast<float>(h);
+    }
+  }
+}
+
+std::size_t BtfDataset::storage_bytes() const {
+  std::size_t bytes = 0;
+  for (const auto& image : srgb_) bytes += image.size();
+  for (const auto& image : half_) bytes += image.size() * sizeof(std::uint16_t);
+  return bytes;
+}
+
+}  // namespace carbtf

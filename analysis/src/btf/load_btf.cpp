@@ -1,0 +1,23 @@
+// load_btf(): picks the reader by what the path is.
+#include <algorithm>
+#include <cctype>
+
+#include "carbtf/analysis/btf/btf_reader.hpp"
+#include "carbtf/analysis/btf/ubo2003_zip_reader.hpp"
+#include "carbtf/analysis/input_error.hpp"
+
+namespace carbtf {
+
+BtfDataset load_btf(const std::filesystem::path& path, const BtfLoadOptions& options,
+                    std::vector<std::string>& warnings) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw InputError(path, "no such file or folder");
+  if (std::filesystem::is_directory(path, ec)) return read_ubo2003_folder(path, options, warnings);
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (extension == ".zip") return read_ubo2003_zip(path, options, warnings);
+  throw InputError(path, "not a BTF dataset: expected a UBO2003 folder or .zip");
+}
+
+}  // namespace carbtf

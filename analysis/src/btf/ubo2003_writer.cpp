@@ -1,0 +1,87 @@
+#include "carbtf/analysis/btf/ubo2003_writer.hpp"
+
+#include <zip.h>
+
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+
+#include "carbtf/analysis/btf/ubo2003_names.hpp"
+#include "carbtf/analysis/image_io.hpp"
+#include "carbtf/analysis/input_error.hpp"
+
+namespace carbtf {
+
+struct Ubo2003Writer::Archive {
+  zip_t* handle = nullptr;
+};
+
+Ubo2003Writer::Ubo2003Writer(std::filesystem::path output, std::string extension, bool zip)
+    : output_(std::move(output)), extension_(std::move(extension)) {
+  std::error_code ec;
+  if (zip) {
+    if (output_.has_parent_path()) std::filesystem::create_directories(output_.parent_path(), ec);
+    if (ec) throw InputError(output_.parent_path(), "cannot create folder: " + ec.message());
+    int error = 0;
+    archive_ = std::make_unique<Archive>();
+    archive_->handle = zip_open(output_.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &error);
+    if (!archive_->handle) {
+      zip_error_t z;
+      zip_error_init_with_code(&z, error);
+      const std::string message = zip_error_strerror(&z);
+      zip_error_fini(&z);
+      throw InputError(output_, "cannot create archive: " + message);
+    }
+  } else {
+    std::filesystem::create_directories(output_, ec);
+    if (ec) throw InputError(output_, "cannot create folder: " + ec.message());
+  }
+}
+
+Ubo2003Writer::~Ubo2003Writer() {
+  if (archive_ && archive_->handle) zip_discard(archive_->handle);
+}
+
+void Ubo2003Writer::write(std::uint32_t light, std::uint32_t view, std::span<const float> linear_rgb,
+                          std::uint32_t width, std::uint32_t height) {
+  const std::string entry = ubo2003_view_folder(view) + "/" + ubo2003_file_name(light, view, extension_);
+  std::vector<std::byte> encoded = encode_rgb_image(entry, linear_rgb, width, height);
+  if (archive_) {
+    // libzip frees the buffer (last argument 1) once the archive is written.
+    void* copy = std::malloc(encoded.size());
+    if (!copy) throw std::bad_alloc();
+    std::memcpy(copy, encoded.data(), encoded.size());
+    std::lock_guard<std::mutex> lock(mutex_);
+    zip_source_t* source = zip_source_buffer(archive_->handle, copy, encoded.size(), 1);
+    if (!source) {
+      std::free(copy);
+      throw InputError(output_, "cannot add " + entry + ": " + zip_strerror(archive_->handle));
+    }
+    if (zip_file_add(archive_->handle, entry.c_str(), source, ZIP_FL_OVERWRITE | ZIP_FL_ENC_UTF_8) < 0) {
+      zip_source_free(source);
+      throw InputError(output_, "cannot add " + entry + ": " + zip_strerror(archive_->handle));
+    }
+    return;
+  }
+  const std::filesystem::path path = output_ / entry;
+  std::error_code ec;
+  std::filesystem::create_directories(path.parent_path(), ec);
+  if (ec) throw InputError(path.parent_path(), "cannot create folder: " + ec.message());
+  std::ofstream file(path, std::ios::binary);
+  file.write(reinterpret_cast<const char*>(encoded.data()), static_cast<std::streamsize>(encoded.size()));
+  if (!file) throw InputError(path, "cannot write");
+}
+
+void Ubo2003Writer::finish() {
+  if (!archive_ || !archive_->handle) return;
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (zip_close(archive_->handle) < 0) {
+    const std::string message = zip_strerror(archive_->handle);
+    zip_discard(archive_->handle);
+    archive_->handle = nullptr;
+    throw InputError(output_, "cannot write archive: " + message);
+  }
+  archive_->handle = nullptr;
+}
+
+}  // namespace carbtf
