@@ -15,11 +15,13 @@ int main(int argc, char** argv) {
   carbtf::cli::register_devices_command(app);
   carbtf::cli::register_noise_command(app);
   carbtf::cli::register_demo_command(app);
+  carbtf::cli::register_sample_command(app);
+  carbtf::cli::register_info_command(app);
   carbtf::cli::register_bench_command(app);
   try {
     app.parse(argc, argv);
     if (app.get_subcommands().empty()) {
-      std::cerr << "carbtf: error: no command given; commands are devices, noise, demo, bench (see carbtf --help)\n";
+      std::cerr << "carbtf: error: no command given; commands are devices, sample, info, noise, demo, bench (see carbtf --help)\n";
       return 2;
     }
   } catch (const CLI::CallForHelp& e) {

@@ -17,6 +17,7 @@ build_dir="${1:-$repo_root/build}"
 #   vulkan-validationlayers                         validation in every test
 #   glslang-tools                                   GLSL -> SPIR-V at build time
 #   libeigen3-dev libopenimageio-dev                analysis/ (model fitting, image I/O)
+#   libimath-dev                                    half floats for linear BTF images
 #   libzip-dev                                      BTF archives (.zip) read and written by analysis/
 #   nlohmann-json3-dev                              sample-material recipes (assets/materials/*.json)
 #   libcli11-dev                                    command-line parsing
@@ -24,7 +25,7 @@ build_dir="${1:-$repo_root/build}"
 packages=(
   build-essential cmake pkg-config ninja-build
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
-  libeigen3-dev libopenimageio-dev libzip-dev nlohmann-json3-dev
+  libeigen3-dev libopenimageio-dev libimath-dev libzip-dev nlohmann-json3-dev
   libcli11-dev
   catch2
 )

@@ -168,7 +168,7 @@ RgbImage decode_rgb_image(const std::string& name, std::span<const std::byte> by
 }
 
 std::vector<std::byte> encode_rgb_image(const std::string& name, std::span<const float> linear_rgb,
-                                        std::uint32_t width, std::uint32_t height) {
+                                        std::uint32_t width, std::uint32_t height, bool srgb_encode) {
   const std::filesystem::path path(name);
   const bool as_float = is_float_image_extension(path);
   std::vector<unsigned char> encoded;
@@ -186,7 +186,8 @@ std::vector<std::byte> encode_rgb_image(const std::string& name, std::span<const
   } else {
     std::vector<std::uint8_t> bytes(linear_rgb.size());
     for (std::size_t i = 0; i < bytes.size(); ++i) {
-      bytes[i] = static_cast<std::uint8_t>(std::lround(std::clamp(linear_to_srgb(std::clamp(linear_rgb[i], 0.0f, 1.0f)), 0.0f, 1.0f) * 255.0f));
+      const float value = std::clamp(linear_rgb[i], 0.0f, 1.0f);
+      bytes[i] = static_cast<std::uint8_t>(std::lround((srgb_encode ? linear_to_srgb(value) : value) * 255.0f));
     }
     written = output->write_image(OIIO::TypeDesc::UINT8, bytes.data());
   }
@@ -194,6 +195,17 @@ std::vector<std::byte> encode_rgb_image(const std::string& name, std::span<const
   std::vector<std::byte> result(encoded.size());
   std::memcpy(result.data(), encoded.data(), encoded.size());
   return result;
+}
+
+void write_rgb_image(const std::filesystem::path& path, std::span<const float> rgb, std::uint32_t width,
+                     std::uint32_t height, bool srgb_encode) {
+  const std::vector<std::byte> bytes = encode_rgb_image(path.string(), rgb, width, height, srgb_encode);
+  std::error_code ec;
+  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
+  if (ec) throw InputError(path.parent_path(), "cannot create folder: " + ec.message());
+  std::ofstream file(path, std::ios::binary);
+  file.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  if (!file) throw InputError(path, "cannot write");
 }
 
 }  // namespace carbtf

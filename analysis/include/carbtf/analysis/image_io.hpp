@@ -45,9 +45,14 @@ RgbImage decode_rgb_image(const std::string& name, std::span<const std::byte> by
 // Reads a whole file into memory; throws InputError naming the file when it cannot.
 std::vector<std::byte> read_file_bytes(const std::filesystem::path& path);
 
-// Encodes linear RGB (width * height * 3 floats) for a file named `name`: 8-bit sRGB for .jpg/.png
-// (JPEG quality 95), 32-bit float for .exr.
-std::vector<std::byte> encode_rgb_image(const std::string& name, std::span<const float> linear_rgb,
-                                        std::uint32_t width, std::uint32_t height);
+// Encodes RGB (width * height * 3 floats) for a file named `name`: 8-bit for .jpg/.png (JPEG quality
+// 95), 32-bit float for .exr. 8-bit files get the sRGB transfer function when `srgb_encode` (colours),
+// and the values as they are, clamped to [0, 1], otherwise (data such as normal maps).
+std::vector<std::byte> encode_rgb_image(const std::string& name, std::span<const float> rgb, std::uint32_t width,
+                                        std::uint32_t height, bool srgb_encode = true);
+
+// encode_rgb_image() written to `path` (parent folders created); throws InputError naming the file.
+void write_rgb_image(const std::filesystem::path& path, std::span<const float> rgb, std::uint32_t width,
+                     std::uint32_t height, bool srgb_encode = true);
 
 }  // namespace carbtf
