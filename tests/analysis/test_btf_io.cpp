@@ -1,0 +1,324 @@
+// BTF data: UBO2003 names, sample -> folder / zip -> read back, partial datasets, and one test per bad
+// input, each checking that the error names the file and the problem.
+#include <catch2/catch.hpp>
+
+#include <zip.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+
+#include "carbtf/analysis/btf/btf_reader.hpp"
+#include "carbtf/analysis/btf/ubo2003_names.hpp"
+#include "carbtf/analysis/btf/ubo2003_writer.hpp"
+#include "carbtf/analysis/image_io.hpp"
+#include "carbtf/analysis/input_error.hpp"
+#include "carbtf/analysis/sample/height_field_renderer.hpp"
+#include "carbtf/analysis/sample/sample_materials.hpp"
+
+using namespace carbtf;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path fresh_folder(const std::string& name) {
+  const fs::path folder = fs::temp_directory_path() / ("carbtf_btf_test_" + name);
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  return folder;
+}
+
+const BtfLoadOptions kQuiet{0, false};
+
+// A uniform image file named for UBO2003 pair (light, view).
+void write_uniform(const fs::path& path, std::uint32_t size, float value) {
+  std::vector<float> rgb(std::size_t{size} * size * 3, value);
+  write_rgb_image(path, rgb, size, size);
+}
+
+std::string name_of(std::uint32_t light, std::uint32_t view, const std::string& ext = ".png") {
+  return ubo2003_file_name(light, view, ext);
+}
+
+// Requires load_btf(path) to throw InputError whose message contains every fragment.
+void require_input_error(const fs::path& path, const std::vector<std::string>& fragments) {
+  std::vector<std::string> warnings;
+  try {
+    load_btf(path, kQuiet, warnings);
+    FAIL("loading " << path << " did not fail");
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    INFO("message: " << message);
+    for (const std::string& fragment : fragments) CHECK_THAT(message, Catch::Contains(fragment));
+  }
+}
+
+struct RenderedSample {
+  Surface surface;
+  std::map<std::uint32_t, std::vector<float>> images;  // key light * 81 + view
+};
+
+const RenderedSample& rendered_leather() {
+  static const RenderedSample sample = [] {
+    RenderedSample s;
+    s.surface = make_sample_surface("leather", 16, 5);
+    std::mutex mutex;
+    RenderOptions options;
+    options.progress = false;
+    render_btf(s.surface, ubo2003_directions(), ubo2003_directions(), options,
+               [&](std::uint32_t l, std::uint32_t v, std::span<const float> image) {
+                 std::lock_guard<std::mutex> lock(mutex);
+                 s.images[l * 81 + v].assign(image.begin(), image.end());
+               });
+    return s;
+  }();
+  return sample;
+}
+
+void write_sample(const fs::path& out, const std::string& extension, bool zip) {
+  const RenderedSample& s = rendered_leather();
+  Ubo2003Writer writer(out, extension, zip);
+  for (const auto& [key, image] : s.images) writer.write(key / 81, key % 81, image, 16, 16);
+  writer.finish();
+}
+
+// Largest and RMS difference, in 8-bit sRGB steps, between a loaded image and the rendered one.
+void srgb_difference(const BtfDataset& dataset, LightView pair, const std::vector<float>& rendered, double& max_steps,
+                     double& rms_steps) {
+  std::vector<float> loaded(dataset.pixel_count() * 3);
+  dataset.linear_rgb(pair, loaded);
+  double sum = 0;
+  max_steps = 0;
+  for (std::size_t i = 0; i < loaded.size(); ++i) {
+    const double a = linear_to_srgb(loaded[i]) * 255.0;
+    const double b = linear_to_srgb(std::clamp(rendered[i], 0.0f, 1.0f)) * 255.0;
+    max_steps = std::max(max_steps, std::abs(a - b));
+    sum += (a - b) * (a - b);
+  }
+  rms_steps = std::sqrt(sum / static_cast<double>(loaded.size()));
+}
+
+}  // namespace
+
+TEST_CASE("the UBO2003 direction table and names agree with the database's conventions", "[btf]") {
+  const auto& d = ubo2003_directions();
+  REQUIRE(d.size() == 81);
+  CHECK(ubo2003_index(0, 0) == 0u);
+  CHECK(ubo2003_index(15, 60) == 2u);
+  CHECK(ubo2003_index(75, 345) == 80u);
+  CHECK_FALSE(ubo2003_index(75, 344).has_value());
+  CHECK(ubo2003_file_name(0, 0, ".jpg") == "00000 tl000 pl000 tv000 pv000.jpg");
+  CHECK(ubo2003_file_name(80, 1, ".jpg") == "06481 tl075 pl345 tv015 pv000.jpg");
+  CHECK(ubo2003_view_folder(7) == "tv030_pv000");
+  for (std::uint32_t l = 0; l < 81; ++l) {
+    for (std::uint32_t v = 0; v < 81; ++v) {
+      const auto parsed = parse_ubo2003_name(ubo2003_file_name(l, v, ".JPG"));
+      REQUIRE(parsed.has_value());
+      REQUIRE(parsed->index == l * 81 + v);
+      REQUIRE(ubo2003_index(parsed->theta_light, parsed->phi_light) == l);
+      REQUIRE(ubo2003_index(parsed->theta_view, parsed->phi_view) == v);
+      REQUIRE(parsed->extension == ".jpg");
+    }
+  }
+  CHECK_FALSE(parse_ubo2003_name("0000 tl000 pl000 tv000 pv000.jpg").has_value());
+  CHECK_FALSE(parse_ubo2003_name("00000 tl000 pl000 tv000 pv000").has_value());
+  CHECK_FALSE(parse_ubo2003_name("00000_tl000_pl000_tv000_pv000.jpg").has_value());
+}
+
+TEST_CASE("a sample written as a UBO2003 folder and as a zip reads back the same", "[btf]") {
+  const RenderedSample& sample = rendered_leather();
+  const fs::path folder = fresh_folder("roundtrip");
+  for (const std::string extension : {".jpg", ".png", ".exr"}) {
+    DYNAMIC_SECTION("format " << extension) {
+      write_sample(folder / ("btf" + extension), extension, false);
+      write_sample(folder / ("btf" + extension + ".zip"), extension, true);
+      std::vector<std::string> warnings;
+      const BtfDataset from_folder = load_btf(folder / ("btf" + extension), kQuiet, warnings);
+      const BtfDataset from_zip = load_btf(folder / ("btf" + extension + ".zip"), kQuiet, warnings);
+      CHECK(warnings.empty());
+      for (const BtfDataset* dataset : {&from_folder, &from_zip}) {
+        REQUIRE(dataset->lights().size() == 81);
+        REQUIRE(dataset->views().size() == 81);
+        REQUIRE(dataset->width() == 16);
+        REQUIRE(dataset->missing_pairs().empty());
+        CHECK(dataset->encoding() == (extension == ".exr" ? ColorEncoding::linear_half : ColorEncoding::srgb8));
+      }
+      double worst_max = 0, worst_rms = 0;
+      for (const auto& [key, rendered] : sample.images) {
+        const LightView pair{key / 81, key % 81};
+        double max_steps = 0, rms_steps = 0;
+        srgb_difference(from_folder, pair, rendered, max_steps, rms_steps);
+        worst_max = std::max(worst_max, max_steps);
+        worst_rms = std::max(worst_rms, rms_steps);
+        // Folder and zip hold the same bytes, so they decode to the same pixels.
+        std::vector<float> a(from_folder.pixel_count() * 3), b(a.size());
+        from_folder.linear_rgb(pair, a);
+        from_zip.linear_rgb(pair, b);
+        REQUIRE(a == b);
+      }
+      INFO("worst max " << worst_max << " and worst RMS " << worst_rms << " sRGB steps");
+      if (extension == ".jpg") {
+        // JPEG at quality 95 with chroma subsampling on 16x16 images of sharp creases.
+        CHECK(worst_rms < 6.0);
+      } else {
+        // PNG: 8-bit rounding only (half a step); EXR: half precision (well under a step).
+        CHECK(worst_max <= 0.5 + 1e-3);
+      }
+    }
+  }
+  fs::remove_all(folder);
+}
+
+TEST_CASE("a partial dataset loads with a warning listing what is missing", "[btf]") {
+  const fs::path folder = fresh_folder("partial");
+  write_sample(folder / "btf", ".png", false);
+  fs::remove(folder / "btf" / ubo2003_view_folder(0) / name_of(5, 0));
+  fs::remove_all(folder / "btf" / ubo2003_view_folder(80));
+  std::vector<std::string> warnings;
+  const BtfDataset dataset = load_btf(folder / "btf", kQuiet, warnings);
+  CHECK(dataset.missing_pairs().size() == 82);
+  CHECK_FALSE(dataset.has_image({5, 0}));
+  CHECK(dataset.has_image({6, 0}));
+  REQUIRE(warnings.size() == 1);
+  CHECK_THAT(warnings[0], Catch::Contains("82 of 6561") && Catch::Contains("light theta 15, phi 240 / view theta 0, phi 0"));
+  std::vector<float> out(dataset.pixel_count() * 3);
+  CHECK_THROWS_AS(dataset.linear_rgb({5, 0}, out), std::out_of_range);
+  fs::remove_all(folder);
+}
+
+TEST_CASE("flat folders and enclosing folders in zips are read too", "[btf]") {
+  const fs::path folder = fresh_folder("flat");
+  write_uniform(folder / "flat" / name_of(0, 0), 8, 0.5f);
+  write_uniform(folder / "flat" / name_of(3, 10), 8, 0.25f);
+  std::vector<std::string> warnings;
+  const BtfDataset flat = load_btf(folder / "flat", kQuiet, warnings);
+  CHECK(flat.has_image({0, 0}));
+  CHECK(flat.has_image({3, 10}));
+  CHECK(flat.present_pairs().size() == 2);
+
+  zip_t* archive = zip_open((folder / "nested.zip").c_str(), ZIP_CREATE | ZIP_TRUNCATE, nullptr);
+  const std::vector<std::byte> png = read_file_bytes(folder / "flat" / name_of(0, 0));
+  zip_source_t* source = zip_source_buffer(archive, png.data(), png.size(), 0);
+  REQUIRE(zip_file_add(archive, ("wool/tv000_pv000/" + name_of(0, 0)).c_str(), source, 0) >= 0);
+  REQUIRE(zip_close(archive) == 0);
+  const BtfDataset nested = load_btf(folder / "nested.zip", kQuiet, warnings);
+  CHECK(nested.present_pairs().size() == 1);
+  fs::remove_all(folder);
+}
+
+TEST_CASE("bad input: a missing folder", "[btf][bad-input]") {
+  require_input_error("/nonexistent/carbtf/btf", {"/nonexistent/carbtf/btf", "no such file or folder"});
+}
+
+TEST_CASE("bad input: a non-image file", "[btf][bad-input]") {
+  const fs::path folder = fresh_folder("nonimage");
+  write_uniform(folder / name_of(0, 0), 8, 0.5f);
+  std::ofstream(folder / "notes.txt") << "measured on Tuesday\n";
+  require_input_error(folder, {"notes.txt", "not an image file"});
+  fs::remove_all(folder);
+}
+
+TEST_CASE("bad input: a corrupt JPEG", "[btf][bad-input]") {
+  const fs::path folder = fresh_folder("corrupt");
+  write_uniform(folder / name_of(0, 0, ".jpg"), 8, 0.5f);
+  std::ofstream(folder / name_of(1, 0, ".jpg"), std::ios::binary) << "\xff\xd8 this is no JPEG stream at all";
+  require_input_error(folder, {name_of(1, 0, ".jpg"), "image"});
+  fs::remove_all(folder);
+}
+
+TEST_CASE("bad input: a truncated JPEG", "[btf][bad-input]") {
+  const fs::path folder = fresh_folder("truncated");
+  std::vector<float> rgb(64 * 64 * 3);
+  for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = static_cast<float>((i * 37) % 101) / 100.0f;
+  write_rgb_image(folder / name_of(0, 0, ".jpg"), rgb, 64, 64);
+  write_rgb_image(folder / name_of(1, 0, ".jpg"), rgb, 64, 64);
+  const fs::path victim = folder / name_of(1, 0, ".jpg");
+  fs::resize_file(victim, fs::file_size(victim) / 2);
+  require_input_error(folder, {name_of(1, 0, ".jpg"), "corrupt or truncated"});
+  fs::remove_all(folder);
+}
+
+TEST_CASE("bad input: mixed image sizes", "[btf][bad-input]") {
+  const fs::path folder = fresh_folder("sizes");
+  write_uniform(folder / name_of(0, 0), 8, 0.5f);
+  write_uniform(folder / name_of(1, 0), 16, 0.5f);
+  require_input_error(folder, {name_of(1, 0), "16x16", "8x8"});
+  fs::remove_all(folder);
+}
+
+TEST_CASE("bad input: unparseable names", "[btf][bad-input]") {
+  const fs::path folder = fresh_folder("names");
+  write_uniform(folder / name_of(0, 0), 8, 0.5f);
+  write_uniform(folder / "IMG_0042.png", 8, 0.5f);
+  require_input_error(folder, {"IMG_0042.png", "UBO2003 form"});
+  fs::remove_all(folder);
+}
+
+TEST_CASE("bad input: duplicate directions", "[btf][bad-input]") {
+  const fs::path folder = fresh_folder("duplicates");
+  write_uniform(folder / name_of(2, 0), 8, 0.5f);
+  write_uniform(folder / ubo2003_view_folder(0) / name_of(2, 0), 8, 0.5f);
+  require_input_error(folder, {name_of(2, 0), "duplicate"});
+  fs::remove_all(folder);
+}
+
+TEST_CASE("bad input: a direction below the horizon", "[btf][bad-input]") {
+  const fs::path folder = fresh_folder("horizon");
+  write_uniform(folder / "00000 tl095 pl000 tv000 pv000.png", 8, 0.5f);
+  require_input_error(folder, {"tl095", "below the horizon"});
+  fs::remove_all(folder);
+}
+
+TEST_CASE("bad input: an index that contradicts its directions", "[btf][bad-input]") {
+  const fs::path folder = fresh_folder("index");
+  write_uniform(folder / "00007 tl000 pl000 tv000 pv000.png", 8, 0.5f);
+  require_input_error(folder, {"00007", "does not match its directions"});
+  fs::remove_all(folder);
+}
+
+TEST_CASE("bad input: NaN or Inf in an EXR", "[btf][bad-input]") {
+  for (const float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
+    const fs::path folder = fresh_folder("nan");
+    write_uniform(folder / name_of(0, 0, ".exr"), 8, 0.5f);
+    std::vector<float> rgb(8 * 8 * 3, 0.5f);
+    rgb[3 * (8 * 2 + 5) + 1] = bad;  // pixel (5, 2), green
+    write_rgb_image(folder / name_of(1, 0, ".exr"), rgb, 8, 8);
+    require_input_error(folder, {name_of(1, 0, ".exr"), std::isnan(bad) ? "NaN" : "Inf", "(5, 2)"});
+    fs::remove_all(folder);
+  }
+}
+
+TEST_CASE("bad input: an empty zip, and a file that is no zip", "[btf][bad-input]") {
+  const fs::path folder = fresh_folder("emptyzip");
+  zip_t* archive = zip_open((folder / "empty.zip").c_str(), ZIP_CREATE | ZIP_TRUNCATE, nullptr);
+  zip_source_t* source = zip_source_buffer(archive, "hello", 5, 0);
+  REQUIRE(zip_file_add(archive, "README.txt", source, 0) >= 0);  // libzip writes no file for an archive with no entries
+  REQUIRE(zip_close(archive) == 0);
+  require_input_error(folder / "empty.zip", {"README.txt", "not an image file"});
+  std::ofstream(folder / "none.zip") << "";
+  require_input_error(folder / "none.zip", {"none.zip", "zip"});
+  std::ofstream(folder / "text.zip") << "just text";
+  require_input_error(folder / "text.zip", {"text.zip", "not a readable zip archive"});
+  fs::remove_all(folder);
+}
+
+TEST_CASE("bad input: zip entries with absolute or ../ paths are refused", "[btf][bad-input]") {
+  for (const std::string& entry :
+       std::vector<std::string>{"../" + name_of(0, 0), "/tmp/" + name_of(0, 0), "tv000_pv000/../../x.png"}) {
+    const fs::path folder = fresh_folder("zipslip");
+    const fs::path png = folder / "source.png";
+    write_uniform(png, 8, 0.5f);
+    const std::vector<std::byte> bytes = read_file_bytes(png);
+    zip_t* archive = zip_open((folder / "evil.zip").c_str(), ZIP_CREATE | ZIP_TRUNCATE, nullptr);
+    zip_source_t* source = zip_source_buffer(archive, bytes.data(), bytes.size(), 0);
+    REQUIRE(zip_file_add(archive, entry.c_str(), source, 0) >= 0);
+    REQUIRE(zip_close(archive) == 0);
+    require_input_error(folder / "evil.zip", {entry, "absolute or '..' path"});
+    // Nothing was written next to the archive or above it.
+    CHECK_FALSE(fs::exists(fs::temp_directory_path() / name_of(0, 0)));
+    CHECK_FALSE(fs::exists("/tmp/tmp"));
+    fs::remove_all(folder);
+  }
+}
