@@ -113,10 +113,43 @@ TEST_CASE("carbtf demo writes a report and says where", "[cli]") {
 }
 
 TEST_CASE("--help answers for every command", "[cli]") {
-  for (const std::string command : {"", "noise", "devices", "demo", "bench noise"}) {
+  for (const std::string command : {"", "noise", "devices", "demo", "sample", "info", "bench noise", "bench data"}) {
     const Run r = run(command + " --help");
     INFO("carbtf " << command << " --help\n" << r.output);
     CHECK(r.status == 0);
     CHECK_THAT(r.output, Catch::Contains("Usage"));
   }
+}
+
+TEST_CASE("carbtf sample writes a UBO2003 zip and ground truth that carbtf info reads", "[cli]") {
+  const fs::path folder = fresh_folder("sample");
+  const Run sample = run("sample fabric --size 16 --zip --seed 2 --out " + (folder / "fabric").string());
+  INFO(sample.output);
+  REQUIRE(sample.status == 0);
+  for (const char* file : {"btf.zip", "material.json", "ground_truth/range.exr", "ground_truth/normals.png",
+                           "ground_truth/albedo.png"}) {
+    CHECK(fs::exists(folder / "fabric" / file));
+  }
+  const Run info = run("info " + (folder / "fabric" / "btf.zip").string());
+  INFO(info.output);
+  REQUIRE(info.status == 0);
+  CHECK_THAT(info.output, Catch::Contains("6561 of 6561") && Catch::Contains("16 x 16") &&
+                              Catch::Contains("theta 0, 15, 30, 45, 60, 75"));
+  fs::remove_all(folder);
+}
+
+TEST_CASE("carbtf sample and info reject bad input with one line", "[cli]") {
+  const fs::path folder = fresh_folder("sample_errors");
+  for (const auto& [arguments, expected] : std::vector<std::pair<std::string, std::string>>{
+           {"sample velvet --out " + (folder / "v").string(), "velvet"},
+           {"sample leather --format gif --out " + (folder / "v").string(), "--format"},
+           {"info " + (folder / "missing").string(), "no such file or folder"}}) {
+    const Run r = run(arguments);
+    INFO("carbtf " << arguments << "\n" << r.output);
+    CHECK(r.status != 0);
+    CHECK(line_count(r.output) == 1);
+    CHECK_THAT(r.output, Catch::StartsWith("carbtf: error: ") && Catch::Contains(expected));
+  }
+  CHECK_FALSE(fs::exists(folder / "v"));
+  fs::remove_all(folder);
 }
