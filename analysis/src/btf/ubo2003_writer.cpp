@@ -9,6 +9,7 @@
 #include "carbtf/analysis/btf/ubo2003_names.hpp"
 #include "carbtf/analysis/image_io.hpp"
 #include "carbtf/analysis/input_error.hpp"
+#include "zip_error.hpp"
 
 namespace carbtf {
 
@@ -25,13 +26,7 @@ Ubo2003Writer::Ubo2003Writer(std::filesystem::path output, std::string extension
     int error = 0;
     archive_ = std::make_unique<Archive>();
     archive_->handle = zip_open(output_.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &error);
-    if (!archive_->handle) {
-      zip_error_t z;
-      zip_error_init_with_code(&z, error);
-      const std::string message = zip_error_strerror(&z);
-      zip_error_fini(&z);
-      throw InputError(output_, "cannot create archive: " + message);
-    }
+    if (!archive_->handle) throw InputError(output_, "cannot create archive: " + detail::zip_error_text(error));
   } else {
     std::filesystem::create_directories(output_, ec);
     if (ec) throw InputError(output_, "cannot create folder: " + ec.message());

@@ -10,6 +10,7 @@
 #include "carbtf/analysis/btf/ubo2003_zip_reader.hpp"
 #include "carbtf/analysis/input_error.hpp"
 #include "image_sources.hpp"
+#include "zip_error.hpp"
 
 namespace carbtf {
 
@@ -53,11 +54,7 @@ BtfDataset read_ubo2003_zip(const std::filesystem::path& archive_path, const Btf
   int error = 0;
   archive->handle = zip_open(archive_path.c_str(), ZIP_RDONLY | ZIP_CHECKCONS, &error);
   if (!archive->handle) {
-    zip_error_t z;
-    zip_error_init_with_code(&z, error);
-    const std::string message = zip_error_strerror(&z);
-    zip_error_fini(&z);
-    throw InputError(archive_path, "not a readable zip archive (" + message + ")");
+    throw InputError(archive_path, "not a readable zip archive (" + detail::zip_error_text(error) + ")");
   }
   const zip_int64_t count = zip_get_num_entries(archive->handle, 0);
   std::map<std::uint32_t, std::string> seen;
