@@ -126,8 +126,10 @@ RgbImage decode_rgb_image(const std::string& name, std::span<const std::byte> by
   RgbImage image;
   image.width = static_cast<std::uint32_t>(spec.width);
   image.height = static_cast<std::uint32_t>(spec.height);
-  const bool is_float = spec.format.basetype == OIIO::TypeDesc::FLOAT || spec.format.basetype == OIIO::TypeDesc::HALF ||
-                        spec.format.basetype == OIIO::TypeDesc::DOUBLE;
+  const auto base = spec.format.basetype;
+  const bool is_float = base == OIIO::TypeDesc::FLOAT || base == OIIO::TypeDesc::HALF ||
+                        base == OIIO::TypeDesc::DOUBLE || base == OIIO::TypeDesc::UINT16 ||
+                        base == OIIO::TypeDesc::INT16 || base == OIIO::TypeDesc::UINT32;
   image.linear = is_float;
   const std::size_t pixels = std::size_t{image.width} * image.height;
   // Colour images give RGB (alpha dropped); grey (+ alpha) images give their first channel, copied.

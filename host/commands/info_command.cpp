@@ -33,6 +33,10 @@ void run_info(const std::string& path) {
   std::printf("image size:   %u x %u\n", dataset.width(), dataset.height());
   std::printf("colour space: %s\n", color_encoding_name(dataset.encoding()));
   std::printf("images:       %zu of %zu light/view pairs (%zu missing)\n", pairs - missing, pairs, missing);
+  if (!dataset.mask.empty()) {
+    const auto inside = std::count_if(dataset.mask.begin(), dataset.mask.end(), [](std::uint8_t m) { return m != 0; });
+    std::printf("mask:         %zd of %zu pixels\n", static_cast<std::ptrdiff_t>(inside), dataset.mask.size());
+  }
   std::printf("in memory:    %.1f MiB (loaded in %.2f s)\n", dataset.storage_bytes() / 1048576.0, seconds_since(start));
   for (const std::string& w : warnings) std::printf("warning:      %s\n", w.c_str());
 }
@@ -43,7 +47,8 @@ void register_info_command(CLI::App& app) {
   auto path = std::make_shared<std::string>();
   auto* command = app.add_subcommand("info", "Summarise a BTF dataset: directions, image size, colour space, "
                                              "missing pairs");
-  command->add_option("path", *path, "A UBO2003 folder or .zip")->required();
+  command->add_option("path", *path, "A UBO2003 folder or .zip, a manifest .csv, or a photometric-stereo folder")
+      ->required();
   command->callback([path] { run_info(*path); });
 }
 

@@ -42,10 +42,15 @@ void store(BtfDataset& dataset, const ImageSource& source, RgbImage&& image) {
 
 BtfDataset decode_sources(const std::vector<ImageSource>& sources, std::vector<Direction> lights,
                           std::vector<Direction> views, std::string description, const BtfLoadOptions& options,
-                          std::vector<std::string>& warnings) {
+                          std::vector<std::string>& warnings, const ImageAdjustment& adjust) {
   if (sources.empty()) throw InputError(description, "no images");
+  auto decode = [&](const ImageSource& source) {
+    RgbImage image = decode_rgb_image(source.name, source.read());
+    if (adjust) adjust(source, image);
+    return image;
+  };
   // The first image fixes the size and encoding every other one must share.
-  RgbImage first = decode_rgb_image(sources[0].name, sources[0].read());
+  RgbImage first = decode(sources[0]);
   BtfDataset dataset(std::move(lights), std::move(views), first.width, first.height,
                      first.linear ? ColorEncoding::linear_half : ColorEncoding::srgb8);
   dataset.source = std::move(description);
@@ -62,7 +67,7 @@ BtfDataset decode_sources(const std::vector<ImageSource>& sources, std::vector<D
       const std::size_t i = next.fetch_add(1);
       if (i >= sources.size()) return;
       try {
-        store(dataset, sources[i], decode_rgb_image(sources[i].name, sources[i].read()));
+        store(dataset, sources[i], decode(sources[i]));
         progress.advance();
       } catch (...) {
         std::lock_guard<std::mutex> lock(error_mutex);

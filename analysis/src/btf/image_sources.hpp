@@ -9,6 +9,7 @@
 
 #include "carbtf/analysis/btf/btf_dataset.hpp"
 #include "carbtf/analysis/btf/btf_reader.hpp"
+#include "carbtf/analysis/image_io.hpp"
 
 namespace carbtf::detail {
 
@@ -18,11 +19,15 @@ struct ImageSource {
   LightView pair;
 };
 
+// Optional step between decoding and storing (e.g. dividing by per-light intensities); runs on
+// worker threads.
+using ImageAdjustment = std::function<void(const ImageSource&, RgbImage&)>;
+
 // Decodes every source into a dataset over `lights` x `views`. Throws InputError on the first bad
 // image (mixed sizes or encodings included). Pairs without a source are reported in `warnings`.
 BtfDataset decode_sources(const std::vector<ImageSource>& sources, std::vector<Direction> lights,
                           std::vector<Direction> views, std::string description, const BtfLoadOptions& options,
-                          std::vector<std::string>& warnings);
+                          std::vector<std::string>& warnings, const ImageAdjustment& adjust = {});
 
 // "theta 30, phi 120" with integer degrees, for messages.
 std::string describe_direction(const Direction& d);

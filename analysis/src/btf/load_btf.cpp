@@ -12,12 +12,17 @@ BtfDataset load_btf(const std::filesystem::path& path, const BtfLoadOptions& opt
                     std::vector<std::string>& warnings) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw InputError(path, "no such file or folder");
-  if (std::filesystem::is_directory(path, ec)) return read_ubo2003_folder(path, options, warnings);
+  if (std::filesystem::is_directory(path, ec)) {
+    if (std::filesystem::exists(path / "light_directions.txt", ec)) return read_photometric_stereo(path, options, warnings);
+    return read_ubo2003_folder(path, options, warnings);
+  }
   std::string extension = path.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (extension == ".zip") return read_ubo2003_zip(path, options, warnings);
-  throw InputError(path, "not a BTF dataset: expected a UBO2003 folder or .zip");
+  if (extension == ".csv") return read_manifest(path, options, warnings);
+  throw InputError(path, "not a BTF dataset: expected a UBO2003 folder or .zip, a manifest .csv, or a "
+                         "photometric-stereo folder");
 }
 
 }  // namespace carbtf

@@ -27,7 +27,8 @@ bool is_supported_image_extension(const std::filesystem::path& path);
 // True when `path` names a format that keeps 32-bit floats (.exr, .tif, .tiff, .pfm).
 bool is_float_image_extension(const std::filesystem::path& path);
 
-// A decoded RGB image: 8-bit sRGB (JPEG, PNG, BMP) or linear float (EXR, TIFF float, PFM).
+// A decoded RGB image: 8-bit sRGB (8-bit JPEG, PNG, BMP) or linear float (EXR, float TIFF, PFM, and
+// 16-bit integer images, which photometric captures store linearly).
 struct RgbImage {
   std::uint32_t width = 0;
   std::uint32_t height = 0;

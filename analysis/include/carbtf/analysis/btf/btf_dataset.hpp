@@ -60,6 +60,8 @@ class BtfDataset {
 
   // Where the data came from, e.g. "UBO2003 folder /data/wool"; shown by `carbtf info`.
   std::string source;
+  // Optional validity mask, width * height, non-zero where the sample is (photometric-stereo sets).
+  std::vector<std::uint8_t> mask;
 
  private:
   std::size_t slot(LightView pair) const;
