@@ -13,16 +13,13 @@
 
 #include "carbtf/analysis/btf/btf_dataset.hpp"
 #include "carbtf/analysis/input_error.hpp"
+#include "text.hpp"
 
 namespace carbtf {
 
 namespace {
 
-std::string lower_extension(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
+using detail::lower_extension;
 
 bool is_float_format(const std::string& ext) { return ext == ".exr" || ext == ".tif" || ext == ".tiff" || ext == ".pfm"; }
 bool is_8bit_format(const std::string& ext) {

@@ -1,15 +1,12 @@
 #include "image_sources.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
-#include <mutex>
-#include <thread>
 
 #include "carbtf/analysis/image_io.hpp"
 #include "carbtf/analysis/input_error.hpp"
 #include "carbtf/analysis/progress.hpp"
+#include "../parallel_for.hpp"
 
 namespace carbtf::detail {
 
@@ -58,28 +55,10 @@ BtfDataset decode_sources(const std::vector<ImageSource>& sources, std::vector<D
 
   Progress progress("loading " + std::to_string(sources.size()) + " images", sources.size(), options.progress);
   progress.advance();
-  std::atomic<std::size_t> next{1};
-  std::atomic<bool> failed{false};
-  std::exception_ptr error;
-  std::mutex error_mutex;
-  auto worker = [&] {
-    while (!failed.load()) {
-      const std::size_t i = next.fetch_add(1);
-      if (i >= sources.size()) return;
-      try {
-        store(dataset, sources[i], decode(sources[i]));
-        progress.advance();
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(error_mutex);
-        if (!failed.exchange(true)) error = std::current_exception();
-      }
-    }
-  };
-  unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
-  std::vector<std::thread> pool;
-  for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker);
-  for (std::thread& t : pool) t.join();
-  if (error) std::rethrow_exception(error);
+  parallel_for(sources.size() - 1, options.threads, [&](std::size_t i) {
+    store(dataset, sources[i + 1], decode(sources[i + 1]));
+    progress.advance();
+  });
 
   const std::vector<LightView> missing = dataset.missing_pairs();
   if (!missing.empty()) {

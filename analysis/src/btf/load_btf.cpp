@@ -1,10 +1,8 @@
 // load_btf(): picks the reader by what the path is.
-#include <algorithm>
-#include <cctype>
-
 #include "carbtf/analysis/btf/btf_reader.hpp"
 #include "carbtf/analysis/btf/ubo2003_zip_reader.hpp"
 #include "carbtf/analysis/input_error.hpp"
+#include "../text.hpp"
 
 namespace carbtf {
 
@@ -16,9 +14,7 @@ BtfDataset load_btf(const std::filesystem::path& path, const BtfLoadOptions& opt
     if (std::filesystem::exists(path / "light_directions.txt", ec)) return read_photometric_stereo(path, options, warnings);
     return read_ubo2003_folder(path, options, warnings);
   }
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string extension = detail::lower_extension(path);
   if (extension == ".zip") return read_ubo2003_zip(path, options, warnings);
   if (extension == ".csv") return read_manifest(path, options, warnings);
   throw InputError(path, "not a BTF dataset: expected a UBO2003 folder or .zip, a manifest .csv, or a "

@@ -9,6 +9,7 @@
 #include "carbtf/analysis/btf/btf_reader.hpp"
 #include "carbtf/analysis/image_io.hpp"
 #include "carbtf/analysis/input_error.hpp"
+#include "../text.hpp"
 #include "image_sources.hpp"
 
 namespace carbtf {
@@ -47,11 +48,6 @@ std::vector<std::vector<double>> read_number_lines(const fs::path& path, std::si
   return rows;
 }
 
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
-
 }  // namespace
 
 BtfDataset read_photometric_stereo(const fs::path& folder, const BtfLoadOptions& options,
@@ -71,7 +67,7 @@ BtfDataset read_photometric_stereo(const fs::path& folder, const BtfLoadOptions&
     }
   } else {
     for (const auto& entry : fs::directory_iterator(folder, ec)) {
-      const std::string name = lower(entry.path().filename().string());
+      const std::string name = detail::to_lower(entry.path().filename().string());
       if (!entry.is_regular_file() || !is_supported_image_extension(entry.path())) continue;
       if (name.starts_with("mask.") || name.starts_with("normal") || name.starts_with(".")) continue;
       images.push_back(entry.path());

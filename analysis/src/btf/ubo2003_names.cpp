@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "../text.hpp"
 #include "carbtf/analysis/btf/directions.hpp"
 
 namespace carbtf {
@@ -44,9 +45,7 @@ std::optional<Ubo2003Name> parse_ubo2003_name(std::string_view file_name) {
   if (!read_literal(file_name, at, " pl") || !read_digits(file_name, at, 3, name.phi_light)) return std::nullopt;
   if (!read_literal(file_name, at, " tv") || !read_digits(file_name, at, 3, name.theta_view)) return std::nullopt;
   if (!read_literal(file_name, at, " pv") || !read_digits(file_name, at, 3, name.phi_view)) return std::nullopt;
-  std::string extension(file_name.substr(at));
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string extension = detail::to_lower(std::string(file_name.substr(at)));
   if (extension.size() < 2 || extension[0] != '.') return std::nullopt;
   name.extension = extension;
   return name;

@@ -1,15 +1,12 @@
 #include "carbtf/analysis/sample/height_field_renderer.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
-#include <mutex>
 #include <numbers>
 #include <stdexcept>
-#include <thread>
 
 #include "carbtf/analysis/progress.hpp"
+#include "../parallel_for.hpp"
 
 namespace carbtf {
 
@@ -142,41 +139,19 @@ void render_btf(const Surface& surface, const std::vector<Direction>& lights, co
   const PeriodicGrid height{surface.height.data(), n, 1};
   const PeriodicGrid normal_grid{normals.data(), n, 3};
   const PeriodicGrid albedo_grid{surface.albedo.data(), n, 3};
-  const unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
 
   // Shadow maps depend on the light only: computed once each, in parallel.
   std::vector<std::vector<float>> shadows(lights.size());
   Progress progress("rendering " + std::to_string(lights.size() * views.size()) + " images",
                     lights.size() + lights.size() * views.size(), options.progress);
-  auto parallel_for = [&](std::size_t count, const std::function<void(std::size_t)>& body) {
-    std::atomic<std::size_t> next{0};
-    std::exception_ptr error;
-    std::mutex error_mutex;
-    std::vector<std::thread> pool;
-    for (unsigned t = 0; t < threads; ++t) {
-      pool.emplace_back([&] {
-        for (std::size_t i; (i = next.fetch_add(1)) < count;) {
-          try {
-            body(i);
-          } catch (...) {
-            std::lock_guard<std::mutex> lock(error_mutex);
-            if (!error) error = std::current_exception();
-            next = count;
-          }
-        }
-      });
-    }
-    for (std::thread& t : pool) t.join();
-    if (error) std::rethrow_exception(error);
-  };
-  parallel_for(lights.size(), [&](std::size_t l) {
+  detail::parallel_for(lights.size(), options.threads, [&](std::size_t l) {
     shadows[l] = shadow_map(surface, height, h_max, texel_direction(lights[l]));
     progress.advance();
   });
 
   const double diffuse_scale = 1.0 / std::numbers::pi;
   const double lobe_scale = surface.specular * (surface.gloss + 8.0) / (8.0 * std::numbers::pi);
-  parallel_for(views.size(), [&](std::size_t v) {
+  detail::parallel_for(views.size(), options.threads, [&](std::size_t v) {
     const TexelDirection view = texel_direction(views[v]);
     const auto view_vector = views[v].vector();
     // What each output pixel sees under this view: position, normal and albedo of the visible point.
