@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <filesystem>
+
+#include "scratch_folder.hpp"
 #include <fstream>
 #include <limits>
 #include <map>
@@ -23,12 +25,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path fresh_folder(const std::string& name) {
-  const fs::path folder = fs::temp_directory_path() / ("carbtf_btf_test_" + name);
-  fs::remove_all(folder);
-  fs::create_directories(folder);
-  return folder;
-}
+using test::scratch_folder;
 
 const BtfLoadOptions kQuiet{0, false};
 
@@ -129,7 +126,7 @@ TEST_CASE("the UBO2003 direction table and names agree with the database's conve
 
 TEST_CASE("a sample written as a UBO2003 folder and as a zip reads back the same", "[btf]") {
   const RenderedSample& sample = rendered_leather();
-  const fs::path folder = fresh_folder("roundtrip");
+  const fs::path folder = scratch_folder("roundtrip");
   for (const std::string extension : {".jpg", ".png", ".exr"}) {
     DYNAMIC_SECTION("format " << extension) {
       write_sample(folder / ("btf" + extension), extension, false);
@@ -172,7 +169,7 @@ TEST_CASE("a sample written as a UBO2003 folder and as a zip reads back the same
 }
 
 TEST_CASE("a partial dataset loads with a warning listing what is missing", "[btf]") {
-  const fs::path folder = fresh_folder("partial");
+  const fs::path folder = scratch_folder("partial");
   write_sample(folder / "btf", ".png", false);
   fs::remove(folder / "btf" / ubo2003_view_folder(0) / name_of(5, 0));
   fs::remove_all(folder / "btf" / ubo2003_view_folder(80));
@@ -189,7 +186,7 @@ TEST_CASE("a partial dataset loads with a warning listing what is missing", "[bt
 }
 
 TEST_CASE("flat folders and enclosing folders in zips are read too", "[btf]") {
-  const fs::path folder = fresh_folder("flat");
+  const fs::path folder = scratch_folder("flat");
   write_uniform(folder / "flat" / name_of(0, 0), 8, 0.5f);
   write_uniform(folder / "flat" / name_of(3, 10), 8, 0.25f);
   std::vector<std::string> warnings;
@@ -213,7 +210,7 @@ TEST_CASE("bad input: a missing folder", "[btf][bad-input]") {
 }
 
 TEST_CASE("bad input: a non-image file", "[btf][bad-input]") {
-  const fs::path folder = fresh_folder("nonimage");
+  const fs::path folder = scratch_folder("nonimage");
   write_uniform(folder / name_of(0, 0), 8, 0.5f);
   std::ofstream(folder / "notes.txt") << "measured on Tuesday\n";
   require_input_error(folder, {"notes.txt", "not an image file"});
@@ -221,7 +218,7 @@ TEST_CASE("bad input: a non-image file", "[btf][bad-input]") {
 }
 
 TEST_CASE("bad input: a corrupt JPEG", "[btf][bad-input]") {
-  const fs::path folder = fresh_folder("corrupt");
+  const fs::path folder = scratch_folder("corrupt");
   write_uniform(folder / name_of(0, 0, ".jpg"), 8, 0.5f);
   std::ofstream(folder / name_of(1, 0, ".jpg"), std::ios::binary) << "\xff\xd8 this is no JPEG stream at all";
   require_input_error(folder, {name_of(1, 0, ".jpg"), "image"});
@@ -229,7 +226,7 @@ TEST_CASE("bad input: a corrupt JPEG", "[btf][bad-input]") {
 }
 
 TEST_CASE("bad input: a truncated JPEG", "[btf][bad-input]") {
-  const fs::path folder = fresh_folder("truncated");
+  const fs::path folder = scratch_folder("truncated");
   std::vector<float> rgb(64 * 64 * 3);
   for (std::size_t i = 0; i < rgb.size(); ++i) rgb[i] = static_cast<float>((i * 37) % 101) / 100.0f;
   write_rgb_image(folder / name_of(0, 0, ".jpg"), rgb, 64, 64);
@@ -241,7 +238,7 @@ TEST_CASE("bad input: a truncated JPEG", "[btf][bad-input]") {
 }
 
 TEST_CASE("bad input: mixed image sizes", "[btf][bad-input]") {
-  const fs::path folder = fresh_folder("sizes");
+  const fs::path folder = scratch_folder("sizes");
   write_uniform(folder / name_of(0, 0), 8, 0.5f);
   write_uniform(folder / name_of(1, 0), 16, 0.5f);
   require_input_error(folder, {name_of(1, 0), "16x16", "8x8"});
@@ -249,7 +246,7 @@ TEST_CASE("bad input: mixed image sizes", "[btf][bad-input]") {
 }
 
 TEST_CASE("bad input: unparseable names", "[btf][bad-input]") {
-  const fs::path folder = fresh_folder("names");
+  const fs::path folder = scratch_folder("names");
   write_uniform(folder / name_of(0, 0), 8, 0.5f);
   write_uniform(folder / "IMG_0042.png", 8, 0.5f);
   require_input_error(folder, {"IMG_0042.png", "UBO2003 form"});
@@ -257,7 +254,7 @@ TEST_CASE("bad input: unparseable names", "[btf][bad-input]") {
 }
 
 TEST_CASE("bad input: duplicate directions", "[btf][bad-input]") {
-  const fs::path folder = fresh_folder("duplicates");
+  const fs::path folder = scratch_folder("duplicates");
   write_uniform(folder / name_of(2, 0), 8, 0.5f);
   write_uniform(folder / ubo2003_view_folder(0) / name_of(2, 0), 8, 0.5f);
   require_input_error(folder, {name_of(2, 0), "duplicate"});
@@ -265,14 +262,14 @@ TEST_CASE("bad input: duplicate directions", "[btf][bad-input]") {
 }
 
 TEST_CASE("bad input: a direction below the horizon", "[btf][bad-input]") {
-  const fs::path folder = fresh_folder("horizon");
+  const fs::path folder = scratch_folder("horizon");
   write_uniform(folder / "00000 tl095 pl000 tv000 pv000.png", 8, 0.5f);
   require_input_error(folder, {"tl095", "below the horizon"});
   fs::remove_all(folder);
 }
 
 TEST_CASE("bad input: an index that contradicts its directions", "[btf][bad-input]") {
-  const fs::path folder = fresh_folder("index");
+  const fs::path folder = scratch_folder("index");
   write_uniform(folder / "00007 tl000 pl000 tv000 pv000.png", 8, 0.5f);
   require_input_error(folder, {"00007", "does not match its directions"});
   fs::remove_all(folder);
@@ -280,7 +277,7 @@ TEST_CASE("bad input: an index that contradicts its directions", "[btf][bad-inpu
 
 TEST_CASE("bad input: NaN or Inf in an EXR", "[btf][bad-input]") {
   for (const float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
-    const fs::path folder = fresh_folder("nan");
+    const fs::path folder = scratch_folder("nan");
     write_uniform(folder / name_of(0, 0, ".exr"), 8, 0.5f);
     std::vector<float> rgb(8 * 8 * 3, 0.5f);
     rgb[3 * (8 * 2 + 5) + 1] = bad;  // pixel (5, 2), green
@@ -291,7 +288,7 @@ TEST_CASE("bad input: NaN or Inf in an EXR", "[btf][bad-input]") {
 }
 
 TEST_CASE("bad input: an empty zip, and a file that is no zip", "[btf][bad-input]") {
-  const fs::path folder = fresh_folder("emptyzip");
+  const fs::path folder = scratch_folder("emptyzip");
   zip_t* archive = zip_open((folder / "empty.zip").c_str(), ZIP_CREATE | ZIP_TRUNCATE, nullptr);
   zip_source_t* source = zip_source_buffer(archive, "hello", 5, 0);
   REQUIRE(zip_file_add(archive, "README.txt", source, 0) >= 0);  // libzip writes no file for an archive with no entries
@@ -307,7 +304,7 @@ TEST_CASE("bad input: an empty zip, and a file that is no zip", "[btf][bad-input
 TEST_CASE("bad input: zip entries with absolute or ../ paths are refused", "[btf][bad-input]") {
   for (const std::string& entry :
        std::vector<std::string>{"../" + name_of(0, 0), "/tmp/" + name_of(0, 0), "tv000_pv000/../../x.png"}) {
-    const fs::path folder = fresh_folder("zipslip");
+    const fs::path folder = scratch_folder("zipslip");
     const fs::path png = folder / "source.png";
     write_uniform(png, 8, 0.5f);
     const std::vector<std::byte> bytes = read_file_bytes(png);
@@ -324,7 +321,7 @@ TEST_CASE("bad input: zip entries with absolute or ../ paths are refused", "[btf
 }
 
 TEST_CASE("a manifest lists any capture with its own direction set", "[btf][manifest]") {
-  const fs::path folder = fresh_folder("manifest");
+  const fs::path folder = scratch_folder("manifest");
   write_uniform(folder / "img" / "a.png", 8, 0.2f);
   write_uniform(folder / "img" / "b, with comma.png", 8, 0.4f);
   write_uniform(folder / "img" / "c.png", 8, 0.6f);
@@ -349,7 +346,7 @@ TEST_CASE("a manifest lists any capture with its own direction set", "[btf][mani
 }
 
 TEST_CASE("bad input: malformed manifests name the line and the problem", "[btf][manifest][bad-input]") {
-  const fs::path folder = fresh_folder("manifest_bad");
+  const fs::path folder = scratch_folder("manifest_bad");
   write_uniform(folder / "a.png", 8, 0.2f);
   for (const auto& [content, fragments] : std::vector<std::pair<std::string, std::vector<std::string>>>{
            {"a.png,10,0,0\n", {"bad.csv:1", "expected 5 fields"}},
@@ -393,7 +390,7 @@ std::vector<Direction> write_ps_set(const fs::path& folder, std::size_t count, f
 }  // namespace
 
 TEST_CASE("a photometric-stereo set loads with its lights, intensities and mask", "[btf][photometric-stereo]") {
-  const fs::path folder = fresh_folder("ps");
+  const fs::path folder = scratch_folder("ps");
   const std::vector<Direction> lights = write_ps_set(folder, 12, 0.5f);
   std::vector<std::string> warnings;
   const BtfDataset dataset = load_btf(folder, kQuiet, warnings);
@@ -419,7 +416,7 @@ TEST_CASE("a photometric-stereo set loads with its lights, intensities and mask"
 }
 
 TEST_CASE("bad input: a light file whose line count does not match the images", "[btf][photometric-stereo][bad-input]") {
-  const fs::path folder = fresh_folder("ps_bad");
+  const fs::path folder = scratch_folder("ps_bad");
   write_ps_set(folder, 6, 1.0f);
   std::ofstream(folder / "light_directions.txt", std::ios::app) << "0 0 1\n";
   require_input_error(folder, {"light_directions.txt", "7 light directions", "6 images"});

@@ -6,9 +6,12 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+
+#include "scratch_folder.hpp"
 #include <string>
 
 namespace fs = std::filesystem;
+using namespace carbtf;
 
 namespace {
 
@@ -29,12 +32,7 @@ Run run(const std::string& arguments, const std::string& environment = "") {
   return result;
 }
 
-fs::path fresh_folder(const std::string& name) {
-  const fs::path folder = fs::temp_directory_path() / ("carbtf_cli_test_" + name);
-  fs::remove_all(folder);
-  fs::create_directories(folder);
-  return folder;
-}
+using test::scratch_folder;
 
 std::size_t line_count(const std::string& text) {
   std::size_t lines = 0;
@@ -45,7 +43,7 @@ std::size_t line_count(const std::string& text) {
 }  // namespace
 
 TEST_CASE("carbtf noise writes the field it was asked for", "[cli]") {
-  const fs::path folder = fresh_folder("noise");
+  const fs::path folder = scratch_folder("noise");
   const Run png = run("noise --size 64 --seed 3 --validation --out " + (folder / "sub" / "n.png").string());
   INFO(png.output);
   REQUIRE(png.status == 0);
@@ -59,7 +57,7 @@ TEST_CASE("carbtf noise writes the field it was asked for", "[cli]") {
 }
 
 TEST_CASE("bad arguments give one error line and a non-zero exit", "[cli]") {
-  const fs::path folder = fresh_folder("errors");
+  const fs::path folder = scratch_folder("errors");
   struct Case {
     std::string arguments;
     std::string expected;
@@ -102,7 +100,7 @@ TEST_CASE("carbtf devices lists the default device", "[cli]") {
 }
 
 TEST_CASE("carbtf demo writes a report and says where", "[cli]") {
-  const fs::path folder = fresh_folder("demo");
+  const fs::path folder = scratch_folder("demo");
   const Run r = run("demo --size 128 --validation --out " + (folder / "report").string());
   INFO(r.output);
   REQUIRE(r.status == 0);
@@ -122,7 +120,7 @@ TEST_CASE("--help answers for every command", "[cli]") {
 }
 
 TEST_CASE("carbtf sample writes a UBO2003 zip and ground truth that carbtf info reads", "[cli]") {
-  const fs::path folder = fresh_folder("sample");
+  const fs::path folder = scratch_folder("sample");
   const Run sample = run("sample fabric --size 16 --zip --seed 2 --out " + (folder / "fabric").string());
   INFO(sample.output);
   REQUIRE(sample.status == 0);
@@ -139,7 +137,7 @@ TEST_CASE("carbtf sample writes a UBO2003 zip and ground truth that carbtf info 
 }
 
 TEST_CASE("carbtf sample and info reject bad input with one line", "[cli]") {
-  const fs::path folder = fresh_folder("sample_errors");
+  const fs::path folder = scratch_folder("sample_errors");
   for (const auto& [arguments, expected] : std::vector<std::pair<std::string, std::string>>{
            {"sample velvet --out " + (folder / "v").string(), "velvet"},
            {"sample leather --format gif --out " + (folder / "v").string(), "--format"},
