@@ -1,20 +1,9 @@
 # cmake -DSOURCE_DIR=... -DWORK_DIR=... -P run_package_test.cmake
 # 1. configures carbtf with analysis, CLI and tests off (the engine must build alone), builds and
 #    installs it; 2. builds tests/package/consumer against the installed package; 3. runs it.
-foreach(var SOURCE_DIR WORK_DIR)
-  if(NOT DEFINED ${var})
-    message(FATAL_ERROR "run_package_test.cmake needs -D${var}=...")
-  endif()
-endforeach()
+include("${CMAKE_CURRENT_LIST_DIR}/../script_steps.cmake")
+require_script_arguments(SOURCE_DIR WORK_DIR)
 file(REMOVE_RECURSE "${WORK_DIR}")
-
-function(step)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE result)
-  if(NOT result EQUAL 0)
-    string(REPLACE ";" " " shown "${ARGN}")
-    message(FATAL_ERROR "failed (${result}): ${shown}")
-  endif()
-endfunction()
 
 step("${CMAKE_COMMAND}" -S "${SOURCE_DIR}" -B "${WORK_DIR}/engine-build" -G Ninja -DCMAKE_BUILD_TYPE=Release
      -DCARBTF_BUILD_ANALYSIS=OFF -DCARBTF_BUILD_CLI=OFF -DCARBTF_BUILD_TESTS=OFF -DCARBTF_WERROR=ON

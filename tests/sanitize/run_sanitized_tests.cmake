@@ -1,19 +1,8 @@
 # cmake -DSOURCE_DIR=... -DWORK_DIR=... -DFILTER=... -P run_sanitized_tests.cmake
 # Builds the analysis tests with AddressSanitizer + UndefinedBehaviorSanitizer in their own tree and
 # runs the ones matching FILTER (the parsers of outside input).
-foreach(var SOURCE_DIR WORK_DIR FILTER)
-  if(NOT DEFINED ${var})
-    message(FATAL_ERROR "run_sanitized_tests.cmake needs -D${var}=...")
-  endif()
-endforeach()
-
-function(step)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE result)
-  if(NOT result EQUAL 0)
-    string(REPLACE ";" " " shown "${ARGN}")
-    message(FATAL_ERROR "failed (${result}): ${shown}")
-  endif()
-endfunction()
+include("${CMAKE_CURRENT_LIST_DIR}/../script_steps.cmake")
+require_script_arguments(SOURCE_DIR WORK_DIR FILTER)
 
 if(NOT EXISTS "${WORK_DIR}/CMakeCache.txt")
   step("${CMAKE_COMMAND}" -S "${SOURCE_DIR}" -B "${WORK_DIR}" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo
