@@ -294,6 +294,10 @@ TEST_CASE("bad input: an empty zip, and a file that is no zip", "[btf][bad-input
   REQUIRE(zip_file_add(archive, "README.txt", source, 0) >= 0);  // libzip writes no file for an archive with no entries
   REQUIRE(zip_close(archive) == 0);
   require_input_error(folder / "empty.zip", {"README.txt", "not an image file"});
+  // A valid archive with no entries at all: just the 22-byte end-of-central-directory record.
+  const char empty_archive[22] = {'P', 'K', 5, 6};
+  std::ofstream(folder / "zero_entries.zip", std::ios::binary).write(empty_archive, sizeof empty_archive);
+  require_input_error(folder / "zero_entries.zip", {"zero_entries.zip", "archive holds no images"});
   std::ofstream(folder / "none.zip") << "";
   require_input_error(folder / "none.zip", {"none.zip", "zip"});
   std::ofstream(folder / "text.zip") << "just text";
@@ -423,4 +427,20 @@ TEST_CASE("bad input: a light file whose line count does not match the images", 
   std::ofstream(folder / "light_directions.txt") << "0 0 1\n0 0 1\n0 0 1\n0 0 1\n0 0 1\n0.5 0 -1\n";
   require_input_error(folder, {"light_directions.txt:6", "below the horizon"});
   fs::remove_all(folder);
+}
+
+TEST_CASE("sample materials are deterministic for a seed and differ between seeds", "[btf][sample]") {
+  for (const std::string name : {"leather", "fabric", "coast_sand_rocks"}) {
+    INFO(name);
+    const Surface a = make_sample_surface(name, 32, 11), b = make_sample_surface(name, 32, 11);
+    CHECK(a.height == b.height);
+    CHECK(a.albedo == b.albedo);
+    const auto [lo, hi] = std::minmax_element(a.height.begin(), a.height.end());
+    CHECK(*hi - *lo > 0.5f);  // a real relief, in texels
+    if (name != "coast_sand_rocks") {  // the scan is fixed; procedural surfaces follow the seed
+      const Surface c = make_sample_surface(name, 32, 12);
+      CHECK((c.height != a.height || c.albedo != a.albedo));  // the weave's geometry is regular by design
+    }
+  }
+  CHECK_THROWS_AS(make_sample_surface("velvet", 32, 1), InputError);
 }
