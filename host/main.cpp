@@ -3,6 +3,7 @@
 
 #include <cstdlib>
 #include <iostream>
+#include <string>
 
 #include "cli/cli_support.hpp"
 #include "commands/commands.hpp"
@@ -21,7 +22,9 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
     if (app.get_subcommands().empty()) {
-      std::cerr << "carbtf: error: no command given; commands are devices, sample, info, noise, demo, bench (see carbtf --help)\n";
+      std::string commands;
+      for (const CLI::App* command : app.get_subcommands({})) commands += (commands.empty() ? "" : ", ") + command->get_name();
+      std::cerr << "carbtf: error: no command given; commands are " << commands << " (see carbtf --help)\n";
       return 2;
     }
   } catch (const CLI::CallForHelp& e) {

@@ -35,37 +35,29 @@ bool is_supported_image_extension(const std::filesystem::path& path) {
   return is_float_format(ext) || is_8bit_format(ext);
 }
 
-bool write_field_image(const std::filesystem::path& path, std::span<const float> values, std::uint32_t width,
-                       std::uint32_t height, const FieldToDisplay& display, std::string& error) {
+void create_folder(const std::filesystem::path& folder) {
+  if (folder.empty()) return;
+  std::error_code ec;
+  std::filesystem::create_directories(folder, ec);
+  if (ec) throw InputError(folder, "cannot create folder: " + ec.message());
+}
+
+void write_field_image(const std::filesystem::path& path, std::span<const float> values, std::uint32_t width,
+                       std::uint32_t height, const FieldToDisplay& display) {
   const std::string ext = lower_extension(path);
   if (!is_supported_image_extension(path)) {
-    error = path.string() + ": unsupported image extension '" + ext + "' (use .png, .jpg, .bmp, .exr, .tif or .pfm)";
-    return false;
+    throw InputError(path, "unsupported image extension '" + ext + "' (use .png, .jpg, .bmp, .exr, .tif or .pfm)");
   }
   if (values.size() < std::size_t{width} * height || width == 0 || height == 0) {
-    error = path.string() + ": no pixels to write";
-    return false;
+    throw InputError(path, "no pixels to write");
   }
-  std::error_code ec;
-  if (path.has_parent_path() && !std::filesystem::exists(path.parent_path())) {
-    std::filesystem::create_directories(path.parent_path(), ec);
-    if (ec) {
-      error = path.parent_path().string() + ": cannot create folder: " + ec.message();
-      return false;
-    }
-  }
+  create_folder(path.parent_path());
   auto output = OIIO::ImageOutput::create(path.string());
-  if (!output) {
-    error = path.string() + ": cannot write: " + OIIO::geterror();
-    return false;
-  }
+  if (!output) throw InputError(path, "cannot write: " + OIIO::geterror());
   const bool as_float = is_float_format(ext);
   OIIO::ImageSpec spec(static_cast<int>(width), static_cast<int>(height), 1,
                        as_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-  if (!output->open(path.string(), spec)) {
-    error = path.string() + ": cannot write: " + output->geterror();
-    return false;
-  }
+  if (!output->open(path.string(), spec)) throw InputError(path, "cannot write: " + output->geterror());
   bool written = false;
   if (as_float) {
     written = output->write_image(OIIO::TypeDesc::FLOAT, values.data());
@@ -78,11 +70,7 @@ bool write_field_image(const std::filesystem::path& path, std::span<const float>
     }
     written = output->write_image(OIIO::TypeDesc::UINT8, bytes.data());
   }
-  if (!written || !output->close()) {
-    error = path.string() + ": write failed: " + output->geterror();
-    return false;
-  }
-  return true;
+  if (!written || !output->close()) throw InputError(path, "write failed: " + output->geterror());
 }
 
 }  // namespace carbtf
@@ -199,9 +187,7 @@ std::vector<std::byte> encode_rgb_image(const std::string& name, std::span<const
 void write_rgb_image(const std::filesystem::path& path, std::span<const float> rgb, std::uint32_t width,
                      std::uint32_t height, bool srgb_encode) {
   const std::vector<std::byte> bytes = encode_rgb_image(path.string(), rgb, width, height, srgb_encode);
-  std::error_code ec;
-  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
-  if (ec) throw InputError(path.parent_path(), "cannot create folder: " + ec.message());
+  create_folder(path.parent_path());
   std::ofstream file(path, std::ios::binary);
   file.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
   if (!file) throw InputError(path, "cannot write");

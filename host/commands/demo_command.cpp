@@ -37,9 +37,7 @@ std::string format(const char* pattern, double value) {
 
 void run_demo(const DemoOptions& options) {
   const std::filesystem::path folder = std::filesystem::absolute(options.out);
-  std::error_code ec;
-  std::filesystem::create_directories(folder, ec);
-  if (ec) throw CommandError(folder.string() + ": cannot create the report folder: " + ec.message());
+  create_folder(folder);
   const std::uint32_t n = options.size;
 
   std::printf("[1/3] Vulkan: noise field %ux%u, seed %llu\n", n, n, static_cast<unsigned long long>(options.seed));
@@ -62,9 +60,8 @@ void run_demo(const DemoOptions& options) {
   for (std::size_t i = 0; i < gpu.size(); ++i) mismatches += std::memcmp(&gpu[i], &cpu[i], sizeof(float)) != 0;
 
   std::printf("[3/3] report\n");
-  std::string error;
-  if (!write_field_image(folder / "noise.png", gpu, n, n, {}, error)) throw CommandError(error);
-  if (!write_field_image(folder / "noise.exr", gpu, n, n, {}, error)) throw CommandError(error);
+  write_field_image(folder / "noise.png", gpu, n, n);
+  write_field_image(folder / "noise.exr", gpu, n, n);
   const FieldStatistics stats = field_statistics(gpu, n, n);
 
   // Histogram against the N(0,1) density.
@@ -102,7 +99,7 @@ void run_demo(const DemoOptions& options) {
                 {"excess kurtosis", format("%.5f", stats.excess_kurtosis)},
                 {"lag-1 correlation, horizontal", format("%.5f", stats.lag1_horizontal)},
                 {"lag-1 correlation, vertical", format("%.5f", stats.lag1_vertical)}});
-  if (!report.write(folder, error)) throw CommandError(error);
+  if (std::string error; !report.write(folder, error)) throw CommandError(error);
 
   std::printf("GPU and CPU agree on %zu of %zu samples; GPU kernel %.2f ms, CPU reference %.2f ms\n",
               gpu.size() - mismatches, gpu.size(), kernel_ms, cpu_seconds * 1e3);

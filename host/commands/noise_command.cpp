@@ -46,8 +46,7 @@ void run_noise(const NoiseOptions& options) {
   }
   const double seconds = seconds_since(start);
   const FieldStatistics stats = field_statistics(values, options.size, options.size);
-  std::string error;
-  if (!write_field_image(options.out, values, options.size, options.size, {}, error)) throw CommandError(error);
+  write_field_image(options.out, values, options.size, options.size);
   std::printf("wrote %s: %ux%u N(0,1) field %u, seed %llu, on %s in %.1f ms (mean %.4f, std %.4f)%s\n",
               options.out.c_str(), options.size, options.size, options.field,
               static_cast<unsigned long long>(options.seed), where.c_str(), seconds * 1e3, stats.mean, std::sqrt(stats.variance),

@@ -54,25 +54,18 @@ bool BtfDataset::has_image(LightView pair) const {
   return encoding_ == ColorEncoding::srgb8 ? !srgb_[s].empty() : !half_[s].empty();
 }
 
-std::vector<LightView> BtfDataset::present_pairs() const {
+std::vector<LightView> BtfDataset::pairs_where_present(bool present) const {
   std::vector<LightView> pairs;
   for (std::uint32_t l = 0; l < lights_.size(); ++l) {
     for (std::uint32_t v = 0; v < views_.size(); ++v) {
-      if (has_image({l, v})) pairs.push_back({l, v});
+      if (has_image({l, v}) == present) pairs.push_back({l, v});
     }
   }
   return pairs;
 }
 
-std::vector<LightView> BtfDataset::missing_pairs() const {
-  std::vector<LightView> pairs;
-  for (std::uint32_t l = 0; l < lights_.size(); ++l) {
-    for (std::uint32_t v = 0; v < views_.size(); ++v) {
-      if (!has_image({l, v})) pairs.push_back({l, v});
-    }
-  }
-  return pairs;
-}
+std::vector<LightView> BtfDataset::present_pairs() const { return pairs_where_present(true); }
+std::vector<LightView> BtfDataset::missing_pairs() const { return pairs_where_present(false); }
 
 void BtfDataset::set_srgb8(LightView pair, std::vector<std::uint8_t> pixels) {
   if (encoding_ != ColorEncoding::srgb8) throw std::invalid_argument("set_srgb8 on a linear dataset");

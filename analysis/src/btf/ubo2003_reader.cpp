@@ -7,6 +7,7 @@
 #include "carbtf/analysis/image_io.hpp"
 #include "carbtf/analysis/input_error.hpp"
 #include "image_sources.hpp"
+#include "ubo2003_entries.hpp"
 
 namespace carbtf {
 
@@ -14,8 +15,6 @@ namespace fs = std::filesystem;
 
 namespace detail {
 
-// Checks one UBO2003-named entry and returns its (light, view) pair. `folder_name` is the per-view
-// folder it sits in, or empty for a flat layout. `seen` maps pairs to the entries that had them.
 LightView ubo2003_pair(const std::string& display_name, const std::string& file_name, const std::string& folder_name,
                        std::map<std::uint32_t, std::string>& seen) {
   const auto name = parse_ubo2003_name(file_name);

@@ -19,17 +19,14 @@ struct Ubo2003Writer::Archive {
 
 Ubo2003Writer::Ubo2003Writer(std::filesystem::path output, std::string extension, bool zip)
     : output_(std::move(output)), extension_(std::move(extension)) {
-  std::error_code ec;
   if (zip) {
-    if (output_.has_parent_path()) std::filesystem::create_directories(output_.parent_path(), ec);
-    if (ec) throw InputError(output_.parent_path(), "cannot create folder: " + ec.message());
+    create_folder(output_.parent_path());
     int error = 0;
     archive_ = std::make_unique<Archive>();
     archive_->handle = zip_open(output_.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &error);
     if (!archive_->handle) throw InputError(output_, "cannot create archive: " + detail::zip_error_text(error));
   } else {
-    std::filesystem::create_directories(output_, ec);
-    if (ec) throw InputError(output_, "cannot create folder: " + ec.message());
+    create_folder(output_);
   }
 }
 
@@ -59,9 +56,7 @@ void Ubo2003Writer::write(std::uint32_t light, std::uint32_t view, std::span<con
     return;
   }
   const std::filesystem::path path = output_ / entry;
-  std::error_code ec;
-  std::filesystem::create_directories(path.parent_path(), ec);
-  if (ec) throw InputError(path.parent_path(), "cannot create folder: " + ec.message());
+  create_folder(path.parent_path());
   std::ofstream file(path, std::ios::binary);
   file.write(reinterpret_cast<const char*>(encoded.data()), static_cast<std::streamsize>(encoded.size()));
   if (!file) throw InputError(path, "cannot write");

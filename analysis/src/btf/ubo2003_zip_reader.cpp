@@ -10,14 +10,10 @@
 #include "carbtf/analysis/btf/ubo2003_zip_reader.hpp"
 #include "carbtf/analysis/input_error.hpp"
 #include "image_sources.hpp"
+#include "ubo2003_entries.hpp"
 #include "zip_error.hpp"
 
 namespace carbtf {
-
-namespace detail {
-LightView ubo2003_pair(const std::string& display_name, const std::string& file_name, const std::string& folder_name,
-                       std::map<std::uint32_t, std::string>& seen);
-}
 
 namespace {
 

@@ -18,9 +18,12 @@ struct FieldToDisplay {
 
 // Writes `values` (width * height, row 0 at the top) to `path`; the format follows the extension:
 // .png/.jpg/.jpeg/.bmp get 8-bit grey through `display`, .exr/.tif/.tiff/.pfm get 32-bit float.
-// Creates missing parent folders. Returns false and fills `error` with one line naming the file.
-bool write_field_image(const std::filesystem::path& path, std::span<const float> values, std::uint32_t width,
-                       std::uint32_t height, const FieldToDisplay& display, std::string& error);
+// Creates missing parent folders. Throws InputError naming the file.
+void write_field_image(const std::filesystem::path& path, std::span<const float> values, std::uint32_t width,
+                       std::uint32_t height, const FieldToDisplay& display = {});
+
+// Creates `folder` and its parents if missing; throws InputError naming it when it cannot.
+void create_folder(const std::filesystem::path& folder);
 
 // True when write_field_image() knows the extension of `path`.
 bool is_supported_image_extension(const std::filesystem::path& path);

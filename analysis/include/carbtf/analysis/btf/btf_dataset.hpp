@@ -65,6 +65,7 @@ class BtfDataset {
 
  private:
   std::size_t slot(LightView pair) const;
+  std::vector<LightView> pairs_where_present(bool present) const;
 
   std::vector<Direction> lights_;
   std::vector<Direction> views_;
