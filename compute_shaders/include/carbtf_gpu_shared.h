@@ -11,7 +11,9 @@ namespace carbtf::gpu {
 using uint = std::uint32_t;
 #define CARBTF_CONST_FLOAT(name, value) inline constexpr float name = value;
 #define CARBTF_CONST_UINT(name, value) inline constexpr uint name = value;
+#define CARBTF_FUNCTION inline constexpr
 #else
+#define CARBTF_FUNCTION
 #define CARBTF_CONST_FLOAT(name, value) const float name = value;
 #define CARBTF_CONST_UINT(name, value) const uint name = value;
 #endif
@@ -73,6 +75,25 @@ struct NoiseFieldParams {
   uint row_pitch;       // in floats
   uint element_offset;  // in floats, from the start of the bound range
 };
+
+// ---- Range-map tile layout (engine/include/carbtf/engine/range_tiles.hpp) ----------------------
+// A 32-bit integer mixer ("lowbias32", C. Wellons): every output bit depends on every input bit.
+// Integer arithmetic only, so C++ and GLSL agree exactly.
+CARBTF_FUNCTION uint carbtf_hash32(uint x) {
+  x ^= x >> 16u;
+  x *= 0x7FEB352Du;
+  x ^= x >> 15u;
+  x *= 0x846CA68Bu;
+  x ^= x >> 16u;
+  return x;
+}
+
+// The colour of one tile edge: `kind` 0 for the horizontal edge above tile (row, col), 1 for the
+// vertical edge left of it; rows and columns are two's complement.
+CARBTF_FUNCTION uint carbtf_tile_edge_colour(uint seed_lo, uint seed_hi, uint kind, uint row, uint col, uint colours) {
+  uint h = carbtf_hash32(col ^ carbtf_hash32(row ^ carbtf_hash32(kind ^ carbtf_hash32(seed_lo ^ carbtf_hash32(seed_hi)))));
+  return h % colours;
+}
 
 #ifdef __cplusplus
 static_assert(sizeof(NoiseFieldParams) == 36, "NoiseFieldParams must match the GLSL push-constant layout");

@@ -20,6 +20,8 @@ const char* error_code_name(ErrorCode code) noexcept {
     case ErrorCode::out_of_device_memory: return "out_of_device_memory";
     case ErrorCode::device_lost: return "device_lost";
     case ErrorCode::vulkan_error: return "vulkan_error";
+    case ErrorCode::file_error: return "file_error";
+    case ErrorCode::invalid_material: return "invalid_material";
   }
   return "unknown";
 }

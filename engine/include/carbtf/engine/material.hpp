@@ -1,0 +1,119 @@
+// The compact BTF material: everything the runtime needs to synthesize and render a measured material
+// (DESIGN.md 1 and 4). Analysis fills it; the material file (material_file.hpp) stores it; synthesis
+// and rendering read it. Plain data with no invariants beyond those validate_material() checks, so it
+// is cheap to copy and safe to share between threads for reading.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "carbtf/engine/status.hpp"
+
+namespace carbtf {
+
+// A measured direction on the upper hemisphere, in radians: theta from the surface normal, phi from +x
+// towards +y (image up).
+struct MaterialDirection {
+  float theta = 0.0f;
+  float phi = 0.0f;
+  bool operator==(const MaterialDirection&) const = default;
+};
+
+// One causal neighbour of a 2D CAR model: the value at (row + dr, col + dc) feeds (row, col). Causal
+// means dr < 0, or dr == 0 and dc < 0 (a non-symmetric half-plane).
+struct CarNeighbour {
+  std::int8_t dr = 0;
+  std::int8_t dc = 0;
+  bool operator==(const CarNeighbour&) const = default;
+};
+
+// Why a band's model differs from the plain Bayesian estimate; the analysis log says the same in words.
+enum CarBandFlags : std::uint32_t {
+  car_band_repaired = 1u << 0,       // the fitted recursion was unstable or near a unit root: gamma shrunk
+  car_band_constant = 1u << 1,       // the band is constant: gamma empty, sigma 0
+  car_band_white_noise = 1u << 2,    // too few samples for any neighbourhood: gamma empty
+};
+
+// One mono-spectral band of one pyramid level: Y(r) = mean + y(r), y(r) = sum_k gamma[k] y(r + n_k) +
+// sigma e(r), e(r) ~ N(0, 1) (paper eq. 1).
+struct CarBandModel {
+  std::vector<CarNeighbour> neighbourhood;
+  std::vector<float> gamma;  // one per neighbour, same order
+  float sigma = 0.0f;        // noise standard deviation, in band units
+  float mean = 0.0f;
+  float band_std = 0.0f;     // standard deviation of the analysed band (for tolerances and reports)
+  std::uint32_t flags = 0;   // CarBandFlags
+  bool operator==(const CarBandModel&) const = default;
+};
+
+// The model of one subspace image (DESIGN.md 4.3): colour = mean + transform * bands, where the bands
+// are the collapse of a Gaussian-Laplacian pyramid of `levels` levels, each level holding `channels`
+// CAR bands. bands[level * channels + channel]; level 0 is the finest.
+struct SubspaceModel {
+  std::uint32_t light = 0;  // the measured pair this subspace image is (nearest its cluster's centroid)
+  std::uint32_t view = 0;
+  std::uint32_t width = 0;  // size of the analysed image
+  std::uint32_t height = 0;
+  std::uint32_t channels = 3;
+  std::uint32_t levels = 1;
+  std::vector<float> colour_mean;       // channels, linear RGB (or spectral) mean
+  std::vector<float> colour_transform;  // channels x channels, row-major: colour[i] = mean[i] + sum_j T[i][j] band[j]
+  std::vector<CarBandModel> bands;      // levels * channels
+  bool operator==(const SubspaceModel&) const = default;
+};
+
+// The range (height) map, enlarged by Wang tiles (Cohen et al. 2003): every horizontal tile edge has
+// one of `edge_colours` colours and so has every vertical edge, and there is one tile per combination
+// of (north, east, south, west) colours. Each edge colour owns a source patch of tile_size^2 texels;
+// a tile is the four patches of its edges, joined along minimum-error cuts that run from each corner
+// to the centre (range_tiles.hpp builds the tiles and lays them out).
+struct RangeTiles {
+  std::uint32_t tile_size = 0;     // even, texels
+  std::uint32_t edge_colours = 2;  // per direction; patches = 2 * edge_colours, tiles = edge_colours^4
+  float height_offset = 0.0f;      // height = offset + scale * quantized, in texel units
+  float height_scale = 0.0f;
+  // Source patches, row-major tile_size^2 each: horizontal-edge colours first, then vertical-edge ones.
+  std::vector<std::uint16_t> patches;
+  // Per tile and per quadrant (top-left, top-right, bottom-right, bottom-left), tile_size / 2 cut
+  // positions: see range_tiles.hpp for their meaning.
+  std::vector<std::uint16_t> cuts;
+  bool operator==(const RangeTiles&) const = default;
+};
+
+struct Material {
+  std::vector<MaterialDirection> lights;
+  std::vector<MaterialDirection> views;
+  std::vector<std::uint8_t> subspace_index;  // lights.size() * views.size(), [light * views + view]
+  std::vector<SubspaceModel> subspaces;
+  RangeTiles range;
+  // The analysis settings and provenance, as ordered (key, value) text pairs.
+  std::vector<std::pair<std::string, std::string>> settings;
+  bool operator==(const Material&) const = default;
+};
+
+// Limits a material must respect; they bound every allocation a reader makes for a hostile file.
+inline constexpr std::uint32_t kMaxMaterialDirections = 4096;
+inline constexpr std::uint32_t kMaxSubspaces = 256;
+inline constexpr std::uint32_t kMaxChannels = 16;
+inline constexpr std::uint32_t kMaxPyramidLevels = 8;
+inline constexpr std::uint32_t kMaxNeighbours = 64;
+inline constexpr int kMaxNeighbourReach = 16;
+inline constexpr std::uint32_t kMaxImageSize = 1u << 16;
+inline constexpr std::uint32_t kMaxTileSize = 1024;
+inline constexpr std::uint32_t kMaxEdgeColours = 4;
+inline constexpr std::uint32_t kMaxSettings = 256;
+inline constexpr std::uint32_t kMaxSettingLength = 4096;
+
+// The subspace index of (light, view); the caller keeps both in range.
+inline std::uint32_t subspace_of(const Material& material, std::uint32_t light, std::uint32_t view) {
+  return material.subspace_index[std::size_t{light} * material.views.size() + view];
+}
+
+// Checks every structural invariant above (sizes agree, indices in range, neighbours causal and within
+// reach, numbers finite, sigma >= 0). The message names the first offending element.
+Status validate_material(const Material& material);
+
+}  // namespace carbtf

@@ -1,0 +1,55 @@
+// The material file (.cbtf): a Material on disk, tens of kilobytes.
+//
+// Layout, all little-endian:
+//   header  "CBTF", u16 major version, u16 minor version, u32 chunk count
+//   chunks  4-byte tag, u32 payload size, payload, u32 CRC-32 (IEEE 802.3) of tag, size and payload
+// Chunks (each at most once; unknown tags with a valid CRC are skipped, so minor versions can add some):
+//   SETT  analysis settings: u32 count, then per pair u32 key length, key, u32 value length, value
+//   DIRS  u32 lights, u32 views, then (f32 theta, f32 phi) radians per light, then per view
+//   INDX  u32 lights, u32 views, u8 subspace per (light, view), light-major
+//   SUBS  u32 count; per subspace u32 light, view, width, height, channels, levels; f32 mean[channels];
+//         f32 transform[channels^2]; per band (level-major) u32 flags, f32 mean, f32 band_std,
+//         f32 sigma, u32 neighbours, (i8 dr, i8 dc) per neighbour, f32 gamma per neighbour
+//   RNGE  u32 tile_size, u32 edge_colours, f32 height_offset, f32 height_scale,
+//         u16 patches[2 * colours * size^2], u16 cuts[colours^4 * 4 * size / 2] (tile_size 0: none)
+// A reader of major version 1 rejects any other major version. Every count is bounded (material.hpp)
+// before anything is allocated, every read is bounds-checked, and the decoded material is validated,
+// so a truncated, corrupted or hostile file gives an error, never a crash or an unbounded allocation.
+// Thread safety: all functions are reentrant.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "carbtf/engine/material.hpp"
+
+namespace carbtf {
+
+inline constexpr std::uint16_t kMaterialFormatMajor = 1;
+inline constexpr std::uint16_t kMaterialFormatMinor = 0;
+
+// Encodes a valid material (check it with validate_material first: an invalid one is refused).
+Status encode_material(const Material& material, std::vector<std::uint8_t>& out);
+
+// Decodes `bytes`; `name` (a path, say) prefixes every error message.
+Status decode_material(std::span<const std::uint8_t> bytes, const std::string& name, Material& out);
+
+// Reads and decodes a file; writes a file (through a temporary, so a failure leaves no partial file).
+Status read_material_file(const std::string& path, Material& out);
+Status write_material_file(const std::string& path, const Material& material);
+
+// One chunk of an encoded material, for size breakdowns (`carbtf info material.cbtf`).
+struct MaterialChunkInfo {
+  std::string tag;
+  std::uint64_t total_bytes = 0;  // header, payload and CRC
+  bool known = false;
+};
+// Lists the chunks of a file that decode_material accepts (call it after a successful decode).
+Status list_material_chunks(std::span<const std::uint8_t> bytes, std::vector<MaterialChunkInfo>& out);
+
+// CRC-32 (IEEE 802.3, reflected, as zlib's crc32) of `bytes`, continuing from `crc`.
+std::uint32_t crc32(std::span<const std::uint8_t> bytes, std::uint32_t crc = 0);
+
+}  // namespace carbtf

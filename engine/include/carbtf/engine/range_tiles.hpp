@@ -1,0 +1,75 @@
+// The range (height) map of a material, enlarged to any size from a few Wang tiles (RangeTiles in
+// material.hpp). Tiles are composed on the CPU from the stored patches and cuts; the layout gives each
+// tile edge a colour by hashing (seed, edge), so any block of the infinite map is computed on its own,
+// without scanning from an origin, and the same seed always gives the same map. Two tiles that meet
+// along an edge show the two halves of the same source patch there, so the map has no seams.
+//
+// Tile geometry (T = tile_size, h = T / 2; x = column, y = row within the tile):
+//   north patch N (horizontal colour n): tile rows [0, h) show N[y + h][x]
+//   south patch S:                       tile rows [h, T) show S[y - h][x]
+//   west patch W (vertical colour w):    tile cols [0, h) show W[y][x + h]
+//   east patch E:                        tile cols [h, T) show E[y][x - h]
+// Each quadrant is shared by one horizontal-edge patch A (N or S) and one vertical-edge patch B (W or
+// E). In quadrant-local coordinates (u from the tile's vertical edge inwards, v from its horizontal
+// edge inwards, both in [0, h)), texel (u, v) shows B when u < cut[v] and A otherwise. Cuts are
+// non-decreasing in v, cut[0] = 0 (the tile edge row is all A), cut[v] >= 1 for v >= 1 (the edge
+// column is all B), cut[h - 1] = h, and cut[v] <= h - 1 below that, so a cut runs from the corner to
+// the centre. Analysis picks each cut with minimum squared difference between A and B along it.
+// Thread safety: all functions are pure.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "carbtf/engine/material.hpp"
+
+namespace carbtf {
+
+enum class TileQuadrant : std::uint32_t { top_left = 0, top_right = 1, bottom_right = 2, bottom_left = 3 };
+
+struct TileEdgeColours {
+  std::uint32_t north = 0, east = 0, south = 0, west = 0;
+};
+
+inline std::uint32_t range_tile_count(const RangeTiles& tiles) {
+  const std::uint32_t c = tiles.edge_colours;
+  return c * c * c * c;
+}
+inline std::uint32_t range_tile_index(const RangeTiles& tiles, TileEdgeColours colours) {
+  const std::uint32_t c = tiles.edge_colours;
+  return ((colours.north * c + colours.east) * c + colours.south) * c + colours.west;
+}
+TileEdgeColours range_tile_colours(const RangeTiles& tiles, std::uint32_t tile);
+
+// The patch index (into RangeTiles::patches) of quadrant `quadrant` of `tile`: A is its
+// horizontal-edge patch, B its vertical-edge patch.
+struct QuadrantPatches {
+  std::uint32_t a = 0, b = 0;
+};
+QuadrantPatches quadrant_patches(const RangeTiles& tiles, std::uint32_t tile, TileQuadrant quadrant);
+
+// The tile texel (x, y) of quadrant-local (u, v).
+inline void quadrant_to_tile(std::uint32_t tile_size, TileQuadrant quadrant, std::uint32_t u, std::uint32_t v,
+                             std::uint32_t& x, std::uint32_t& y) {
+  const bool right = quadrant == TileQuadrant::top_right || quadrant == TileQuadrant::bottom_right;
+  const bool bottom = quadrant == TileQuadrant::bottom_right || quadrant == TileQuadrant::bottom_left;
+  x = right ? tile_size - 1 - u : u;
+  y = bottom ? tile_size - 1 - v : v;
+}
+
+// The height (texel units) patch `patch` shows at tile texel (x, y), following the geometry above;
+// the caller passes a patch that covers (x, y).
+float patch_height_at_tile_texel(const RangeTiles& tiles, std::uint32_t patch, std::uint32_t x, std::uint32_t y);
+
+// Composes tile `tile` into `out` (tile_size^2 heights, texel units, row-major).
+void compose_range_tile(const RangeTiles& tiles, std::uint32_t tile, std::span<float> out);
+
+// The tile laid at tile coordinates (tile_row, tile_col) of the enlarged map for `seed`.
+std::uint32_t range_tile_at(const RangeTiles& tiles, std::uint64_t seed, std::int32_t tile_row, std::int32_t tile_col);
+
+// Writes the block [row0, row0 + height) x [col0, col0 + width) of the enlarged map for `seed` into
+// `out` (width * height heights, row-major). Requires tile_size > 0.
+void enlarge_range_map(const RangeTiles& tiles, std::uint64_t seed, std::int64_t row0, std::int64_t col0,
+                       std::uint32_t width, std::uint32_t height, std::span<float> out);
+
+}  // namespace carbtf

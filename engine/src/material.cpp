@@ -1,0 +1,122 @@
+#include "carbtf/engine/material.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace carbtf {
+namespace {
+
+Status invalid(const std::string& message) { return {ErrorCode::invalid_material, message}; }
+
+bool finite(float value) { return std::isfinite(value); }
+
+bool all_finite(const std::vector<float>& values) {
+  for (float v : values) {
+    if (!finite(v)) return false;
+  }
+  return true;
+}
+
+Status validate_directions(const std::vector<MaterialDirection>& directions, const char* what) {
+  if (directions.empty() || directions.size() > kMaxMaterialDirections) {
+    return invalid(std::string(what) + " count " + std::to_string(directions.size()) + " is outside 1.." +
+                   std::to_string(kMaxMaterialDirections));
+  }
+  constexpr float kHalfPi = 1.5707964f;
+  for (std::size_t i = 0; i < directions.size(); ++i) {
+    const MaterialDirection& d = directions[i];
+    if (!finite(d.theta) || !finite(d.phi) || d.theta < 0.0f || d.theta > kHalfPi) {
+      return invalid(std::string(what) + " " + std::to_string(i) + " is not on the upper hemisphere");
+    }
+  }
+  return {};
+}
+
+Status validate_band(const CarBandModel& band, const std::string& where) {
+  if (band.neighbourhood.size() > kMaxNeighbours) return invalid(where + " has more than " + std::to_string(kMaxNeighbours) + " neighbours");
+  if (band.gamma.size() != band.neighbourhood.size()) return invalid(where + " has " + std::to_string(band.gamma.size()) + " parameters for " + std::to_string(band.neighbourhood.size()) + " neighbours");
+  for (std::size_t k = 0; k < band.neighbourhood.size(); ++k) {
+    const CarNeighbour n = band.neighbourhood[k];
+    const bool causal = n.dr < 0 || (n.dr == 0 && n.dc < 0);
+    if (!causal || n.dr < -kMaxNeighbourReach || n.dc < -kMaxNeighbourReach || n.dc > kMaxNeighbourReach) {
+      return invalid(where + " neighbour " + std::to_string(k) + " (" + std::to_string(n.dr) + ", " +
+                     std::to_string(n.dc) + ") is not causal within reach " + std::to_string(kMaxNeighbourReach));
+    }
+    for (std::size_t j = 0; j < k; ++j) {
+      if (band.neighbourhood[j] == n) return invalid(where + " lists neighbour " + std::to_string(k) + " twice");
+    }
+  }
+  if (!all_finite(band.gamma) || !finite(band.sigma) || !finite(band.mean) || !finite(band.band_std) ||
+      band.sigma < 0.0f || band.band_std < 0.0f) {
+    return invalid(where + " has a non-finite or negative parameter");
+  }
+  return {};
+}
+
+Status validate_subspace(const SubspaceModel& s, std::size_t index, const Material& material) {
+  const std::string where = "subspace " + std::to_string(index);
+  if (s.light >= material.lights.size() || s.view >= material.views.size()) return invalid(where + " names a direction pair out of range");
+  if (s.width == 0 || s.height == 0 || s.width > kMaxImageSize || s.height > kMaxImageSize) return invalid(where + " has size " + std::to_string(s.width) + "x" + std::to_string(s.height));
+  if (s.channels == 0 || s.channels > kMaxChannels) return invalid(where + " has " + std::to_string(s.channels) + " channels");
+  if (s.levels == 0 || s.levels > kMaxPyramidLevels) return invalid(where + " has " + std::to_string(s.levels) + " pyramid levels");
+  if (s.colour_mean.size() != s.channels || s.colour_transform.size() != std::size_t{s.channels} * s.channels) return invalid(where + " has a colour transform of the wrong size");
+  if (!all_finite(s.colour_mean) || !all_finite(s.colour_transform)) return invalid(where + " has a non-finite colour transform");
+  if (s.bands.size() != std::size_t{s.levels} * s.channels) return invalid(where + " has " + std::to_string(s.bands.size()) + " bands, not levels x channels");
+  for (std::size_t b = 0; b < s.bands.size(); ++b) {
+    if (Status status = validate_band(s.bands[b], where + " band " + std::to_string(b)); !status.ok()) return status;
+  }
+  return {};
+}
+
+Status validate_range(const RangeTiles& r) {
+  if (r.tile_size == 0) {
+    if (!r.patches.empty() || !r.cuts.empty()) return invalid("range map: tile size 0 but tile data present");
+    return {};
+  }
+  if (r.tile_size % 2 != 0 || r.tile_size < 4 || r.tile_size > kMaxTileSize) return invalid("range map: tile size " + std::to_string(r.tile_size) + " is not even within 4.." + std::to_string(kMaxTileSize));
+  if (r.edge_colours == 0 || r.edge_colours > kMaxEdgeColours) return invalid("range map: " + std::to_string(r.edge_colours) + " edge colours");
+  if (!finite(r.height_offset) || !finite(r.height_scale)) return invalid("range map: non-finite height scale");
+  const std::size_t texels = std::size_t{r.tile_size} * r.tile_size;
+  const std::size_t c = r.edge_colours;
+  if (r.patches.size() != 2 * c * texels) return invalid("range map: patch data has the wrong size");
+  const std::size_t half = r.tile_size / 2;
+  if (r.cuts.size() != c * c * c * c * 4 * half) return invalid("range map: cut data has the wrong size");
+  for (std::size_t q = 0; q < r.cuts.size() / half; ++q) {
+    const std::uint16_t* cut = r.cuts.data() + q * half;
+    if (cut[0] != 0 || cut[half - 1] != half) return invalid("range map: cut " + std::to_string(q) + " does not run from corner to centre");
+    for (std::size_t v = 1; v + 1 < half; ++v) {
+      if (cut[v] < 1 || cut[v] > half - 1 || cut[v] < cut[v - 1]) return invalid("range map: cut " + std::to_string(q) + " is not a monotone corner-to-centre path");
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
+Status validate_material(const Material& material) {
+  if (Status s = validate_directions(material.lights, "light direction"); !s.ok()) return s;
+  if (Status s = validate_directions(material.views, "view direction"); !s.ok()) return s;
+  if (material.subspaces.empty() || material.subspaces.size() > kMaxSubspaces) {
+    return invalid("subspace count " + std::to_string(material.subspaces.size()) + " is outside 1.." + std::to_string(kMaxSubspaces));
+  }
+  if (material.subspace_index.size() != material.lights.size() * material.views.size()) {
+    return invalid("the subspace index table does not have lights x views entries");
+  }
+  for (std::size_t i = 0; i < material.subspace_index.size(); ++i) {
+    if (material.subspace_index[i] >= material.subspaces.size()) {
+      return invalid("subspace index entry " + std::to_string(i) + " names subspace " +
+                     std::to_string(material.subspace_index[i]) + " of " + std::to_string(material.subspaces.size()));
+    }
+  }
+  for (std::size_t i = 0; i < material.subspaces.size(); ++i) {
+    if (Status s = validate_subspace(material.subspaces[i], i, material); !s.ok()) return s;
+  }
+  if (Status s = validate_range(material.range); !s.ok()) return s;
+  if (material.settings.size() > kMaxSettings) return invalid("more than " + std::to_string(kMaxSettings) + " settings");
+  for (const auto& [key, value] : material.settings) {
+    if (key.empty() || key.size() > kMaxSettingLength || value.size() > kMaxSettingLength) return invalid("a setting key or value is empty or too long");
+  }
+  return {};
+}
+
+}  // namespace carbtf

@@ -1,0 +1,366 @@
+#include "carbtf/engine/material_file.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <string_view>
+
+#include "byte_stream.hpp"
+
+namespace carbtf {
+namespace {
+
+using detail::ByteReader;
+using detail::ByteWriter;
+
+constexpr std::array<std::uint8_t, 4> kMagic{'C', 'B', 'T', 'F'};
+constexpr std::uint32_t kMaxChunks = 64;
+constexpr std::size_t kChunkOverhead = 12;  // tag, size, CRC
+
+enum class Chunk { settings, directions, index, subspaces, range, count };
+constexpr std::array<std::string_view, static_cast<std::size_t>(Chunk::count)> kChunkTags{"SETT", "DIRS", "INDX", "SUBS", "RNGE"};
+
+int chunk_number(std::span<const std::uint8_t> tag) {
+  const std::string_view text(reinterpret_cast<const char*>(tag.data()), tag.size());
+  for (std::size_t i = 0; i < kChunkTags.size(); ++i) {
+    if (kChunkTags[i] == text) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+std::string printable_tag(std::span<const std::uint8_t> tag) {
+  std::string text;
+  for (std::uint8_t c : tag) text += (c >= 0x20 && c < 0x7f) ? static_cast<char>(c) : '?';
+  return text;
+}
+
+const std::array<std::uint32_t, 256>& crc_table() {
+  static const std::array<std::uint32_t, 256> table = [] {
+    std::array<std::uint32_t, 256> t{};
+    for (std::uint32_t i = 0; i < 256; ++i) {
+      std::uint32_t c = i;
+      for (int k = 0; k < 8; ++k) c = (c & 1u) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+      t[i] = c;
+    }
+    return t;
+  }();
+  return table;
+}
+
+// ---- encoding ---------------------------------------------------------------------------------------
+
+void encode_settings(const Material& m, ByteWriter& w) {
+  w.u32(static_cast<std::uint32_t>(m.settings.size()));
+  for (const auto& [key, value] : m.settings) {
+    w.text(key);
+    w.text(value);
+  }
+}
+
+void encode_directions(const Material& m, ByteWriter& w) {
+  w.u32(static_cast<std::uint32_t>(m.lights.size()));
+  w.u32(static_cast<std::uint32_t>(m.views.size()));
+  for (const auto* set : {&m.lights, &m.views}) {
+    for (const MaterialDirection& d : *set) {
+      w.f32(d.theta);
+      w.f32(d.phi);
+    }
+  }
+}
+
+void encode_index(const Material& m, ByteWriter& w) {
+  w.u32(static_cast<std::uint32_t>(m.lights.size()));
+  w.u32(static_cast<std::uint32_t>(m.views.size()));
+  w.bytes(m.subspace_index);
+}
+
+void encode_subspaces(const Material& m, ByteWriter& w) {
+  w.u32(static_cast<std::uint32_t>(m.subspaces.size()));
+  for (const SubspaceModel& s : m.subspaces) {
+    for (std::uint32_t v : {s.light, s.view, s.width, s.height, s.channels, s.levels}) w.u32(v);
+    for (float v : s.colour_mean) w.f32(v);
+    for (float v : s.colour_transform) w.f32(v);
+    for (const CarBandModel& b : s.bands) {
+      w.u32(b.flags);
+      w.f32(b.mean);
+      w.f32(b.band_std);
+      w.f32(b.sigma);
+      w.u32(static_cast<std::uint32_t>(b.neighbourhood.size()));
+      for (CarNeighbour n : b.neighbourhood) {
+        w.i8(n.dr);
+        w.i8(n.dc);
+      }
+      for (float g : b.gamma) w.f32(g);
+    }
+  }
+}
+
+void encode_range(const Material& m, ByteWriter& w) {
+  const RangeTiles& r = m.range;
+  w.u32(r.tile_size);
+  w.u32(r.edge_colours);
+  w.f32(r.height_offset);
+  w.f32(r.height_scale);
+  for (std::uint16_t v : r.patches) w.u16(v);
+  for (std::uint16_t v : r.cuts) w.u16(v);
+}
+
+// ---- decoding: each returns false on a short or out-of-limit payload ---------------------------------
+
+bool decode_settings(ByteReader& r, Material& m) {
+  const std::uint32_t count = r.u32();
+  if (count > kMaxSettings || !r.can_read(count, 8)) return false;
+  m.settings.resize(count);
+  for (auto& [key, value] : m.settings) {
+    key = r.text(kMaxSettingLength);
+    value = r.text(kMaxSettingLength);
+  }
+  return !r.failed();
+}
+
+bool decode_direction_counts(ByteReader& r, std::uint32_t& lights, std::uint32_t& views) {
+  lights = r.u32();
+  views = r.u32();
+  return !r.failed() && lights <= kMaxMaterialDirections && views <= kMaxMaterialDirections;
+}
+
+bool decode_directions(ByteReader& r, Material& m) {
+  std::uint32_t lights = 0, views = 0;
+  if (!decode_direction_counts(r, lights, views) || !r.can_read(std::size_t{lights} + views, 8)) return false;
+  m.lights.resize(lights);
+  m.views.resize(views);
+  for (auto* set : {&m.lights, &m.views}) {
+    for (MaterialDirection& d : *set) {
+      d.theta = r.f32();
+      d.phi = r.f32();
+    }
+  }
+  return !r.failed();
+}
+
+bool decode_index(ByteReader& r, Material& m, std::uint32_t& lights, std::uint32_t& views) {
+  if (!decode_direction_counts(r, lights, views)) return false;
+  const auto table = r.bytes(std::size_t{lights} * views);
+  m.subspace_index.assign(table.begin(), table.end());
+  return !r.failed();
+}
+
+bool decode_band(ByteReader& r, CarBandModel& b) {
+  b.flags = r.u32();
+  b.mean = r.f32();
+  b.band_std = r.f32();
+  b.sigma = r.f32();
+  const std::uint32_t neighbours = r.u32();
+  if (neighbours > kMaxNeighbours || !r.can_read(neighbours, 6)) return false;
+  b.neighbourhood.resize(neighbours);
+  for (CarNeighbour& n : b.neighbourhood) {
+    n.dr = r.i8();
+    n.dc = r.i8();
+  }
+  b.gamma.resize(neighbours);
+  for (float& g : b.gamma) g = r.f32();
+  return !r.failed();
+}
+
+bool decode_subspaces(ByteReader& r, Material& m) {
+  const std::uint32_t count = r.u32();
+  if (count > kMaxSubspaces || !r.can_read(count, 24)) return false;
+  m.subspaces.resize(count);
+  for (SubspaceModel& s : m.subspaces) {
+    s.light = r.u32();
+    s.view = r.u32();
+    s.width = r.u32();
+    s.height = r.u32();
+    s.channels = r.u32();
+    s.levels = r.u32();
+    if (r.failed() || s.channels == 0 || s.channels > kMaxChannels || s.levels == 0 || s.levels > kMaxPyramidLevels) return false;
+    const std::size_t floats = s.channels + std::size_t{s.channels} * s.channels;
+    const std::size_t bands = std::size_t{s.levels} * s.channels;
+    if (!r.can_read(floats + bands * 5, 4)) return false;
+    s.colour_mean.resize(s.channels);
+    for (float& v : s.colour_mean) v = r.f32();
+    s.colour_transform.resize(std::size_t{s.channels} * s.channels);
+    for (float& v : s.colour_transform) v = r.f32();
+    s.bands.resize(bands);
+    for (CarBandModel& b : s.bands) {
+      if (!decode_band(r, b)) return false;
+    }
+  }
+  return !r.failed();
+}
+
+bool decode_range(ByteReader& r, Material& m) {
+  RangeTiles& t = m.range;
+  t.tile_size = r.u32();
+  t.edge_colours = r.u32();
+  t.height_offset = r.f32();
+  t.height_scale = r.f32();
+  if (r.failed() || t.tile_size > kMaxTileSize || t.edge_colours > kMaxEdgeColours) return false;
+  if (t.tile_size == 0) return true;
+  const std::size_t c = t.edge_colours;
+  const std::size_t patch_values = 2 * c * t.tile_size * t.tile_size;
+  const std::size_t cut_values = c * c * c * c * 4 * (t.tile_size / 2);
+  if (!r.can_read(patch_values + cut_values, 2)) return false;
+  t.patches.resize(patch_values);
+  for (auto& v : t.patches) v = r.u16();
+  t.cuts.resize(cut_values);
+  for (auto& v : t.cuts) v = r.u16();
+  return !r.failed();
+}
+
+Status fail(const std::string& name, const std::string& problem) {
+  return {ErrorCode::invalid_material, name + ": " + problem};
+}
+
+// Walks the header and chunk table, checking sizes and CRCs; calls visit(tag, payload) per chunk.
+template <typename Visit>
+Status walk_chunks(std::span<const std::uint8_t> bytes, const std::string& name, Visit&& visit) {
+  ByteReader r(bytes);
+  const auto magic = r.bytes(4);
+  if (r.failed() || !std::equal(magic.begin(), magic.end(), kMagic.begin())) {
+    return fail(name, bytes.size() < 4 ? "too short to be a carbtf material file" : "not a carbtf material file (no CBTF signature)");
+  }
+  const std::uint16_t major = r.u16();
+  const std::uint16_t minor = r.u16();
+  const std::uint32_t chunks = r.u32();
+  if (r.failed()) return fail(name, "truncated header");
+  if (major != kMaterialFormatMajor) {
+    return fail(name, "material format " + std::to_string(major) + "." + std::to_string(minor) + " is not supported (this carbtf reads " +
+                          std::to_string(kMaterialFormatMajor) + ".x)");
+  }
+  if (chunks > kMaxChunks) return fail(name, "claims " + std::to_string(chunks) + " chunks (at most " + std::to_string(kMaxChunks) + ")");
+  for (std::uint32_t i = 0; i < chunks; ++i) {
+    const auto tag = r.bytes(4);
+    const std::uint32_t size = r.u32();
+    if (r.failed()) return fail(name, "truncated in the header of chunk " + std::to_string(i));
+    if (size > r.remaining() || r.remaining() - size < 4) {
+      return fail(name, "chunk " + printable_tag(tag) + " claims " + std::to_string(size) + " bytes but the file is truncated");
+    }
+    const auto payload = r.bytes(size);
+    const std::uint32_t stored_crc = r.u32();
+    std::uint32_t crc = crc32(tag);
+    std::array<std::uint8_t, 4> size_bytes{};
+    for (int k = 0; k < 4; ++k) size_bytes[k] = static_cast<std::uint8_t>(size >> (8 * k));
+    crc = crc32(size_bytes, crc);
+    crc = crc32(payload, crc);
+    if (crc != stored_crc) return fail(name, "chunk " + printable_tag(tag) + " is corrupt (CRC mismatch)");
+    if (Status s = visit(tag, payload); !s.ok()) return s;
+  }
+  if (!r.at_end()) return fail(name, std::to_string(r.remaining()) + " unexpected bytes after the last chunk");
+  return {};
+}
+
+}  // namespace
+
+std::uint32_t crc32(std::span<const std::uint8_t> bytes, std::uint32_t crc) {
+  const auto& table = crc_table();
+  crc = ~crc;
+  for (std::uint8_t b : bytes) crc = table[(crc ^ b) & 0xFFu] ^ (crc >> 8);
+  return ~crc;
+}
+
+Status encode_material(const Material& material, std::vector<std::uint8_t>& out) {
+  if (Status s = validate_material(material); !s.ok()) return {ErrorCode::invalid_argument, "cannot encode material: " + s.message()};
+  out.clear();
+  ByteWriter w(out);
+  w.bytes(kMagic);
+  w.u16(kMaterialFormatMajor);
+  w.u16(kMaterialFormatMinor);
+  w.u32(static_cast<std::uint32_t>(Chunk::count));
+  using Encoder = void (*)(const Material&, ByteWriter&);
+  constexpr std::array<Encoder, static_cast<std::size_t>(Chunk::count)> encoders{encode_settings, encode_directions, encode_index,
+                                                                                encode_subspaces, encode_range};
+  for (std::size_t c = 0; c < encoders.size(); ++c) {
+    const std::size_t start = w.size();
+    w.bytes(std::span(reinterpret_cast<const std::uint8_t*>(kChunkTags[c].data()), 4));
+    w.u32(0);
+    encoders[c](material, w);
+    const auto payload_size = static_cast<std::uint32_t>(w.size() - start - 8);
+    w.patch_u32(start + 4, payload_size);
+    w.u32(crc32(std::span(out).subspan(start, 8 + payload_size)));
+  }
+  return {};
+}
+
+Status decode_material(std::span<const std::uint8_t> bytes, const std::string& name, Material& out) {
+  Material m;
+  std::array<bool, static_cast<std::size_t>(Chunk::count)> seen{};
+  std::uint32_t index_lights = 0, index_views = 0;
+  Status walked = walk_chunks(bytes, name, [&](std::span<const std::uint8_t> tag, std::span<const std::uint8_t> payload) -> Status {
+    const int number = chunk_number(tag);
+    if (number < 0) return {};  // a chunk from a newer minor version
+    if (seen[number]) return fail(name, "chunk " + printable_tag(tag) + " appears twice");
+    seen[number] = true;
+    ByteReader r(payload);
+    bool ok = false;
+    switch (static_cast<Chunk>(number)) {
+      case Chunk::settings: ok = decode_settings(r, m); break;
+      case Chunk::directions: ok = decode_directions(r, m); break;
+      case Chunk::index: ok = decode_index(r, m, index_lights, index_views); break;
+      case Chunk::subspaces: ok = decode_subspaces(r, m); break;
+      case Chunk::range: ok = decode_range(r, m); break;
+      case Chunk::count: break;
+    }
+    if (!ok) return fail(name, "chunk " + printable_tag(tag) + " is truncated or has out-of-range counts");
+    if (!r.at_end()) return fail(name, "chunk " + printable_tag(tag) + " has " + std::to_string(r.remaining()) + " trailing bytes");
+    return {};
+  });
+  if (!walked.ok()) return walked;
+  for (std::size_t c = 0; c < seen.size(); ++c) {
+    if (!seen[c] && static_cast<Chunk>(c) != Chunk::settings) return fail(name, "chunk " + std::string(kChunkTags[c]) + " is missing");
+  }
+  if (index_lights != m.lights.size() || index_views != m.views.size()) {
+    return fail(name, "the index table is " + std::to_string(index_lights) + " x " + std::to_string(index_views) + " but there are " +
+                          std::to_string(m.lights.size()) + " lights and " + std::to_string(m.views.size()) + " views");
+  }
+  if (Status s = validate_material(m); !s.ok()) return fail(name, s.message());
+  out = std::move(m);
+  return {};
+}
+
+Status list_material_chunks(std::span<const std::uint8_t> bytes, std::vector<MaterialChunkInfo>& out) {
+  out.clear();
+  return walk_chunks(bytes, "material", [&](std::span<const std::uint8_t> tag, std::span<const std::uint8_t> payload) -> Status {
+    out.push_back({printable_tag(tag), payload.size() + kChunkOverhead, chunk_number(tag) >= 0});
+    return {};
+  });
+}
+
+Status read_material_file(const std::string& path, Material& out) {
+  std::ifstream file(path, std::ios::binary);
+  if (!file) return {ErrorCode::file_error, path + ": cannot open the material file"};
+  file.seekg(0, std::ios::end);
+  const std::streamoff size = file.tellg();
+  // A valid material is far below this; refusing early keeps a mistaken path (a BTF zip) cheap.
+  constexpr std::streamoff kMaxFileBytes = std::streamoff{256} << 20;
+  if (size < 0) return {ErrorCode::file_error, path + ": cannot read the material file"};
+  if (size > kMaxFileBytes) return fail(path, "is " + std::to_string(size >> 20) + " MiB, too large to be a carbtf material file");
+  file.seekg(0);
+  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(size));
+  if (!file.read(reinterpret_cast<char*>(bytes.data()), size)) return {ErrorCode::file_error, path + ": cannot read the material file"};
+  return decode_material(bytes, path, out);
+}
+
+Status write_material_file(const std::string& path, const Material& material) {
+  std::vector<std::uint8_t> bytes;
+  if (Status s = encode_material(material, bytes); !s.ok()) return s;
+  const std::string temporary = path + ".partial";
+  {
+    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
+    if (!file) return {ErrorCode::file_error, path + ": cannot create the file"};
+    file.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    if (!file.flush()) {
+      std::remove(temporary.c_str());
+      return {ErrorCode::file_error, path + ": cannot write the file"};
+    }
+  }
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+    std::remove(temporary.c_str());
+    return {ErrorCode::file_error, path + ": cannot write the file"};
+  }
+  return {};
+}
+
+}  // namespace carbtf

@@ -1,0 +1,110 @@
+#include "carbtf/engine/range_tiles.hpp"
+
+#include <carbtf_gpu_shared.h>
+
+#include <vector>
+
+namespace carbtf {
+namespace {
+
+std::int64_t floor_div(std::int64_t a, std::int64_t b) {
+  const std::int64_t q = a / b;
+  return (a % b != 0 && (a < 0) != (b < 0)) ? q - 1 : q;
+}
+
+}  // namespace
+
+TileEdgeColours range_tile_colours(const RangeTiles& tiles, std::uint32_t tile) {
+  const std::uint32_t c = tiles.edge_colours;
+  TileEdgeColours colours;
+  colours.west = tile % c;
+  tile /= c;
+  colours.south = tile % c;
+  tile /= c;
+  colours.east = tile % c;
+  colours.north = tile / c;
+  return colours;
+}
+
+QuadrantPatches quadrant_patches(const RangeTiles& tiles, std::uint32_t tile, TileQuadrant quadrant) {
+  const TileEdgeColours colours = range_tile_colours(tiles, tile);
+  const std::uint32_t vertical_base = tiles.edge_colours;
+  switch (quadrant) {
+    case TileQuadrant::top_left: return {colours.north, vertical_base + colours.west};
+    case TileQuadrant::top_right: return {colours.north, vertical_base + colours.east};
+    case TileQuadrant::bottom_right: return {colours.south, vertical_base + colours.east};
+    case TileQuadrant::bottom_left: return {colours.south, vertical_base + colours.west};
+  }
+  return {};
+}
+
+float patch_height_at_tile_texel(const RangeTiles& tiles, std::uint32_t patch, std::uint32_t x, std::uint32_t y) {
+  const std::uint32_t size = tiles.tile_size;
+  const std::uint32_t half = size / 2;
+  std::uint32_t row = y;
+  std::uint32_t col = x;
+  if (patch < tiles.edge_colours) {
+    row = y < half ? y + half : y - half;  // the north role above the centre, the south role below
+  } else {
+    col = x < half ? x + half : x - half;  // the west role left of the centre, the east role right
+  }
+  const std::uint16_t quantized = tiles.patches[(std::size_t{patch} * size + row) * size + col];
+  return tiles.height_offset + tiles.height_scale * static_cast<float>(quantized);
+}
+
+void compose_range_tile(const RangeTiles& tiles, std::uint32_t tile, std::span<float> out) {
+  const std::uint32_t size = tiles.tile_size;
+  const std::uint32_t half = size / 2;
+  for (std::uint32_t q = 0; q < 4; ++q) {
+    const auto quadrant = static_cast<TileQuadrant>(q);
+    const QuadrantPatches patches = quadrant_patches(tiles, tile, quadrant);
+    const std::uint16_t* cut = tiles.cuts.data() + (std::size_t{tile} * 4 + q) * half;
+    for (std::uint32_t v = 0; v < half; ++v) {
+      for (std::uint32_t u = 0; u < half; ++u) {
+        std::uint32_t x = 0;
+        std::uint32_t y = 0;
+        quadrant_to_tile(size, quadrant, u, v, x, y);
+        const std::uint32_t patch = u < cut[v] ? patches.b : patches.a;
+        out[std::size_t{y} * size + x] = patch_height_at_tile_texel(tiles, patch, x, y);
+      }
+    }
+  }
+}
+
+std::uint32_t range_tile_at(const RangeTiles& tiles, std::uint64_t seed, std::int32_t tile_row, std::int32_t tile_col) {
+  const auto lo = static_cast<std::uint32_t>(seed);
+  const auto hi = static_cast<std::uint32_t>(seed >> 32);
+  const auto row = static_cast<std::uint32_t>(tile_row);
+  const auto col = static_cast<std::uint32_t>(tile_col);
+  const std::uint32_t c = tiles.edge_colours;
+  TileEdgeColours colours;
+  colours.north = gpu::carbtf_tile_edge_colour(lo, hi, 0u, row, col, c);
+  colours.south = gpu::carbtf_tile_edge_colour(lo, hi, 0u, row + 1u, col, c);
+  colours.west = gpu::carbtf_tile_edge_colour(lo, hi, 1u, row, col, c);
+  colours.east = gpu::carbtf_tile_edge_colour(lo, hi, 1u, row, col + 1u, c);
+  return range_tile_index(tiles, colours);
+}
+
+void enlarge_range_map(const RangeTiles& tiles, std::uint64_t seed, std::int64_t row0, std::int64_t col0,
+                       std::uint32_t width, std::uint32_t height, std::span<float> out) {
+  const std::uint32_t size = tiles.tile_size;
+  const std::size_t texels = std::size_t{size} * size;
+  std::vector<float> composed(texels * range_tile_count(tiles));
+  for (std::uint32_t t = 0; t < range_tile_count(tiles); ++t) {
+    compose_range_tile(tiles, t, std::span<float>(composed).subspan(t * texels, texels));
+  }
+  for (std::uint32_t r = 0; r < height; ++r) {
+    const std::int64_t row = row0 + r;
+    const std::int64_t tile_row = floor_div(row, size);
+    const auto y = static_cast<std::size_t>(row - tile_row * size);
+    for (std::uint32_t c = 0; c < width; ++c) {
+      const std::int64_t col = col0 + c;
+      const std::int64_t tile_col = floor_div(col, size);
+      const auto x = static_cast<std::size_t>(col - tile_col * size);
+      const std::uint32_t tile = range_tile_at(tiles, seed, static_cast<std::int32_t>(tile_row), static_cast<std::int32_t>(tile_col));
+      out[std::size_t{r} * width + c] = composed[tile * texels + y * size + x];
+    }
+  }
+}
+
+}  // namespace carbtf
