@@ -125,6 +125,14 @@ std::vector<float> shadow_map(const Surface& surface, const PeriodicGrid& height
 
 }  // namespace
 
+std::vector<float> light_visibility(const Surface& surface, const Direction& light) {
+  const std::uint32_t n = surface.size;
+  if (n == 0 || surface.height.size() != std::size_t{n} * n) throw std::invalid_argument("light_visibility: height map does not match the size");
+  const PeriodicGrid height{surface.height.data(), n, 1};
+  const double h_max = *std::max_element(surface.height.begin(), surface.height.end());
+  return shadow_map(surface, height, h_max, texel_direction(light));
+}
+
 void render_btf(const Surface& surface, const std::vector<Direction>& lights, const std::vector<Direction>& views,
                 const RenderOptions& options,
                 const std::function<void(std::uint32_t, std::uint32_t, std::span<const float>)>& emit) {

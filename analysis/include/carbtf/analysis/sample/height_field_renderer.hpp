@@ -21,6 +21,10 @@ struct RenderOptions {
   float ambient = 0.03f;       // unshadowed ambient term, times albedo
 };
 
+// Per texel, 1 where the surface point sees `light` and 0 where the height field casts a shadow on it
+// (size * size, row-major): the renderer's own shadow test, for judging estimates on unshadowed texels.
+std::vector<float> light_visibility(const Surface& surface, const Direction& light);
+
 // Calls `emit(light, view, image)` once per pair, image = size * size * 3 linear RGB, from worker
 // threads (emit must be thread-safe). Throws std::invalid_argument for an empty surface.
 void render_btf(const Surface& surface, const std::vector<Direction>& lights, const std::vector<Direction>& views,

@@ -1,0 +1,160 @@
+// Photometric stereo, normal integration and the Wang-tile range map, against the ground truth of the
+// sample materials (analysis/sample).
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+#include <numeric>
+
+#include "carbtf/analysis/btf/directions.hpp"
+#include "carbtf/analysis/range/photometric_stereo.hpp"
+#include "carbtf/analysis/range/range_tile_builder.hpp"
+#include "carbtf/analysis/range/surface_integration.hpp"
+#include "carbtf/analysis/sample/height_field_renderer.hpp"
+#include "carbtf/analysis/sample/sample_materials.hpp"
+#include "carbtf/engine/range_tiles.hpp"
+
+namespace carbtf {
+namespace {
+
+// The top view of a sample material under all 81 UBO2003 lights, as linear float images.
+NormalMap top_view_stereo(const Surface& surface) {
+  const auto& lights = ubo2003_directions();
+  std::vector<std::vector<float>> images(lights.size());
+  RenderOptions render;
+  render.progress = false;
+  render_btf(surface, lights, {Direction{}}, render, [&](std::uint32_t light, std::uint32_t, std::span<const float> image) {
+    images[light].assign(image.begin(), image.end());
+  });
+  std::vector<std::span<const float>> spans(images.begin(), images.end());
+  std::vector<std::array<double, 3>> vectors;
+  for (const Direction& d : lights) vectors.push_back(d.vector());
+  return photometric_stereo(spans, vectors, surface.size, surface.size, {}, {0.0, 0.0, 1.0});
+}
+
+double mean(const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size()); }
+
+// Texels no light casts a shadow on: every light above the texel's tangent plane reaches it, so the
+// measurements there follow the photometric-stereo model (up to the specular lobe).
+std::vector<std::uint8_t> unshadowed_texels(const Surface& surface, const std::vector<float>& normals) {
+  std::vector<std::uint8_t> unshadowed(std::size_t{surface.size} * surface.size, 1);
+  for (const Direction& light : ubo2003_directions()) {
+    const std::vector<float> visible = light_visibility(surface, light);
+    const auto l = light.vector();
+    for (std::size_t i = 0; i < unshadowed.size(); ++i) {
+      const double n_dot_l = normals[i * 3] * l[0] + normals[i * 3 + 1] * l[1] + normals[i * 3 + 2] * l[2];
+      if (n_dot_l > 0.0 && visible[i] < 1.0f) unshadowed[i] = 0;
+    }
+  }
+  return unshadowed;
+}
+
+}  // namespace
+
+TEST_CASE("photometric stereo on each sample material's top view is within 3 degrees of the truth", "[range]") {
+  for (const std::string& name : sample_material_names()) {
+    const Surface surface = make_sample_surface(name, 96, 3);
+    const NormalMap map = top_view_stereo(surface);
+    const std::vector<float> truth = surface_normals(surface);
+    std::vector<std::uint8_t> judged = unshadowed_texels(surface, truth);
+    const auto unshadowed_count = std::count(judged.begin(), judged.end(), 1);
+    for (std::size_t i = 0; i < judged.size(); ++i) judged[i] &= map.valid[i];
+    const auto valid_count = std::count(judged.begin(), judged.end(), 1);
+    const std::vector<double> all_errors = angular_errors_degrees(map.normals, truth, map.valid);
+    const std::vector<double> errors = angular_errors_degrees(map.normals, truth, judged);
+    INFO("all valid texels: mean error " << mean(all_errors) << " deg; unshadowed texels " << unshadowed_count << " of " << judged.size());
+    REQUIRE(unshadowed_count >= static_cast<long>(judged.size() / 4));
+    std::vector<double> sorted = errors;
+    std::sort(sorted.begin(), sorted.end());
+    INFO(name << ": valid " << valid_count << " of " << map.valid.size() << ", mean error " << mean(errors) << " deg, median "
+              << sorted[sorted.size() / 2] << ", p99 " << sorted[sorted.size() * 99 / 100]);
+    CHECK(valid_count >= unshadowed_count * 99 / 100);
+    CHECK(mean(errors) < 3.0);
+  }
+}
+
+TEST_CASE("integrating the normals of a periodic height field gives the heights back", "[range]") {
+  const Surface surface = make_sample_surface("leather", 64, 5);
+  const std::vector<float> normals = surface_normals(surface);
+  const Plane heights = integrate_normals(normals, 64, 64);
+  Plane truth(64, 64);
+  for (int i = 0; i < 64 * 64; ++i) truth(i / 64, i % 64) = surface.height[static_cast<std::size_t>(i)];
+  truth -= truth.mean();
+  // Central differences cannot see the Nyquist rows and columns; compare after removing them by a
+  // 2x2 box filter, relative to the relief's range.
+  auto smooth = [](const Plane& p) {
+    Plane out(p.rows(), p.cols());
+    for (Eigen::Index r = 0; r < p.rows(); ++r)
+      for (Eigen::Index c = 0; c < p.cols(); ++c)
+        out(r, c) = 0.25 * (p(r, c) + p(r, (c + 1) % p.cols()) + p((r + 1) % p.rows(), c) + p((r + 1) % p.rows(), (c + 1) % p.cols()));
+    return out;
+  };
+  const double range = truth.maxCoeff() - truth.minCoeff();
+  const double error = (smooth(heights) - smooth(truth)).abs().maxCoeff();
+  INFO("max error " << error << " of range " << range);
+  CHECK(error < 1e-3 * range);
+}
+
+TEST_CASE("Wang range tiles lay out seamlessly and block by block", "[range]") {
+  const Surface surface = make_sample_surface("leather", 128, 7);
+  Plane heights(128, 128);
+  for (int i = 0; i < 128 * 128; ++i) heights(i / 128, i % 128) = surface.height[static_cast<std::size_t>(i)];
+  RangeTileOptions options;
+  options.tile_size = 32;
+  const RangeTiles tiles = build_range_tiles(heights, options);
+  REQUIRE(tiles.tile_size == 32u);
+  REQUIRE(range_tile_count(tiles) == 16u);
+  const std::uint32_t half = tiles.tile_size / 2;
+  for (std::size_t q = 0; q < tiles.cuts.size() / half; ++q) {
+    const std::uint16_t* cut = tiles.cuts.data() + q * half;
+    REQUIRE(cut[0] == 0);
+    REQUIRE(cut[half - 1] == half);
+    for (std::uint32_t v = 1; v + 1 < half; ++v) REQUIRE((cut[v] >= std::max<int>(1, cut[v - 1]) && cut[v] <= half - 1));
+  }
+
+  const std::uint32_t size = 512;
+  std::vector<float> map(std::size_t{size} * size);
+  enlarge_range_map(tiles, 11, 0, 0, size, size, map);
+  // Seams: the mean absolute step across tile edges is like the step anywhere else.
+  double across = 0.0, inside = 0.0;
+  std::size_t across_count = 0, inside_count = 0;
+  for (std::uint32_t r = 0; r + 1 < size; ++r) {
+    for (std::uint32_t c = 0; c + 1 < size; ++c) {
+      const double step = std::abs(map[r * size + c + 1] - map[r * size + c]) + std::abs(map[(r + 1) * size + c] - map[r * size + c]);
+      const bool edge = (c + 1) % tiles.tile_size == 0 || (r + 1) % tiles.tile_size == 0;
+      (edge ? across : inside) += step;
+      ++(edge ? across_count : inside_count);
+    }
+  }
+  across /= static_cast<double>(across_count);
+  inside /= static_cast<double>(inside_count);
+  INFO("mean step across tile edges " << across << ", inside tiles " << inside);
+  CHECK(across < 1.25 * inside);
+
+  // Stochastic, not periodic: all tiles appear and no tile row repeats the first.
+  std::vector<int> used(16, 0);
+  bool rows_differ = true;
+  for (int tr = 0; tr < 16; ++tr) {
+    bool same_as_first = true;
+    for (int tc = 0; tc < 16; ++tc) {
+      used[range_tile_at(tiles, 11, tr, tc)] = 1;
+      same_as_first = same_as_first && range_tile_at(tiles, 11, tr, tc) == range_tile_at(tiles, 11, 0, tc);
+    }
+    if (tr > 0 && same_as_first) rows_differ = false;
+  }
+  CHECK(std::count(used.begin(), used.end(), 1) == 16);
+  CHECK(rows_differ);
+
+  // Any block equals the same region of a larger map, also at negative coordinates.
+  std::vector<float> block(70 * 90), whole(200 * 200);
+  enlarge_range_map(tiles, 11, -37, 50, 90, 70, block);
+  enlarge_range_map(tiles, 11, -100, 0, 200, 200, whole);
+  for (int r = 0; r < 70; ++r)
+    for (int c = 0; c < 90; ++c) REQUIRE(block[r * 90 + c] == whole[(r + 63) * 200 + c + 50]);
+
+  // Quantization keeps heights within half a step of the source.
+  CHECK(tiles.height_scale * 65535.0 == Approx(heights.maxCoeff() - heights.minCoeff()).epsilon(1e-5));
+}
+
+}  // namespace carbtf
