@@ -18,6 +18,8 @@ int main(int argc, char** argv) {
   carbtf::cli::register_demo_command(app);
   carbtf::cli::register_sample_command(app);
   carbtf::cli::register_info_command(app);
+  carbtf::cli::register_analyze_command(app);
+  carbtf::cli::register_normals_command(app);
   carbtf::cli::register_bench_command(app);
   try {
     app.parse(argc, argv);

@@ -11,5 +11,7 @@ void register_demo_command(CLI::App& app);
 void register_bench_command(CLI::App& app);
 void register_sample_command(CLI::App& app);
 void register_info_command(CLI::App& app);
+void register_analyze_command(CLI::App& app);
+void register_normals_command(CLI::App& app);
 
 }  // namespace carbtf::cli

@@ -29,6 +29,16 @@ void fft2(std::vector<Complex>& data, std::size_t rows, std::size_t cols, bool i
   }
 }
 
+// The derivative's frequency response, i d(w): d = 2 sin(w / 2) with the sign of the centred frequency
+// w in (-pi, pi]. It matches the true derivative (w) at low frequencies and stays away from zero up to
+// Nyquist, so noise in the normals is never amplified by more than 1 / d there (the central
+// difference, sin w, vanishes at Nyquist and would amplify it without bound).
+double derivative(std::size_t index, std::size_t size) {
+  const double k = index <= size / 2 ? static_cast<double>(index) : static_cast<double>(index) - static_cast<double>(size);
+  const double w = 2.0 * std::numbers::pi * k / static_cast<double>(size);
+  return 2.0 * std::sin(0.5 * w);
+}
+
 }  // namespace
 
 Plane integrate_normals(std::span<const float> normals, std::uint32_t width, std::uint32_t height) {
@@ -45,13 +55,13 @@ Plane integrate_normals(std::span<const float> normals, std::uint32_t width, std
   fft2(q, height, width, false);
   std::vector<Complex> h(pixels);
   for (std::size_t r = 0; r < height; ++r) {
-    const double dy = std::sin(2.0 * std::numbers::pi * static_cast<double>(r) / height);
+    const double dy = derivative(r, height);
     for (std::size_t c = 0; c < width; ++c) {
-      const double dx = std::sin(2.0 * std::numbers::pi * static_cast<double>(c) / width);
+      const double dx = derivative(c, width);
       const double denominator = dx * dx + dy * dy;
       const std::size_t i = r * width + c;
-      // Central difference of h is (i sin w) H; least squares: H = conj(D) . G / |D|^2.
-      h[i] = denominator > 1e-12 ? (Complex(0.0, -dx) * p[i] + Complex(0.0, -dy) * q[i]) / denominator : Complex(0.0);
+      // Least squares: H = conj(D) . G / |D|^2, D = i d.
+      h[i] = denominator > 0.0 ? (Complex(0.0, -dx) * p[i] + Complex(0.0, -dy) * q[i]) / denominator : Complex(0.0);
     }
   }
   fft2(h, height, width, true);

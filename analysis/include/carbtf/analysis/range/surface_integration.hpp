@@ -1,8 +1,9 @@
 // Integrating a normal map into a range (height) map, Frankot & Chellappa (1988): the gradient field
-// implied by the normals is projected onto the nearest integrable one in the Fourier domain, with the
-// central-difference derivative (i sin w) so that the heights a normal map was made from by central
-// differences come back exactly (up to the Nyquist rows and columns, which central differences cannot
-// see). The map is treated as periodic; the mean height is removed. Heights are in texel units.
+// implied by the normals is projected onto the nearest integrable one in the Fourier domain. The
+// derivative is taken as i 2 sin(w / 2), which follows the true derivative at low frequencies and never
+// vanishes below Nyquist, so per-pixel noise in estimated normals is not amplified into
+// high-frequency ripple (the central difference, i sin w, vanishes at Nyquist). The map is treated as
+// periodic; the mean height is removed. Heights are in texel units.
 #pragma once
 
 #include <span>

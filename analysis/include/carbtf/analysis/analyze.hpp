@@ -1,0 +1,55 @@
+// The whole analysis (DESIGN.md 1): a measured BTF becomes a Material of tens of kilobytes.
+// Stages: segmentation of the light x view space, photometric stereo on one view and its range map,
+// Wang tiles of the range map, and per subspace image colour PCA, pyramid and one CAR model per band.
+// Each stage's time and the process's peak RSS after it are recorded; anything repaired or unusual is
+// reported through the log callback (and kept in the result).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "carbtf/analysis/btf/btf_dataset.hpp"
+#include "carbtf/analysis/model/car_fit.hpp"
+#include "carbtf/analysis/model/plane.hpp"
+#include "carbtf/analysis/range/photometric_stereo.hpp"
+#include "carbtf/analysis/range/range_tile_builder.hpp"
+#include "carbtf/analysis/segmentation/btf_segmentation.hpp"
+#include "carbtf/engine/material.hpp"
+
+namespace carbtf {
+
+struct AnalysisOptions {
+  SegmentationOptions segmentation;  // K, bins, seed
+  std::uint32_t pyramid_levels = 3;  // 1..3
+  CarFitOptions car;
+  PhotometricStereoOptions stereo;
+  int stereo_view = -1;              // -1: the view nearest the surface normal
+  RangeTileOptions tiles;
+  unsigned threads = 0;              // 0: all hardware threads
+  bool progress = true;
+};
+
+struct StageReport {
+  std::string name;
+  double seconds = 0.0;
+  std::size_t peak_rss_bytes = 0;  // of the process, after the stage
+};
+
+struct AnalysisResult {
+  Material material;
+  Segmentation segmentation;
+  NormalMap normals;
+  Plane range_map;                   // texel units, mean zero
+  std::uint32_t stereo_view = 0;
+  std::vector<StageReport> stages;
+  std::vector<std::string> log;
+};
+
+// Throws std::invalid_argument for options out of range or a dataset the method cannot
+// use (no images, fewer than 3 lights for the stereo view).
+AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& options,
+                           const std::function<void(const std::string&)>& log = {});
+
+}  // namespace carbtf

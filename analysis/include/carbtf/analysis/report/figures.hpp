@@ -1,0 +1,31 @@
+// Pictures of an analysis, as RGB float images ready for write_rgb_image(..., srgb_encode = false):
+// values are already display-encoded in [0, 1]. No text is drawn; the accompanying CSV files and HTML
+// reports carry the numbers.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace carbtf {
+
+struct Figure {
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  std::vector<float> rgb;  // width * height * 3, display-encoded
+};
+
+// The paper's Fig. 5: the light x view subspace-index table, one `cell`-pixel square per pair (lights
+// down, views across), coloured by subspace with a fixed 20-colour palette (repeating beyond 20), and
+// a one-pixel grey rule between elevation rings when `ring_starts` lists the first index of each ring.
+Figure index_table_figure(std::span<const std::uint8_t> index, std::uint32_t lights, std::uint32_t views, std::uint32_t cell,
+                          std::span<const std::uint32_t> ring_starts = {});
+
+// The paper's Fig. 4: log10 of the eigenvalues against their rank, with a light grid line per decade.
+Figure eigenvalue_figure(std::span<const double> eigenvalues, std::uint32_t width = 640, std::uint32_t height = 400);
+
+// A display colour of subspace `index` (sRGB-encoded, [0, 1]).
+std::array<float, 3> subspace_colour(std::uint32_t index);
+
+}  // namespace carbtf

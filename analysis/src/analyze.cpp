@@ -1,0 +1,152 @@
+#include "carbtf/analysis/analyze.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <stdexcept>
+
+#include "carbtf/analysis/model/colour_pca.hpp"
+#include "carbtf/analysis/model/pyramid.hpp"
+#include "carbtf/analysis/progress.hpp"
+#include "carbtf/analysis/range/surface_integration.hpp"
+#include "carbtf/analysis/resource_usage.hpp"
+#include "parallel_for.hpp"
+
+namespace carbtf {
+namespace {
+
+class StageClock {
+ public:
+  StageClock(AnalysisResult& result, std::string name) : result_(result), name_(std::move(name)), start_(std::chrono::steady_clock::now()) {}
+  ~StageClock() {
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    result_.stages.push_back({name_, seconds, peak_rss_bytes()});
+  }
+  StageClock(const StageClock&) = delete;
+  StageClock& operator=(const StageClock&) = delete;
+
+ private:
+  AnalysisResult& result_;
+  std::string name_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+MaterialDirection to_material(const Direction& d) { return {static_cast<float>(d.theta), static_cast<float>(d.phi)}; }
+
+// The model of one subspace image; notes name the band they concern.
+SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const AnalysisOptions& options, std::vector<std::string>& notes) {
+  const std::uint32_t width = dataset.width(), height = dataset.height();
+  std::vector<float> rgb(dataset.pixel_count() * 3);
+  dataset.linear_rgb(pair, rgb);
+  std::vector<Plane> channels(3, Plane(height, width));
+  for (std::size_t p = 0; p < dataset.pixel_count(); ++p) {
+    for (int k = 0; k < 3; ++k) channels[static_cast<std::size_t>(k)](static_cast<Eigen::Index>(p / width), static_cast<Eigen::Index>(p % width)) = rgb[p * 3 + k];
+  }
+  const ColourPca pca = fit_colour_pca(channels);
+  const std::vector<Plane> bands = to_bands(pca, channels);
+  SubspaceModel model;
+  model.light = pair.light;
+  model.view = pair.view;
+  model.width = width;
+  model.height = height;
+  model.channels = 3;
+  for (int i = 0; i < 3; ++i) {
+    model.colour_mean.push_back(static_cast<float>(pca.mean(i)));
+    for (int j = 0; j < 3; ++j) model.colour_transform.push_back(static_cast<float>(pca.basis(i, j)));
+  }
+  std::vector<std::vector<Plane>> pyramids;
+  for (const Plane& band : bands) pyramids.push_back(build_laplacian_pyramid(band, static_cast<int>(options.pyramid_levels)));
+  model.levels = static_cast<std::uint32_t>(pyramids[0].size());
+  for (std::uint32_t level = 0; level < model.levels; ++level) {
+    for (std::uint32_t channel = 0; channel < 3; ++channel) {
+      const CarFit fit = fit_car_band(pyramids[channel][level], options.car);
+      model.bands.push_back(fit.model);
+      if (!fit.note.empty()) notes.push_back("level " + std::to_string(level) + " band " + std::to_string(channel) + ": " + fit.note);
+    }
+  }
+  return model;
+}
+
+}  // namespace
+
+AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& options, const std::function<void(const std::string&)>& log) {
+  if (options.pyramid_levels < 1 || options.pyramid_levels > 3) throw std::invalid_argument("pyramid levels must be within 1..3");
+  if (dataset.present_pairs().empty()) throw std::invalid_argument("the dataset holds no images");
+  AnalysisResult result;
+  auto note = [&](const std::string& line) {
+    result.log.push_back(line);
+    if (log) log(line);
+  };
+
+  {
+    StageClock clock(result, "segmentation");
+    SegmentationOptions segmentation = options.segmentation;
+    segmentation.threads = options.threads;
+    segmentation.progress = options.progress;
+    result.segmentation = segment_btf(dataset, segmentation);
+  }
+  note("segmentation: " + std::to_string(result.segmentation.representatives.size()) + " subspaces after " +
+       std::to_string(result.segmentation.iterations) + " k-means iterations");
+
+  {
+    StageClock clock(result, "photometric stereo");
+    result.stereo_view = options.stereo_view >= 0 ? static_cast<std::uint32_t>(options.stereo_view) : top_view(dataset);
+    if (result.stereo_view >= dataset.views().size()) throw std::invalid_argument("the stereo view index is out of range");
+    PhotometricStereoOptions stereo = options.stereo;
+    stereo.threads = options.threads;
+    result.normals = photometric_stereo(dataset, result.stereo_view, stereo);
+  }
+  const auto valid = std::count(result.normals.valid.begin(), result.normals.valid.end(), 1);
+  char line[160];
+  std::snprintf(line, sizeof line, "photometric stereo: view %u, normals for %.1f%% of pixels", result.stereo_view,
+                100.0 * static_cast<double>(valid) / static_cast<double>(std::max<std::size_t>(1, result.normals.valid.size())));
+  note(line);
+
+  {
+    StageClock clock(result, "range map and tiles");
+    result.range_map = integrate_normals(result.normals.normals, dataset.width(), dataset.height());
+    RangeTileOptions tiles = options.tiles;
+    tiles.seed = options.segmentation.seed;
+    result.material.range = build_range_tiles(result.range_map, tiles);
+  }
+
+  {
+    StageClock clock(result, "subspace models");
+    const auto& representatives = result.segmentation.representatives;
+    std::vector<std::vector<std::string>> notes(representatives.size());
+    result.material.subspaces.resize(representatives.size());
+    Progress progress("subspace models", representatives.size(), options.progress);
+    detail::parallel_for(representatives.size(), options.threads, [&](std::size_t s) {
+      result.material.subspaces[s] = fit_subspace(dataset, representatives[s], options, notes[s]);
+      progress.advance();
+    });
+    for (std::size_t s = 0; s < notes.size(); ++s) {
+      for (const std::string& n : notes[s]) {
+        note("subspace " + std::to_string(s) + " (light " + std::to_string(representatives[s].light) + ", view " +
+             std::to_string(representatives[s].view) + ") " + n);
+      }
+    }
+  }
+
+  Material& material = result.material;
+  for (const Direction& d : dataset.lights()) material.lights.push_back(to_material(d));
+  for (const Direction& d : dataset.views()) material.views.push_back(to_material(d));
+  material.subspace_index = result.segmentation.index;
+  material.settings = {
+      {"source", dataset.source},
+      {"image_size", std::to_string(dataset.width()) + "x" + std::to_string(dataset.height())},
+      {"subspaces", std::to_string(options.segmentation.clusters)},
+      {"histogram_bins", std::to_string(options.segmentation.bins)},
+      {"seed", std::to_string(options.segmentation.seed)},
+      {"pyramid_levels", std::to_string(options.pyramid_levels)},
+      {"car_prior_delta", std::to_string(options.car.prior_delta)},
+      {"car_prior_beta0", std::to_string(options.car.prior_beta0)},
+      {"car_stability_margin", std::to_string(options.car.stability_margin)},
+      {"stereo_view", std::to_string(result.stereo_view)},
+      {"tile_size", std::to_string(material.range.tile_size)},
+      {"edge_colours", std::to_string(material.range.edge_colours)},
+  };
+  return result;
+}
+
+}  // namespace carbtf

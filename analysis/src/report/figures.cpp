@@ -1,0 +1,93 @@
+#include "carbtf/analysis/report/figures.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace carbtf {
+namespace {
+
+// Tableau 20: distinct, colour-blind-aware hues in light/dark pairs.
+constexpr std::array<std::array<int, 3>, 20> kPalette{{{31, 119, 180}, {174, 199, 232}, {255, 127, 14}, {255, 187, 120}, {44, 160, 44},
+                                                       {152, 223, 138}, {214, 39, 40}, {255, 152, 150}, {148, 103, 189}, {197, 176, 213},
+                                                       {140, 86, 75}, {196, 156, 148}, {227, 119, 194}, {247, 182, 210}, {127, 127, 127},
+                                                       {199, 199, 199}, {188, 189, 34}, {219, 219, 141}, {23, 190, 207}, {158, 218, 229}}};
+
+void set_pixel(Figure& f, std::int64_t x, std::int64_t y, std::array<float, 3> colour) {
+  if (x < 0 || y < 0 || x >= f.width || y >= f.height) return;
+  float* p = &f.rgb[(static_cast<std::size_t>(y) * f.width + static_cast<std::size_t>(x)) * 3];
+  p[0] = colour[0];
+  p[1] = colour[1];
+  p[2] = colour[2];
+}
+
+void draw_line(Figure& f, double x0, double y0, double x1, double y1, std::array<float, 3> colour) {
+  const int steps = static_cast<int>(std::ceil(std::max(std::abs(x1 - x0), std::abs(y1 - y0)))) + 1;
+  for (int i = 0; i <= steps; ++i) {
+    const double t = static_cast<double>(i) / steps;
+    set_pixel(f, std::lround(x0 + t * (x1 - x0)), std::lround(y0 + t * (y1 - y0)), colour);
+  }
+}
+
+Figure blank(std::uint32_t width, std::uint32_t height, float grey) {
+  Figure f;
+  f.width = width;
+  f.height = height;
+  f.rgb.assign(std::size_t{width} * height * 3, grey);
+  return f;
+}
+
+}  // namespace
+
+std::array<float, 3> subspace_colour(std::uint32_t index) {
+  const auto& c = kPalette[index % kPalette.size()];
+  return {c[0] / 255.0f, c[1] / 255.0f, c[2] / 255.0f};
+}
+
+Figure index_table_figure(std::span<const std::uint8_t> index, std::uint32_t lights, std::uint32_t views, std::uint32_t cell,
+                          std::span<const std::uint32_t> ring_starts) {
+  if (index.size() != std::size_t{lights} * views || cell == 0) throw std::invalid_argument("index table figure: size mismatch");
+  Figure f = blank(views * cell, lights * cell, 1.0f);
+  for (std::uint32_t l = 0; l < lights; ++l) {
+    for (std::uint32_t v = 0; v < views; ++v) {
+      const auto colour = subspace_colour(index[std::size_t{l} * views + v]);
+      for (std::uint32_t y = 0; y < cell; ++y)
+        for (std::uint32_t x = 0; x < cell; ++x) set_pixel(f, v * cell + x, l * cell + y, colour);
+    }
+  }
+  const std::array<float, 3> rule{0.25f, 0.25f, 0.25f};
+  for (std::uint32_t start : ring_starts) {
+    if (start == 0) continue;
+    draw_line(f, start * cell, 0, start * cell, f.height - 1.0, rule);
+    draw_line(f, 0, start * cell, f.width - 1.0, start * cell, rule);
+  }
+  return f;
+}
+
+Figure eigenvalue_figure(std::span<const double> eigenvalues, std::uint32_t width, std::uint32_t height) {
+  Figure f = blank(width, height, 1.0f);
+  const double margin = 30.0;
+  const double plot_w = width - 2 * margin, plot_h = height - 2 * margin;
+  std::vector<double> logs;
+  for (double e : eigenvalues) {
+    if (e > 0.0) logs.push_back(std::log10(e));
+  }
+  const std::array<float, 3> axis{0.0f, 0.0f, 0.0f}, grid{0.85f, 0.85f, 0.85f}, curve{0.12f, 0.47f, 0.71f};
+  if (!logs.empty()) {
+    const double top = std::ceil(*std::max_element(logs.begin(), logs.end()));
+    const double bottom = std::min(top - 1.0, std::floor(*std::min_element(logs.begin(), logs.end())));
+    auto y_of = [&](double lg) { return margin + (top - lg) / (top - bottom) * plot_h; };
+    auto x_of = [&](std::size_t i) { return margin + (logs.size() == 1 ? 0.0 : static_cast<double>(i) / (logs.size() - 1) * plot_w); };
+    for (double decade = bottom; decade <= top; decade += 1.0) draw_line(f, margin, y_of(decade), margin + plot_w, y_of(decade), grid);
+    for (std::size_t i = 0; i + 1 < logs.size(); ++i) draw_line(f, x_of(i), y_of(logs[i]), x_of(i + 1), y_of(logs[i + 1]), curve);
+    for (std::size_t i = 0; i < logs.size(); ++i) {
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) set_pixel(f, std::lround(x_of(i)) + dx, std::lround(y_of(logs[i])) + dy, curve);
+    }
+  }
+  draw_line(f, margin, margin, margin, margin + plot_h, axis);
+  draw_line(f, margin, margin + plot_h, margin + plot_w, margin + plot_h, axis);
+  return f;
+}
+
+}  // namespace carbtf
