@@ -90,11 +90,11 @@ void write_report(const fs::path& folder, const BtfDataset& dataset, const Analy
 
 void run_analyze(const AnalyzeCommandOptions& options) {
   const auto start = std::chrono::steady_clock::now();
-  std::fprintf(stderr, "loading %s\n", options.dataset.c_str());
   std::vector<std::string> warnings;
   const BtfDataset dataset = load_btf(options.dataset, {}, warnings);
   for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   const double load_seconds = seconds_since(start);
+  std::fprintf(stderr, "loaded %zu images of %ux%u in %.2f s\n", dataset.present_pairs().size(), dataset.width(), dataset.height(), load_seconds);
   const AnalysisResult result = analyze_btf(dataset, options.analysis, [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); });
   check(write_material_file(options.out, result.material), "cannot write the material");
   if (!options.report.empty()) write_report(options.report, dataset, result);

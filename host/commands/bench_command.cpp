@@ -6,13 +6,12 @@
 #include <thread>
 #include <vector>
 
-#include <sys/resource.h>
-
 #include <filesystem>
 
 #include "carbtf/analysis/btf/btf_reader.hpp"
 #include "carbtf/analysis/btf/ubo2003_writer.hpp"
 #include "carbtf/analysis/reference/noise.hpp"
+#include "carbtf/analysis/resource_usage.hpp"
 #include "carbtf/analysis/sample/height_field_renderer.hpp"
 #include "carbtf/analysis/sample/sample_materials.hpp"
 #include "carbtf/engine/noise_generator.hpp"
@@ -95,11 +94,7 @@ struct DataBenchOptions {
   bool keep = false;
 };
 
-double peak_rss_mib() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux reports KiB
-}
+double peak_rss_mib() { return static_cast<double>(peak_rss_bytes()) / 1048576.0; }
 
 // Rendering a sample material at two sizes, then loading the full 81 x 81 JPEG set of the larger.
 void run_data_bench(const DataBenchOptions& options) {
@@ -157,6 +152,8 @@ void register_bench_command(CLI::App& app) {
   data->add_option("--out", data_options->out, "Scratch folder for the rendered images")->capture_default_str();
   data->add_flag("--keep", data_options->keep, "Keep the rendered images instead of deleting them");
   data->callback([data_options] { run_data_bench(*data_options); });
+
+  register_bench_analyze_command(*bench);
 }
 
 }  // namespace carbtf::cli

@@ -3,9 +3,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <set>
 
 #include "carbtf/analysis/btf/btf_reader.hpp"
+#include "carbtf/engine/material_file.hpp"
+#include "carbtf/engine/range_tiles.hpp"
 #include "cli/cli_support.hpp"
 #include "commands/commands.hpp"
 
@@ -21,7 +25,72 @@ std::string describe_directions(const std::vector<Direction>& directions) {
   return std::to_string(directions.size()) + " (theta " + list + " degrees)";
 }
 
+std::string setting(const Material& m, const std::string& key) {
+  for (const auto& [k, v] : m.settings) {
+    if (k == key) return v;
+  }
+  return "?";
+}
+
+bool is_material_file(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  char magic[4] = {};
+  return file.read(magic, 4) && std::equal(magic, magic + 4, "CBTF");
+}
+
+void run_material_info(const std::string& path) {
+  Material material;
+  check(read_material_file(path, material), "cannot read the material");
+  std::ifstream file(path, std::ios::binary);
+  const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  std::vector<MaterialChunkInfo> chunks;
+  check(list_material_chunks(bytes, chunks), "cannot list the material's chunks");
+
+  std::size_t bands = 0, repaired = 0, constant = 0, white = 0, neighbours = 0;
+  std::uint32_t levels = 0;
+  for (const SubspaceModel& s : material.subspaces) {
+    levels = std::max(levels, s.levels);
+    for (const CarBandModel& b : s.bands) {
+      ++bands;
+      neighbours += b.neighbourhood.size();
+      repaired += (b.flags & car_band_repaired) != 0;
+      constant += (b.flags & car_band_constant) != 0;
+      white += (b.flags & car_band_white_noise) != 0;
+    }
+  }
+  std::printf("material:     %s (format %u.x)\n", path.c_str(), unsigned{kMaterialFormatMajor});
+  std::printf("source:       %s\n", setting(material, "source").c_str());
+  std::printf("image size:   %s\n", setting(material, "image_size").c_str());
+  std::printf("directions:   %zu lights x %zu views\n", material.lights.size(), material.views.size());
+  std::printf("subspaces:    %zu, up to %u pyramid levels, %zu CAR bands (%.1f neighbours on average; %zu repaired, %zu constant, "
+              "%zu white noise)\n",
+              material.subspaces.size(), levels, bands, bands ? static_cast<double>(neighbours) / static_cast<double>(bands) : 0.0, repaired,
+              constant, white);
+  if (material.range.tile_size > 0) {
+    std::printf("range tiles:  %u tiles of %u x %u texels from %u patches\n", range_tile_count(material.range), material.range.tile_size,
+                material.range.tile_size, 2 * material.range.edge_colours);
+  } else {
+    std::printf("range tiles:  none\n");
+  }
+  std::printf("file size:    %zu bytes (%.1f KiB)\n", bytes.size(), static_cast<double>(bytes.size()) / 1024.0);
+  std::printf("  %-6s %10s %7s\n", "chunk", "bytes", "share");
+  std::printf("  %-6s %10d %6.1f%%\n", "header", 12, 1200.0 / static_cast<double>(bytes.size()));
+  for (const MaterialChunkInfo& c : chunks) {
+    std::printf("  %-6s %10llu %6.1f%%%s\n", c.tag.c_str(), static_cast<unsigned long long>(c.total_bytes),
+                100.0 * static_cast<double>(c.total_bytes) / static_cast<double>(bytes.size()), c.known ? "" : " (unknown, skipped)");
+  }
+  unsigned width = 0, height = 0;
+  if (std::sscanf(setting(material, "image_size").c_str(), "%ux%u", &width, &height) == 2) {
+    const double raw = static_cast<double>(material.lights.size() * material.views.size()) * width * height * 3.0;
+    std::printf("raw 8-bit:    %.1f MiB; compression ratio 1 : %.0f\n", raw / 1048576.0, raw / static_cast<double>(bytes.size()));
+  }
+}
+
 void run_info(const std::string& path) {
+  if (is_material_file(path)) {
+    run_material_info(path);
+    return;
+  }
   const auto start = std::chrono::steady_clock::now();
   std::vector<std::string> warnings;
   const BtfDataset dataset = load_btf(path, {}, warnings);
@@ -45,9 +114,9 @@ void run_info(const std::string& path) {
 
 void register_info_command(CLI::App& app) {
   auto path = std::make_shared<std::string>();
-  auto* command = app.add_subcommand("info", "Summarise a BTF dataset: directions, image size, colour space, "
-                                             "missing pairs");
-  command->add_option("path", *path, "A UBO2003 folder or .zip, a manifest .csv, or a photometric-stereo folder")
+  auto* command = app.add_subcommand("info", "Summarise a BTF dataset (directions, image size, colour space, missing pairs) "
+                                             "or a .cbtf material (model summary and size per chunk)");
+  command->add_option("path", *path, "A UBO2003 folder or .zip, a manifest .csv, a photometric-stereo folder, or a .cbtf material")
       ->required();
   command->callback([path] { run_info(*path); });
 }

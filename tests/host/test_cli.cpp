@@ -111,7 +111,8 @@ TEST_CASE("carbtf demo writes a report and says where", "[cli]") {
 }
 
 TEST_CASE("--help answers for every command", "[cli]") {
-  for (const std::string command : {"", "noise", "devices", "demo", "sample", "info", "bench noise", "bench data"}) {
+  for (const std::string command : {"", "noise", "devices", "demo", "sample", "info", "analyze", "normals",
+                                    "bench noise", "bench data", "bench analyze"}) {
     const Run r = run(command + " --help");
     INFO("carbtf " << command << " --help\n" << r.output);
     CHECK(r.status == 0);
@@ -149,5 +150,62 @@ TEST_CASE("carbtf sample and info reject bad input with one line", "[cli]") {
     CHECK_THAT(r.output, Catch::StartsWith("carbtf: error: ") && Catch::Contains(expected));
   }
   CHECK_FALSE(fs::exists(folder / "v"));
+  fs::remove_all(folder);
+}
+
+TEST_CASE("carbtf analyze writes a material and a report that carbtf info describes", "[cli]") {
+  const fs::path folder = scratch_folder("analyze");
+  REQUIRE(run("sample leather --size 32 --out " + (folder / "leather").string()).status == 0);
+  const fs::path material = folder / "leather.cbtf";
+  const Run analyze = run("analyze " + (folder / "leather" / "btf").string() + " --out " + material.string() + " --subspaces 8 --levels 2 --report " +
+                          (folder / "report").string());
+  INFO(analyze.output);
+  REQUIRE(analyze.status == 0);
+  CHECK_THAT(analyze.output, Catch::Contains("segmentation") && Catch::Contains("subspace models") && Catch::Contains("ratio 1 : "));
+  REQUIRE(fs::exists(material));
+  for (const char* file : {"index_table.png", "eigenvalues.png", "eigenvalues.csv", "subspace_07.png", "normals.png", "range_map.exr",
+                           "range_enlarged.png", "stages.csv", "analysis_log.txt"}) {
+    CHECK(fs::exists(folder / "report" / file));
+  }
+  const Run info = run("info " + material.string());
+  INFO(info.output);
+  REQUIRE(info.status == 0);
+  CHECK_THAT(info.output, Catch::Contains("81 lights x 81 views") && Catch::Contains("8, up to 2 pyramid levels") &&
+                              Catch::Contains("SUBS") && Catch::Contains("RNGE") && Catch::Contains("compression ratio"));
+
+  SECTION("a damaged material gets one error line naming the file") {
+    const fs::path damaged = folder / "damaged.cbtf";
+    fs::copy_file(material, damaged);
+    fs::resize_file(damaged, fs::file_size(material) - 100);
+    const Run r = run("info " + damaged.string());
+    CHECK(r.status == 1);
+    CHECK(line_count(r.output) == 1);
+    CHECK_THAT(r.output, Catch::StartsWith("carbtf: error: ") && Catch::Contains(damaged.string()) && Catch::Contains("truncated"));
+  }
+  SECTION("bad analysis arguments") {
+    for (const auto& [arguments, expected] : std::vector<std::pair<std::string, std::string>>{
+             {"analyze " + (folder / "leather" / "btf").string() + " --out x.cbtf --subspaces 21", "--subspaces"},
+             {"analyze " + (folder / "leather" / "btf").string() + " --out x.cbtf --levels 4", "--levels"},
+             {"analyze " + (folder / "missing").string() + " --out " + (folder / "x.cbtf").string(), "no such file or folder"}}) {
+      const Run r = run(arguments);
+      INFO("carbtf " << arguments << "\n" << r.output);
+      CHECK(r.status != 0);
+      CHECK(line_count(r.output) == 1);
+      CHECK_THAT(r.output, Catch::StartsWith("carbtf: error: ") && Catch::Contains(expected));
+    }
+    CHECK_FALSE(fs::exists(folder / "x.cbtf"));
+  }
+  fs::remove_all(folder);
+}
+
+TEST_CASE("carbtf normals estimates a sample's normals and compares them with its ground truth", "[cli]") {
+  const fs::path folder = scratch_folder("normals");
+  REQUIRE(run("sample fabric --size 32 --format png --out " + (folder / "fabric").string()).status == 0);
+  const Run r = run("normals " + (folder / "fabric" / "btf").string() + " --out " + (folder / "out").string() + " --truth " +
+                    (folder / "fabric" / "ground_truth" / "normals.exr").string());
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.output, Catch::Contains("mean") && Catch::Contains("median"));
+  for (const char* file : {"normals.png", "normals.exr", "albedo.png", "range_map.exr", "range_map.png"}) CHECK(fs::exists(folder / "out" / file));
   fs::remove_all(folder);
 }
