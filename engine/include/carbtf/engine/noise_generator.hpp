@@ -9,18 +9,9 @@
 #include <vector>
 
 #include "carbtf/engine/context.hpp"
+#include "carbtf/engine/noise_block.hpp"
 
 namespace carbtf {
-
-// A rectangular block of one noise field. Rows and columns may be negative (burn-in margins).
-struct NoiseBlock {
-  std::uint64_t seed = 0;
-  std::uint32_t field_id = 0;
-  std::int32_t row0 = 0;
-  std::int32_t col0 = 0;
-  std::uint32_t width = 0;
-  std::uint32_t height = 0;
-};
 
 class NoiseGenerator {
  public:

@@ -14,16 +14,11 @@
 #include <span>
 
 #include "carbtf/engine/material.hpp"
+#include "carbtf/engine/noise_block.hpp"
 
 namespace carbtf::reference {
 
-struct CarFieldBlock {
-  std::uint64_t seed = 0;
-  std::uint32_t field_id = 0;
-  std::int32_t row0 = 0;
-  std::int32_t col0 = 0;
-  std::uint32_t width = 0;
-  std::uint32_t height = 0;
+struct CarFieldBlock : NoiseBlock {
   std::uint32_t margin = 32;
 };
 
