@@ -7,7 +7,9 @@
 #include <mutex>
 #include <numeric>
 
+#include "carbtf/analysis/btf/btf_dataset.hpp"
 #include "carbtf/analysis/btf/directions.hpp"
+#include "carbtf/analysis/image_io.hpp"
 #include "carbtf/analysis/range/photometric_stereo.hpp"
 #include "carbtf/analysis/range/range_tile_builder.hpp"
 #include "carbtf/analysis/range/surface_integration.hpp"
@@ -19,13 +21,19 @@ namespace carbtf {
 namespace {
 
 // The top view of a sample material under all 81 UBO2003 lights, as linear float images.
-NormalMap top_view_stereo(const Surface& surface) {
+// With `jpeg`, each image goes through an sRGB JPEG (quality 95) as `carbtf sample` writes them.
+NormalMap top_view_stereo(const Surface& surface, bool jpeg) {
   const auto& lights = ubo2003_directions();
   std::vector<std::vector<float>> images(lights.size());
   RenderOptions render;
   render.progress = false;
   render_btf(surface, lights, {Direction{}}, render, [&](std::uint32_t light, std::uint32_t, std::span<const float> image) {
-    images[light].assign(image.begin(), image.end());
+    if (!jpeg) {
+      images[light].assign(image.begin(), image.end());
+      return;
+    }
+    const RgbImage decoded = decode_rgb_image("light.jpg", encode_rgb_image("light.jpg", image, surface.size, surface.size));
+    for (std::uint8_t v : decoded.srgb8) images[light].push_back(srgb_to_linear(v / 255.0f));
   });
   std::vector<std::span<const float>> spans(images.begin(), images.end());
   std::vector<std::array<double, 3>> vectors;
@@ -53,9 +61,10 @@ std::vector<std::uint8_t> unshadowed_texels(const Surface& surface, const std::v
 }  // namespace
 
 TEST_CASE("photometric stereo on each sample material's top view is within 3 degrees of the truth", "[range]") {
+  for (const bool jpeg : {false, true}) {
   for (const std::string& name : sample_material_names()) {
     const Surface surface = make_sample_surface(name, 96, 3);
-    const NormalMap map = top_view_stereo(surface);
+    const NormalMap map = top_view_stereo(surface, jpeg);
     const std::vector<float> truth = surface_normals(surface);
     std::vector<std::uint8_t> judged = unshadowed_texels(surface, truth);
     const auto unshadowed_count = std::count(judged.begin(), judged.end(), 1);
@@ -67,10 +76,11 @@ TEST_CASE("photometric stereo on each sample material's top view is within 3 deg
     REQUIRE(unshadowed_count >= static_cast<long>(judged.size() / 4));
     std::vector<double> sorted = errors;
     std::sort(sorted.begin(), sorted.end());
-    INFO(name << ": valid " << valid_count << " of " << map.valid.size() << ", mean error " << mean(errors) << " deg, median "
+    INFO((jpeg ? "JPEG " : "float ") << name << ": valid " << valid_count << " of " << map.valid.size() << ", mean error " << mean(errors) << " deg, median "
               << sorted[sorted.size() / 2] << ", p99 " << sorted[sorted.size() * 99 / 100]);
     CHECK(valid_count >= unshadowed_count * 99 / 100);
     CHECK(mean(errors) < 3.0);
+  }
   }
 }
 
