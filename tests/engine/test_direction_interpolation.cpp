@@ -1,0 +1,148 @@
+// The 9-weight barycentric direction interpolation: weights sum to 1, are exact at measured
+// directions, and are continuous, across triangle edges and beyond the last measured elevation.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <random>
+
+#include "carbtf/engine/direction_interpolation.hpp"
+
+namespace carbtf {
+namespace {
+
+std::vector<MaterialDirection> ubo_directions() {
+  std::vector<MaterialDirection> directions;
+  const int counts[] = {1, 6, 12, 18, 20, 24};
+  for (int ring = 0; ring < 6; ++ring) {
+    for (int k = 0; k < counts[ring]; ++k) {
+      directions.push_back({static_cast<float>(ring * 15.0 * std::numbers::pi / 180.0), static_cast<float>(k * 2.0 * std::numbers::pi / counts[ring])});
+    }
+  }
+  return directions;
+}
+
+// Weights spread over all directions, to compare two queries whatever triangles they fall in.
+std::vector<double> dense(const DirectionWeights& w, std::size_t count) {
+  std::vector<double> d(count, 0.0);
+  for (int k = 0; k < 3; ++k) d[w.index[k]] += w.weight[k];
+  return d;
+}
+
+double l1(const std::vector<double>& a, const std::vector<double>& b) {
+  double s = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) s += std::abs(a[i] - b[i]);
+  return s;
+}
+
+// The direction whose projection is (x, y).
+std::pair<double, double> unproject(double x, double y) { return {std::hypot(x, y) * 0.5 * std::numbers::pi, std::atan2(y, x)}; }
+
+}  // namespace
+
+TEST_CASE("the UBO2003 directions triangulate the disk of the outer ring", "[interpolation]") {
+  const auto directions = ubo_directions();
+  DirectionTriangulation tri;
+  REQUIRE(build_direction_triangulation(directions, tri).ok());
+  double area = 0.0;
+  for (const auto& t : tri.triangles) {
+    const auto &a = tri.points[t[0]], &b = tri.points[t[1]], &c = tri.points[t[2]];
+    const double twice = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+    REQUIRE(twice > 1e-6);  // counter-clockwise, not degenerate
+    area += 0.5 * twice;
+  }
+  const double r = 75.0 / 90.0;
+  // Directions are stored as float: the projected points carry float rounding (about 1e-7).
+  CHECK(area == Approx(0.5 * 24 * r * r * std::sin(2 * std::numbers::pi / 24)).epsilon(1e-6));
+  CHECK(tri.boundary.size() == 24u);
+}
+
+TEST_CASE("interpolation weights sum to 1 and are exact at measured directions", "[interpolation]") {
+  const auto directions = ubo_directions();
+  DirectionTriangulation tri;
+  REQUIRE(build_direction_triangulation(directions, tri).ok());
+  for (std::uint32_t i = 0; i < directions.size(); ++i) {
+    const DirectionWeights w = direction_weights(tri, directions[i].theta, directions[i].phi);
+    const std::vector<double> d = dense(w, directions.size());
+    INFO("direction " << i);
+    REQUIRE(d[i] == 1.0);
+    REQUIRE(l1(d, std::vector<double>(d.size(), 0.0)) == 1.0);
+  }
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> theta(0.0, 0.5 * std::numbers::pi), phi(0.0, 2.0 * std::numbers::pi);
+  for (int i = 0; i < 10000; ++i) {
+    const DirectionWeights w = direction_weights(tri, theta(rng), phi(rng));
+    double sum = 0.0;
+    for (float v : w.weight) {
+      REQUIRE(v >= 0.0f);
+      sum += v;
+    }
+    REQUIRE(sum == Approx(1.0).margin(1e-6));
+  }
+  SECTION("nine pair weights") {
+    DirectionTriangulation views;
+    REQUIRE(build_direction_triangulation(directions, views).ok());
+    const PairWeights exact = pair_weights(tri, views, directions[20].theta, directions[20].phi, directions[50].theta, directions[50].phi);
+    double at_pair = 0.0, sum = 0.0;
+    for (int k = 0; k < 9; ++k) {
+      sum += exact.weight[k];
+      if (exact.light[k] == 20 && exact.view[k] == 50) at_pair += exact.weight[k];
+    }
+    CHECK(at_pair == 1.0);
+    CHECK(sum == 1.0);
+    const PairWeights between = pair_weights(tri, views, 0.4, 1.0, 1.4, 4.0);
+    sum = 0.0;
+    for (float v : between.weight) sum += v;
+    CHECK(sum == Approx(1.0).margin(1e-6));
+  }
+}
+
+TEST_CASE("interpolation weights are continuous across triangle edges and the last ring", "[interpolation]") {
+  const auto directions = ubo_directions();
+  DirectionTriangulation tri;
+  REQUIRE(build_direction_triangulation(directions, tri).ok());
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
+  for (const auto& t : tri.triangles)
+    for (int e = 0; e < 3; ++e) ++edges[{std::min(t[e], t[(e + 1) % 3]), std::max(t[e], t[(e + 1) % 3])}];
+  int interior = 0;
+  for (const auto& [edge, count] : edges) {
+    const auto &a = tri.points[edge.first], &b = tri.points[edge.second];
+    const double mx = 0.5 * (a[0] + b[0]), my = 0.5 * (a[1] + b[1]);
+    const double nx = -(b[1] - a[1]), ny = b[0] - a[0];
+    const double eps = 1e-7 / std::hypot(nx, ny);
+    const auto [t1, p1] = unproject(mx + eps * nx, my + eps * ny);
+    const auto [t2, p2] = unproject(mx - eps * nx, my - eps * ny);
+    const double jump = l1(dense(direction_weights(tri, t1, p1), directions.size()), dense(direction_weights(tri, t2, p2), directions.size()));
+    INFO("edge " << edge.first << "-" << edge.second);
+    CHECK(jump < 1e-5);
+    interior += count == 2;
+  }
+  CHECK(interior > 100);
+  // Beyond the last measured elevation (75 degrees) only the outer ring carries weight, continuously.
+  for (double phi = 0.0; phi < 2.0 * std::numbers::pi; phi += 0.05) {
+    const double ring = 75.0 * std::numbers::pi / 180.0;
+    const auto inside = dense(direction_weights(tri, ring - 1e-8, phi), directions.size());
+    const auto outside = dense(direction_weights(tri, ring + 1e-8, phi), directions.size());
+    const auto grazing = direction_weights(tri, 0.5 * std::numbers::pi, phi);
+    CHECK(l1(inside, outside) < 1e-5);
+    for (int k = 0; k < 3; ++k) {
+      if (grazing.weight[k] > 0.0f) CHECK(grazing.index[k] >= 57u);
+    }
+  }
+}
+
+TEST_CASE("degenerate direction sets", "[interpolation]") {
+  DirectionTriangulation tri;
+  const std::vector<MaterialDirection> one{{0.0f, 0.0f}};
+  REQUIRE(build_direction_triangulation(one, tri).ok());
+  const DirectionWeights w = direction_weights(tri, 0.7, 2.0);
+  CHECK(w.weight[0] == 1.0f);
+  CHECK(w.index[0] == 0u);
+  const std::vector<MaterialDirection> same{{0.3f, 1.0f}, {0.3f, 1.0f}, {0.5f, 2.0f}};
+  CHECK(build_direction_triangulation(same, tri).code() == ErrorCode::invalid_argument);
+  const std::vector<MaterialDirection> empty;
+  CHECK_FALSE(build_direction_triangulation(empty, tri).ok());
+}
+
+}  // namespace carbtf
