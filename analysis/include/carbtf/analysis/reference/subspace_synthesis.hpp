@@ -1,0 +1,50 @@
+// CPU reference of subspace-image synthesis (DESIGN.md 4.4), the specification the GPU pipeline must
+// follow operation for operation. For subspace s of a material, seed S, output block rows
+// [row0, row0 + height) x cols [col0, col0 + width) of the unbounded texture:
+//  1. Regions: level 0 covers the output block; level l + 1 covers the coarse support its expand
+//     needs: fine rows [a, b) need coarse rows [floor((a - 1) / 2), floor((b + 1) / 2) + 1), the same
+//     for columns.
+//  2. Fields: band (level l, channel c) is the CAR field (reference/car_synthesis.hpp) of field id
+//     s * 128 + l * 16 + c over its level's region, with the burn-in margin given.
+//  3. Collapse, from the coarsest level down: G_l = band_l + expand(G_l+1), where expand runs along
+//     rows first, then along columns; each output sample sums the taps k = -2..2 in that order,
+//     acc = acc + (2 w_k) * G((i - k) / 2) over the k with i - k even, w = [1 4 6 4 1] / 16.
+//  4. Colour: rgb_i = mean_i + sum_j T[i][j] * G_0,j, j in order, accumulated from mean_i.
+// Float32 follows this order exactly (no contraction); float64 is the same in double, the accuracy
+// reference. Results are row-major, channels interleaved.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "carbtf/engine/material.hpp"
+#include "carbtf/engine/direction_interpolation.hpp"
+
+namespace carbtf::reference {
+
+struct SubspaceBlock {
+  std::uint64_t seed = 0;
+  std::int32_t row0 = 0;
+  std::int32_t col0 = 0;
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  std::uint32_t margin = 64;  // CAR burn-in, per level
+};
+
+inline constexpr std::uint32_t field_id_of(std::uint32_t subspace, std::uint32_t level, std::uint32_t channel) {
+  return subspace * 128u + level * 16u + channel;
+}
+
+// Synthesizes subspace image `subspace` into `out` (width * height * channels). Throws
+// std::invalid_argument for a subspace index out of range or an output span too small.
+void synthesize_subspace(const Material& material, std::uint32_t subspace, const SubspaceBlock& block, std::span<float> out);
+void synthesize_subspace(const Material& material, std::uint32_t subspace, const SubspaceBlock& block, std::span<double> out);
+
+// The 9-weight interpolation of synthesized subspace images: out = sum_k w_k * images[subspace of
+// pair k]; `images[s]` holds subspace s (pixel_count * channels values) or is empty when not needed.
+// Throws std::invalid_argument when a needed subspace image is missing.
+void interpolate_subspaces(const Material& material, const PairWeights& weights, const std::vector<std::vector<float>>& images,
+                           std::span<float> out);
+
+}  // namespace carbtf::reference

@@ -1,0 +1,126 @@
+#include "carbtf/analysis/reference/subspace_synthesis.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "carbtf/analysis/reference/car_synthesis.hpp"
+
+namespace carbtf::reference {
+namespace {
+
+std::int64_t floor_div2(std::int64_t a) { return a >= 0 ? a / 2 : -((-a + 1) / 2); }
+
+struct Region {
+  std::int64_t row0, col0, rows, cols;
+};
+
+Region coarse_support(const Region& fine) {
+  const std::int64_t r0 = floor_div2(fine.row0 - 1), r1 = floor_div2(fine.row0 + fine.rows + 1) + 1;
+  const std::int64_t c0 = floor_div2(fine.col0 - 1), c1 = floor_div2(fine.col0 + fine.cols + 1) + 1;
+  return {r0, c0, r1 - r0, c1 - c0};
+}
+
+template <typename Real>
+constexpr Real kExpandWeight[5] = {Real(2) * Real(1) / Real(16), Real(2) * Real(4) / Real(16), Real(2) * Real(6) / Real(16),
+                                   Real(2) * Real(4) / Real(16), Real(2) * Real(1) / Real(16)};
+
+// Expands `coarse` (over region `from`) to region `to`, rows first, then columns.
+template <typename Real>
+std::vector<Real> expand(const std::vector<Real>& coarse, const Region& from, const Region& to) {
+  // Along rows: every coarse row, fine columns.
+  std::vector<Real> horizontal(static_cast<std::size_t>(from.rows * to.cols));
+  for (std::int64_t r = 0; r < from.rows; ++r) {
+    for (std::int64_t c = 0; c < to.cols; ++c) {
+      const std::int64_t i = to.col0 + c;
+      Real acc{0};
+      for (int k = -2; k <= 2; ++k) {
+        if (((i - k) & 1) != 0) continue;
+        const std::int64_t j = (i - k) / 2 - from.col0;  // i - k even: exact division
+        acc = acc + kExpandWeight<Real>[k + 2] * coarse[static_cast<std::size_t>(r * from.cols + j)];
+      }
+      horizontal[static_cast<std::size_t>(r * to.cols + c)] = acc;
+    }
+  }
+  std::vector<Real> out(static_cast<std::size_t>(to.rows * to.cols));
+  for (std::int64_t r = 0; r < to.rows; ++r) {
+    const std::int64_t i = to.row0 + r;
+    for (std::int64_t c = 0; c < to.cols; ++c) {
+      Real acc{0};
+      for (int k = -2; k <= 2; ++k) {
+        if (((i - k) & 1) != 0) continue;
+        const std::int64_t j = (i - k) / 2 - from.row0;
+        acc = acc + kExpandWeight<Real>[k + 2] * horizontal[static_cast<std::size_t>(j * to.cols + c)];
+      }
+      out[static_cast<std::size_t>(r * to.cols + c)] = acc;
+    }
+  }
+  return out;
+}
+
+template <typename Real>
+void synthesize(const Material& material, std::uint32_t subspace, const SubspaceBlock& block, std::span<Real> out) {
+  if (subspace >= material.subspaces.size()) throw std::invalid_argument("subspace " + std::to_string(subspace) + " does not exist");
+  const SubspaceModel& model = material.subspaces[subspace];
+  const std::size_t pixels = std::size_t{block.width} * block.height;
+  if (out.size() < pixels * model.channels) throw std::invalid_argument("subspace synthesis: output span too small");
+  std::vector<Region> regions{{block.row0, block.col0, block.height, block.width}};
+  for (std::uint32_t level = 1; level < model.levels; ++level) regions.push_back(coarse_support(regions.back()));
+
+  std::vector<std::vector<Real>> collapsed(model.channels);
+  for (std::uint32_t channel = 0; channel < model.channels; ++channel) {
+    std::vector<Real> current;
+    for (std::uint32_t level = model.levels; level-- > 0;) {
+      const Region& region = regions[level];
+      CarFieldBlock field;
+      field.seed = block.seed;
+      field.field_id = field_id_of(subspace, level, channel);
+      field.row0 = static_cast<std::int32_t>(region.row0);
+      field.col0 = static_cast<std::int32_t>(region.col0);
+      field.width = static_cast<std::uint32_t>(region.cols);
+      field.height = static_cast<std::uint32_t>(region.rows);
+      field.margin = block.margin;
+      std::vector<Real> band(static_cast<std::size_t>(region.rows * region.cols));
+      synthesize_car_block(model.bands[level * model.channels + channel], field, std::span<Real>(band));
+      if (level + 1 < model.levels) {
+        const std::vector<Real> expanded = expand(current, regions[level + 1], region);
+        for (std::size_t i = 0; i < band.size(); ++i) band[i] = band[i] + expanded[i];
+      }
+      current = std::move(band);
+    }
+    collapsed[channel] = std::move(current);
+  }
+  for (std::size_t p = 0; p < pixels; ++p) {
+    for (std::uint32_t i = 0; i < model.channels; ++i) {
+      Real acc = static_cast<Real>(model.colour_mean[i]);
+      for (std::uint32_t j = 0; j < model.channels; ++j) {
+        acc = acc + static_cast<Real>(model.colour_transform[std::size_t{i} * model.channels + j]) * collapsed[j][p];
+      }
+      out[p * model.channels + i] = acc;
+    }
+  }
+}
+
+}  // namespace
+
+void synthesize_subspace(const Material& material, std::uint32_t subspace, const SubspaceBlock& block, std::span<float> out) {
+  synthesize(material, subspace, block, out);
+}
+void synthesize_subspace(const Material& material, std::uint32_t subspace, const SubspaceBlock& block, std::span<double> out) {
+  synthesize(material, subspace, block, out);
+}
+
+void interpolate_subspaces(const Material& material, const PairWeights& weights, const std::vector<std::vector<float>>& images,
+                           std::span<float> out) {
+  std::fill(out.begin(), out.end(), 0.0f);
+  for (int k = 0; k < 9; ++k) {
+    if (weights.weight[k] == 0.0f) continue;
+    const std::uint32_t s = subspace_of(material, weights.light[k], weights.view[k]);
+    if (s >= images.size() || images[s].size() < out.size()) {
+      throw std::invalid_argument("interpolation needs subspace image " + std::to_string(s) + ", which was not synthesized");
+    }
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = out[i] + weights.weight[k] * images[s][i];
+  }
+}
+
+}  // namespace carbtf::reference

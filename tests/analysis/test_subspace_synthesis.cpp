@@ -1,0 +1,157 @@
+// The CPU reference of subspace-image synthesis: collapse and colour transform, determinism, float32
+// against float64, fidelity to the analysed image's colour statistics, and interpolation.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "carbtf/analysis/analyze.hpp"
+#include "carbtf/analysis/reference/subspace_synthesis.hpp"
+#include "carbtf/analysis/sample/height_field_renderer.hpp"
+#include "carbtf/analysis/sample/sample_materials.hpp"
+
+namespace carbtf {
+namespace {
+
+// A one-subspace material over a 2x2 direction set, 3 levels, bands given per level.
+Material tiny_material(const std::vector<CarBandModel>& per_level) {
+  Material m;
+  m.lights = {{0.0f, 0.0f}, {0.5f, 0.0f}, {0.5f, 2.0f}};
+  m.views = m.lights;
+  m.subspace_index.assign(9, 0);
+  SubspaceModel s;
+  s.width = s.height = 64;
+  s.levels = static_cast<std::uint32_t>(per_level.size());
+  s.colour_mean = {0.2f, 0.3f, 0.4f};
+  s.colour_transform = {0.6f, 0.0f, 0.8f, 0.0f, 1.0f, 0.0f, -0.8f, 0.0f, 0.6f};
+  for (const CarBandModel& band : per_level)
+    for (int c = 0; c < 3; ++c) s.bands.push_back(band);
+  m.subspaces.push_back(s);
+  return m;
+}
+
+CarBandModel band(float mean, float sigma, std::vector<float> gamma = {}) {
+  CarBandModel b;
+  b.mean = mean;
+  b.sigma = sigma;
+  b.band_std = sigma;
+  if (!gamma.empty()) {
+    b.neighbourhood = {{0, -1}, {-1, 0}};
+    b.gamma = std::move(gamma);
+  }
+  return b;
+}
+
+AnalysisResult analysed_leather() {
+  const Surface surface = make_sample_surface("leather", 32, 4);
+  BtfDataset dataset(ubo2003_directions(), ubo2003_directions(), 32, 32, ColorEncoding::linear_half);
+  RenderOptions render;
+  render.progress = false;
+  render_btf(surface, dataset.lights(), dataset.views(), render,
+             [&](std::uint32_t l, std::uint32_t v, std::span<const float> image) { dataset.set_linear({l, v}, image); });
+  AnalysisOptions options;
+  options.progress = false;
+  options.segmentation.clusters = 4;
+  options.tiles.tile_size = 16;
+  return analyze_btf(dataset, options);
+}
+
+}  // namespace
+
+TEST_CASE("constant bands collapse to the sum of their means through the colour transform", "[synthesis]") {
+  const Material m = tiny_material({band(0.5f, 0.0f), band(0.25f, 0.0f), band(-0.125f, 0.0f)});
+  REQUIRE(validate_material(m).ok());
+  reference::SubspaceBlock block;
+  block.width = 37;
+  block.height = 21;
+  block.row0 = -5;
+  block.col0 = 1000;
+  std::vector<double> out(37 * 21 * 3);
+  reference::synthesize_subspace(m, 0, block, std::span<double>(out));
+  const double sum = 0.5 + 0.25 - 0.125;
+  const double expected[3] = {0.2 + (0.6 + 0.8) * sum, 0.3 + sum, 0.4 + (-0.8 + 0.6) * sum};
+  for (std::size_t p = 0; p < 37 * 21; ++p)
+    for (int c = 0; c < 3; ++c) REQUIRE(out[p * 3 + c] == Approx(expected[c]).margin(1e-7));
+}
+
+TEST_CASE("subspace synthesis is deterministic, and float32 follows float64", "[synthesis]") {
+  const Material m = tiny_material({band(0.0f, 0.05f, {0.5f, 0.4f}), band(0.0f, 0.1f, {0.45f, 0.45f}), band(0.1f, 0.2f, {0.6f, 0.35f})});
+  reference::SubspaceBlock block;
+  block.seed = 77;
+  block.width = block.height = 256;
+  std::vector<float> a(256 * 256 * 3), b(a.size());
+  std::vector<double> wide(a.size());
+  reference::synthesize_subspace(m, 0, block, std::span<float>(a));
+  reference::synthesize_subspace(m, 0, block, std::span<float>(b));
+  REQUIRE(a == b);
+  reference::synthesize_subspace(m, 0, block, std::span<double>(wide));
+  double mean = 0.0, square = 0.0, worst = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    mean += wide[i];
+    square += wide[i] * wide[i];
+    worst = std::max(worst, std::abs(a[i] - wide[i]));
+  }
+  mean /= static_cast<double>(a.size());
+  const double deviation = std::sqrt(square / static_cast<double>(a.size()) - mean * mean);
+  INFO("max |float32 - float64| = " << worst << ", field std " << deviation);
+  CHECK(worst <= 1e-5 * deviation);
+  block.seed = 78;
+  reference::synthesize_subspace(m, 0, block, std::span<float>(b));
+  CHECK(a != b);
+}
+
+TEST_CASE("a synthesized subspace image keeps the analysed image's colour statistics", "[synthesis]") {
+  const AnalysisResult result = analysed_leather();
+  const Material& m = result.material;
+  for (std::uint32_t s = 0; s < m.subspaces.size(); ++s) {
+    reference::SubspaceBlock block;
+    block.seed = 3;
+    block.width = block.height = 128;
+    std::vector<float> image(128 * 128 * 3);
+    reference::synthesize_subspace(m, s, block, std::span<float>(image));
+    for (int c = 0; c < 3; ++c) {
+      double mean = 0.0;
+      for (std::size_t p = 0; p < 128 * 128; ++p) mean += image[p * 3 + c];
+      mean /= 128.0 * 128.0;
+      // The model's mean is exact in expectation. The mean of an n x n CAR field varies with standard
+      // deviation sigma / (|A(0)| n), A(0) = 1 - sum(gamma) (its spectral density at frequency 0);
+      // the pyramid passes frequency 0 unchanged and the colour transform mixes the bands.
+      const SubspaceModel& model = m.subspaces[s];
+      double variance = 0.0;
+      for (std::uint32_t level = 0; level < model.levels; ++level) {
+        const double n = 128.0 / std::pow(2.0, level);
+        for (std::uint32_t j = 0; j < 3; ++j) {
+          const CarBandModel& b = model.bands[level * 3 + j];
+          double a0 = 1.0;
+          for (float g : b.gamma) a0 -= g;
+          const double t = model.colour_transform[c * 3 + j];
+          variance += t * t * std::pow(b.sigma / (a0 * n), 2.0);
+        }
+      }
+      const double expected = model.colour_mean[c];
+      double band_means = 0.0;
+      for (std::uint32_t level = 0; level < model.levels; ++level)
+        for (std::uint32_t j = 0; j < 3; ++j) band_means += model.colour_transform[c * 3 + j] * model.bands[level * 3 + j].mean;
+      INFO("subspace " << s << " channel " << c << ": synthesized mean " << mean << ", model " << expected + band_means << ", standard error "
+                       << std::sqrt(variance));
+      CHECK(std::abs(mean - (expected + band_means)) < 5.0 * std::sqrt(variance) + 1e-6);
+    }
+  }
+  SECTION("interpolation at a measured pair returns that pair's subspace image") {
+    std::vector<std::vector<float>> images(m.subspaces.size());
+    reference::SubspaceBlock block;
+    block.width = block.height = 16;
+    for (std::uint32_t s = 0; s < m.subspaces.size(); ++s) {
+      images[s].resize(16 * 16 * 3);
+      reference::synthesize_subspace(m, s, block, std::span<float>(images[s]));
+    }
+    DirectionTriangulation lights, views;
+    REQUIRE(build_direction_triangulation(m.lights, lights).ok());
+    REQUIRE(build_direction_triangulation(m.views, views).ok());
+    const PairWeights w = pair_weights(lights, views, m.lights[30].theta, m.lights[30].phi, m.views[70].theta, m.views[70].phi);
+    std::vector<float> out(16 * 16 * 3);
+    reference::interpolate_subspaces(m, w, images, out);
+    CHECK(out == images[subspace_of(m, 30, 70)]);
+  }
+}
+
+}  // namespace carbtf
