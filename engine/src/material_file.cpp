@@ -328,7 +328,7 @@ Status list_material_chunks(std::span<const std::uint8_t> bytes, std::vector<Mat
   });
 }
 
-Status read_material_file(const std::string& path, Material& out) {
+Status read_material_file_bytes(const std::string& path, std::vector<std::uint8_t>& bytes) {
   std::ifstream file(path, std::ios::binary);
   if (!file) return {ErrorCode::file_error, path + ": cannot open the material file"};
   file.seekg(0, std::ios::end);
@@ -338,8 +338,14 @@ Status read_material_file(const std::string& path, Material& out) {
   if (size < 0) return {ErrorCode::file_error, path + ": cannot read the material file"};
   if (size > kMaxFileBytes) return fail(path, "is " + std::to_string(size >> 20) + " MiB, too large to be a carbtf material file");
   file.seekg(0);
-  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(size));
+  bytes.resize(static_cast<std::size_t>(size));
   if (!file.read(reinterpret_cast<char*>(bytes.data()), size)) return {ErrorCode::file_error, path + ": cannot read the material file"};
+  return {};
+}
+
+Status read_material_file(const std::string& path, Material& out) {
+  std::vector<std::uint8_t> bytes;
+  if (Status s = read_material_file_bytes(path, bytes); !s.ok()) return s;
   return decode_material(bytes, path, out);
 }
 

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <iterator>
 #include <set>
 
 #include "carbtf/analysis/btf/btf_reader.hpp"
@@ -40,9 +39,9 @@ bool is_material_file(const std::string& path) {
 
 void run_material_info(const std::string& path) {
   Material material;
-  check(read_material_file(path, material), "cannot read the material");
-  std::ifstream file(path, std::ios::binary);
-  const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  std::vector<std::uint8_t> bytes;
+  check(read_material_file_bytes(path, bytes), "cannot read the material");
+  check(decode_material(bytes, path, material), "cannot read the material");
   std::vector<MaterialChunkInfo> chunks;
   check(list_material_chunks(bytes, chunks), "cannot list the material's chunks");
 

@@ -26,7 +26,7 @@ struct AnalysisOptions {
   CarFitOptions car;
   PhotometricStereoOptions stereo;
   int stereo_view = -1;              // -1: the view nearest the surface normal
-  RangeTileOptions tiles;
+  RangeTileOptions tiles;            // its seed is ignored: the tiles follow segmentation.seed
   unsigned threads = 0;              // 0: all hardware threads
   bool progress = true;
 };

@@ -38,6 +38,8 @@ Status decode_material(std::span<const std::uint8_t> bytes, const std::string& n
 
 // Reads and decodes a file; writes a file (through a temporary, so a failure leaves no partial file).
 Status read_material_file(const std::string& path, Material& out);
+// The file's bytes, unchecked (with the same size limit and errors), for callers that also list chunks.
+Status read_material_file_bytes(const std::string& path, std::vector<std::uint8_t>& bytes);
 Status write_material_file(const std::string& path, const Material& material);
 
 // One chunk of an encoded material, for size breakdowns (`carbtf info material.cbtf`).
