@@ -76,6 +76,90 @@ struct NoiseFieldParams {
   uint element_offset;  // in floats, from the start of the bound range
 };
 
+// ---- Subspace-image synthesis (engine/src/subspace_synthesizer.cpp) ---------------------------
+// Every pass reads a table of items from binding 0 and works on one arena window (binding 1) that
+// holds the batch's CAR fields. A field is stored padded: `pad` frame rows above its region and `pad`
+// frame columns each side, row pitch cols + 2 pad; region pixel (r, c) is arena[offset + (r + pad) *
+// pitch + c + pad]. The frame holds zeros (a burn-in start) or stored block-initialization values.
+CARBTF_CONST_UINT(CARBTF_CAR_MAX_NEIGHBOURS, 16u)
+CARBTF_CONST_UINT(CARBTF_SYNTH_MAX_CHANNELS, 4u)
+CARBTF_CONST_UINT(CARBTF_SYNTH_GROUP_X, 16u)
+CARBTF_CONST_UINT(CARBTF_SYNTH_GROUP_Y, 16u)
+CARBTF_CONST_UINT(CARBTF_CAR_SERIAL_GROUP, 8u)      // fields per workgroup of car_serial.comp
+CARBTF_CONST_UINT(CARBTF_CAR_WAVEFRONT_GROUP, 64u)  // invocations per field in car_wavefront.comp
+CARBTF_CONST_UINT(CARBTF_NO_FRAME, 0xFFFFFFFFu)     // CarFieldGpu.frame_offset: the frame is zero
+
+struct CarFieldGpu {
+  uint offset;        // arena element of padded (0, 0)
+  uint pitch;         // cols + 2 pad
+  uint rows;          // region rows (burn-in margin included)
+  uint cols;          // region columns (margins included)
+  uint pad;
+  uint field_id;
+  uint row0;          // absolute row of region pixel (0, 0), two's complement (noise coordinates)
+  uint col0;
+  uint neighbour_count;
+  uint skew;          // wavefront: pixel (r, c) runs at step skew * r + c
+  uint frame_offset;  // element of the stored frame in the frame buffer, or CARBTF_NO_FRAME
+  float sigma;
+  int tap[CARBTF_CAR_MAX_NEIGHBOURS];  // dr * pitch + dc
+  float gamma[CARBTF_CAR_MAX_NEIGHBOURS];
+};
+
+// One band of one level: G = (mean + y) + expand(G_coarse), written over y in the level window.
+struct CollapseItemGpu {
+  uint fine_offset;    // arena element of the level window's (0, 0)
+  uint fine_pitch;
+  uint rows;           // level window
+  uint cols;
+  uint row0;           // absolute coordinates of the level window (two's complement)
+  uint col0;
+  uint coarse_offset;  // arena element of the coarse level window's (0, 0), or CARBTF_NO_FRAME: none
+  uint coarse_pitch;
+  uint coarse_row0;
+  uint coarse_col0;
+  float mean;
+  uint reserved;
+};
+
+// The colour transform of channels [channel_begin, channel_end) of one subspace image: from the mean
+// when channel_begin is 0, else continuing the sums already in the output layer.
+struct ColourItemGpu {
+  uint layer;
+  uint channels;
+  uint channel_begin;
+  uint channel_end;
+  uint rows;
+  uint cols;
+  uint reserved0;
+  uint reserved1;
+  uint offset[CARBTF_SYNTH_MAX_CHANNELS];  // arena element of each channel's G_0 (0, 0)
+  uint pitch[CARBTF_SYNTH_MAX_CHANNELS];
+  float mean[CARBTF_SYNTH_MAX_CHANNELS];
+  float transform[CARBTF_SYNTH_MAX_CHANNELS * CARBTF_SYNTH_MAX_CHANNELS];  // row-major, channels x channels
+};
+
+struct SynthPassParams {
+  uint item_count;
+  uint seed_lo;
+  uint seed_hi;
+  uint begin;  // car_serial: first linear pixel; car_wavefront: first step
+  uint end;
+  uint max_rows;
+  uint max_cols;
+  uint reserved;
+};
+
+// interpolate.comp: out = sum_k weight[k] * layer[k], k = 0..8 in order, terms of weight 0 skipped.
+struct InterpolateParams {
+  uint layer[12];  // 9 used; std430 array of 12 keeps the float array 16-byte aligned for std140 readers
+  float weight[12];
+  uint width;
+  uint height;
+  uint channels;
+  uint reserved;
+};
+
 // ---- Range-map tile layout (engine/include/carbtf/engine/range_tiles.hpp) ----------------------
 // A 32-bit integer mixer ("lowbias32", C. Wellons): every output bit depends on every input bit.
 // Integer arithmetic only, so C++ and GLSL agree exactly.
@@ -99,6 +183,11 @@ CARBTF_FUNCTION uint carbtf_tile_edge_colour(uint seed_lo, uint seed_hi, uint ki
 static_assert(sizeof(NoiseFieldParams) == 36, "NoiseFieldParams must match the GLSL push-constant layout");
 static_assert(offsetof(NoiseFieldParams, row0) == 12);
 static_assert(offsetof(NoiseFieldParams, element_offset) == 32);
+static_assert(sizeof(CarFieldGpu) == 48 + 8 * CARBTF_CAR_MAX_NEIGHBOURS, "CarFieldGpu must match std430");
+static_assert(offsetof(CarFieldGpu, tap) == 48 && offsetof(CarFieldGpu, gamma) == 48 + 4 * CARBTF_CAR_MAX_NEIGHBOURS);
+static_assert(sizeof(CollapseItemGpu) == 48, "CollapseItemGpu must match std430");
+static_assert(sizeof(ColourItemGpu) == 32 + 12 * CARBTF_SYNTH_MAX_CHANNELS + 4 * CARBTF_SYNTH_MAX_CHANNELS * CARBTF_SYNTH_MAX_CHANNELS);
+static_assert(sizeof(SynthPassParams) == 32 && sizeof(InterpolateParams) == 112);
 }  // namespace carbtf::gpu
 #endif
 

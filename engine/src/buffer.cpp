@@ -111,6 +111,16 @@ Status Image::create(const Context& context, const ImageCreateInfo& info, Image&
   CARBTF_TRY(allocate(context, requirements, MemoryUsage::device_local, image.memory_, properties));
   context.set_debug_name(image.memory_, info.debug_name);
   CARBTF_VK_TRY(vk.vkBindImageMemory(context.device(), handle, image.memory_.get(), 0));
+
+  auto view_info = vk_struct<VkImageViewCreateInfo>(VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO);
+  view_info.image = handle;
+  view_info.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
+  view_info.format = info.format;
+  view_info.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, info.array_layers};
+  VkImageView view = VK_NULL_HANDLE;
+  CARBTF_VK_TRY(vk.vkCreateImageView(context.device(), &view_info, nullptr, &view));
+  image.view_ = UniqueHandle<VkImageView>(&vk, context.device(), view);
+  context.set_debug_name(image.view_, info.debug_name);
   out = std::move(image);
   return {};
 }

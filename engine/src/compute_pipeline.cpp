@@ -8,24 +8,33 @@
 #include "vk_check.hpp"
 
 namespace carbtf::detail {
+namespace {
+
+VkDescriptorType descriptor_type(BindingKind kind) {
+  return kind == BindingKind::storage_image ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+}
+
+}  // namespace
 
 Status ComputePipeline::create(const Context& context, const ComputePipelineInfo& info, ComputePipeline& out) {
   const VulkanFunctions& vk = context.vk();
   const VkDevice device = context.device();
-  if (info.storage_buffer_count == 0 || info.storage_buffer_count > kMaxStorageBuffers) {
-    return {ErrorCode::invalid_argument, std::string(info.debug_name) + ": storage buffer count out of range"};
+  if (info.binding_count == 0 || info.binding_count > kMaxBindings) {
+    return {ErrorCode::invalid_argument, std::string(info.debug_name) + ": binding count out of range"};
   }
+  out.binding_count = info.binding_count;
+  std::copy(std::begin(info.bindings), std::end(info.bindings), std::begin(out.bindings));
 
-  std::vector<VkDescriptorSetLayoutBinding> bindings(info.storage_buffer_count);
-  for (std::uint32_t i = 0; i < info.storage_buffer_count; ++i) {
+  std::vector<VkDescriptorSetLayoutBinding> bindings(info.binding_count);
+  for (std::uint32_t i = 0; i < info.binding_count; ++i) {
     bindings[i].binding = i;
-    bindings[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    bindings[i].descriptorType = descriptor_type(info.bindings[i]);
     bindings[i].descriptorCount = 1;
     bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
   }
   auto set_info = vk_struct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
   set_info.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
-  set_info.bindingCount = info.storage_buffer_count;
+  set_info.bindingCount = info.binding_count;
   set_info.pBindings = bindings.data();
   VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
   CARBTF_VK_TRY(vk.vkCreateDescriptorSetLayout(device, &set_info, nullptr, &set_layout));
@@ -65,20 +74,23 @@ Status ComputePipeline::create(const Context& context, const ComputePipelineInfo
 }
 
 void ComputePipeline::bind(const Context& context, VkCommandBuffer command_buffer,
-                           const VkDescriptorBufferInfo* buffers, std::uint32_t buffer_count,
-                           const void* push_constants, std::uint32_t push_constant_bytes) const noexcept {
+                           const BindingResource* resources, const void* push_constants,
+                           std::uint32_t push_constant_bytes) const noexcept {
   const VulkanFunctions& vk = context.vk();
   vk.vkCmdBindPipeline(command_buffer, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.get());
-  std::array<VkWriteDescriptorSet, kMaxStorageBuffers> writes{};
-  buffer_count = std::min(buffer_count, kMaxStorageBuffers);
-  for (std::uint32_t i = 0; i < buffer_count; ++i) {
+  std::array<VkWriteDescriptorSet, kMaxBindings> writes{};
+  for (std::uint32_t i = 0; i < binding_count; ++i) {
     writes[i] = vk_struct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
     writes[i].dstBinding = i;
     writes[i].descriptorCount = 1;
-    writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-    writes[i].pBufferInfo = &buffers[i];
+    writes[i].descriptorType = descriptor_type(bindings[i]);
+    if (bindings[i] == BindingKind::storage_image) {
+      writes[i].pImageInfo = &resources[i].image;
+    } else {
+      writes[i].pBufferInfo = &resources[i].buffer;
+    }
   }
-  vk.vkCmdPushDescriptorSetKHR(command_buffer, VK_PIPELINE_BIND_POINT_COMPUTE, layout.get(), 0, buffer_count,
+  vk.vkCmdPushDescriptorSetKHR(command_buffer, VK_PIPELINE_BIND_POINT_COMPUTE, layout.get(), 0, binding_count,
                                writes.data());
   if (push_constant_bytes > 0) {
     vk.vkCmdPushConstants(command_buffer, layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, push_constant_bytes,

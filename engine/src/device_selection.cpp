@@ -44,6 +44,8 @@ DeviceInfo describe_physical_device(const VulkanFunctions& vk, VkPhysicalDevice 
   info.max_storage_buffer_range = p.limits.maxStorageBufferRange;
   info.min_storage_buffer_offset_alignment = p.limits.minStorageBufferOffsetAlignment;
   std::copy_n(p.limits.maxComputeWorkGroupCount, 3, info.max_compute_group_count);
+  info.max_image_dimension_2d = p.limits.maxImageDimension2D;
+  info.max_image_array_layers = p.limits.maxImageArrayLayers;
   info.max_compute_shared_memory = p.limits.maxComputeSharedMemorySize;
   info.subgroup_size = subgroup.subgroupSize;
 

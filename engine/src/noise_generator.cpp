@@ -28,7 +28,7 @@ Status NoiseGenerator::create(Context& context, std::unique_ptr<NoiseGenerator>&
     detail::ComputePipelineInfo info;
     info.spirv = carbtf_spirv_noise_field;
     info.spirv_bytes = sizeof(carbtf_spirv_noise_field);
-    info.storage_buffer_count = 1;
+    info.binding_count = 1;
     info.push_constant_bytes = sizeof(gpu::NoiseFieldParams);
     info.debug_name = "carbtf noise_field";
     CARBTF_TRY(detail::ComputePipeline::create(context, info, generator->pipeline_->compute));
@@ -77,8 +77,9 @@ Status NoiseGenerator::record(VkCommandBuffer command_buffer, const NoiseBlock& 
     params.row_pitch = block.width;
     params.element_offset = static_cast<std::uint32_t>((chunk_offset - bound_offset) / sizeof(float));
 
-    const VkDescriptorBufferInfo output{destination, bound_offset, (chunk_offset - bound_offset) + rows * row_bytes};
-    pipeline_->compute.bind(*context_, command_buffer, &output, 1, &params, sizeof(params));
+    const auto output =
+        detail::BindingResource::of(destination, bound_offset, (chunk_offset - bound_offset) + rows * row_bytes);
+    pipeline_->compute.bind(*context_, command_buffer, &output, &params, sizeof(params));
     context_->vk().vkCmdDispatch(command_buffer, (block.width + gpu::CARBTF_NOISE_GROUP_X - 1) / gpu::CARBTF_NOISE_GROUP_X,
                                  (rows + gpu::CARBTF_NOISE_GROUP_Y - 1) / gpu::CARBTF_NOISE_GROUP_Y, 1);
   }

@@ -5,21 +5,10 @@
 #include <string>
 
 #include "carbtf/analysis/reference/car_synthesis.hpp"
+#include "carbtf/engine/synthesis_layout.hpp"
 
 namespace carbtf::reference {
 namespace {
-
-std::int64_t floor_div2(std::int64_t a) { return a >= 0 ? a / 2 : -((-a + 1) / 2); }
-
-struct Region {
-  std::int64_t row0, col0, rows, cols;
-};
-
-Region coarse_support(const Region& fine) {
-  const std::int64_t r0 = floor_div2(fine.row0 - 1), r1 = floor_div2(fine.row0 + fine.rows + 1) + 1;
-  const std::int64_t c0 = floor_div2(fine.col0 - 1), c1 = floor_div2(fine.col0 + fine.cols + 1) + 1;
-  return {r0, c0, r1 - r0, c1 - c0};
-}
 
 template <typename Real>
 constexpr Real kExpandWeight[5] = {Real(2) * Real(1) / Real(16), Real(2) * Real(4) / Real(16), Real(2) * Real(6) / Real(16),
@@ -27,7 +16,7 @@ constexpr Real kExpandWeight[5] = {Real(2) * Real(1) / Real(16), Real(2) * Real(
 
 // Expands `coarse` (over region `from`) to region `to`, rows first, then columns.
 template <typename Real>
-std::vector<Real> expand(const std::vector<Real>& coarse, const Region& from, const Region& to) {
+std::vector<Real> expand(const std::vector<Real>& coarse, const TextureRegion& from, const TextureRegion& to) {
   // Along rows: every coarse row, fine columns.
   std::vector<Real> horizontal(static_cast<std::size_t>(from.rows * to.cols));
   for (std::int64_t r = 0; r < from.rows; ++r) {
@@ -64,14 +53,13 @@ void synthesize(const Material& material, std::uint32_t subspace, const Subspace
   const SubspaceModel& model = material.subspaces[subspace];
   const std::size_t pixels = std::size_t{block.width} * block.height;
   if (out.size() < pixels * model.channels) throw std::invalid_argument("subspace synthesis: output span too small");
-  std::vector<Region> regions{{block.row0, block.col0, block.height, block.width}};
-  for (std::uint32_t level = 1; level < model.levels; ++level) regions.push_back(coarse_support(regions.back()));
+  const std::vector<TextureRegion> regions = level_regions({block.row0, block.col0, block.height, block.width}, model.levels);
 
   std::vector<std::vector<Real>> collapsed(model.channels);
   for (std::uint32_t channel = 0; channel < model.channels; ++channel) {
     std::vector<Real> current;
     for (std::uint32_t level = model.levels; level-- > 0;) {
-      const Region& region = regions[level];
+      const TextureRegion& region = regions[level];
       CarFieldBlock field;
       field.seed = block.seed;
       field.field_id = field_id_of(subspace, level, channel);

@@ -53,18 +53,22 @@ struct ImageCreateInfo {
   const char* debug_name = "carbtf image";
 };
 
-// A 2D (array) image in device-local memory, optimal tiling, created in VK_IMAGE_LAYOUT_UNDEFINED.
+// A 2D (array) image in device-local memory, optimal tiling, created in VK_IMAGE_LAYOUT_UNDEFINED,
+// with a view of all its layers (VK_IMAGE_VIEW_TYPE_2D_ARRAY).
 class Image {
  public:
   Image() = default;
   static Status create(const Context& context, const ImageCreateInfo& info, Image& out) noexcept;
 
   VkImage handle() const noexcept { return image_.get(); }
+  VkImageView view() const noexcept { return view_.get(); }
   const ImageCreateInfo& info() const noexcept { return info_; }
 
  private:
-  UniqueHandle<VkImage> image_;
+  // Declaration order is destruction order reversed: the view goes before the image.
   UniqueHandle<VkDeviceMemory> memory_;
+  UniqueHandle<VkImage> image_;
+  UniqueHandle<VkImageView> view_;
   ImageCreateInfo info_{};
 };
 

@@ -35,6 +35,8 @@ struct DeviceInfo {
   VkDeviceSize max_storage_buffer_range = 0;
   VkDeviceSize min_storage_buffer_offset_alignment = 0;
   std::uint32_t max_compute_group_count[3] = {0, 0, 0};
+  std::uint32_t max_image_dimension_2d = 0;
+  std::uint32_t max_image_array_layers = 0;
   std::uint32_t max_compute_shared_memory = 0;
   std::uint32_t subgroup_size = 0;
   bool shader_float64 = false;

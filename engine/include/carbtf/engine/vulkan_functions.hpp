@@ -43,6 +43,8 @@ namespace carbtf {
   X(vkGetBufferMemoryRequirements)     \
   X(vkCreateImage)                     \
   X(vkDestroyImage)                    \
+  X(vkCreateImageView)                 \
+  X(vkDestroyImageView)                \
   X(vkGetImageMemoryRequirements)      \
   X(vkAllocateMemory)                  \
   X(vkFreeMemory)                      \
@@ -78,6 +80,9 @@ namespace carbtf {
   X(vkCmdDispatch)                     \
   X(vkCmdPipelineBarrier)              \
   X(vkCmdFillBuffer)                   \
+  X(vkCmdCopyBuffer)                   \
+  X(vkCmdCopyImageToBuffer)            \
+  X(vkCmdClearColorImage)              \
   X(vkCmdResetQueryPool)               \
   X(vkCmdWriteTimestamp)
 

@@ -20,6 +20,7 @@
 
 #include "carbtf/engine/material.hpp"
 #include "carbtf/engine/direction_interpolation.hpp"
+#include "carbtf/engine/synthesis_layout.hpp"
 
 namespace carbtf::reference {
 
@@ -31,10 +32,6 @@ struct SubspaceBlock {
   std::uint32_t height = 0;
   std::uint32_t margin = 64;  // CAR burn-in, per level
 };
-
-inline constexpr std::uint32_t field_id_of(std::uint32_t subspace, std::uint32_t level, std::uint32_t channel) {
-  return subspace * 128u + level * 16u + channel;
-}
 
 // Synthesizes subspace image `subspace` into `out` (width * height * channels). Throws
 // std::invalid_argument for a subspace index out of range or an output span too small.

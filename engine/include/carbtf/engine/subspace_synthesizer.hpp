@@ -1,0 +1,139 @@
+// GPU synthesis of subspace images (DESIGN.md 4.4): for a material, a seed and a block of the unbounded
+// texture, every requested subspace image, computed to the CPU reference's specification
+// (analysis/include/carbtf/analysis/reference/subspace_synthesis.hpp): noise, one CAR recursion per
+// band and level, pyramid collapse, inverse colour transform. Then the 9-weight interpolation of those
+// images for any (light, view).
+//
+// Work goes in batches: each batch's fields must fit one storage-buffer binding (128 MiB on lavapipe),
+// so large requests run as several batches in the same command buffer, reusing one work buffer.
+//
+// Use: create() once per context; prepare() a request (host work and allocations only); record() into
+// a command buffer of yours, or call synthesize() to submit, wait and read back.
+//
+// Lifetime: the synthesizer must outlive the execution of every command buffer it recorded into, and
+// must not be prepared again while one is pending. Destroy it before the Context.
+// Thread safety: externally synchronized (one thread at a time per synthesizer).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "carbtf/engine/buffer.hpp"
+#include "carbtf/engine/context.hpp"
+#include "carbtf/engine/direction_interpolation.hpp"
+#include "carbtf/engine/material.hpp"
+
+namespace carbtf {
+
+// How CAR recursions run on the device. serial: one invocation per field, pixels in row order (CPU
+// devices such as lavapipe, where barriers are costly); wavefront: one workgroup per field, pixels of a
+// step t = a * row + col in parallel with a barrier per step (GPUs). automatic picks by device type.
+enum class CarScheme { automatic, serial, wavefront };
+const char* car_scheme_name(CarScheme scheme) noexcept;
+
+// The channels a GPU synthesis supports per subspace image (its output is RGBA32F).
+inline constexpr std::uint32_t kMaxGpuChannels = 4;
+// Neighbours per CAR band a GPU synthesis supports (the analysis fits at most 12).
+inline constexpr std::uint32_t kMaxGpuNeighbours = 16;
+
+struct SynthesisRequest {
+  std::uint64_t seed = 0;
+  // The block of the unbounded texture: rows [row0, row0 + height), columns [col0, col0 + width).
+  std::int32_t row0 = 0;
+  std::int32_t col0 = 0;
+  std::uint32_t width = 512;
+  std::uint32_t height = 512;
+  // CAR burn-in per level: rows above and columns each side computed from a zero start and dropped.
+  std::uint32_t margin = 64;
+  // Which subspace images, in output-layer order; empty means all of them.
+  std::vector<std::uint32_t> subspaces;
+  CarScheme scheme = CarScheme::automatic;
+  // Fill the work buffer and the output image with NaN first, so that anything left unwritten shows
+  // (tests and conformance use it).
+  bool poison = false;
+};
+
+// GPU time per stage, summed over batches, in milliseconds (0 where the queue has no timestamps).
+struct SynthesisTiming {
+  double prepare_ms = 0.0;  // frames and noise
+  double car_ms = 0.0;
+  double collapse_ms = 0.0;
+  double colour_ms = 0.0;
+  double total_ms = 0.0;
+  std::uint32_t batches = 0;
+  std::uint32_t dispatches = 0;
+};
+
+// Subspace images read back to the host: images[s] holds subspace s as width * height * channels
+// floats (row-major, channels interleaved), or is empty when s was not requested.
+struct SynthesizedImages {
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  std::vector<std::uint32_t> channels;  // per subspace
+  std::vector<std::vector<float>> images;
+};
+
+class SubspaceSynthesizer {
+ public:
+  // Builds the compute pipelines on `context`, which must outlive the synthesizer.
+  static Status create(Context& context, std::unique_ptr<SubspaceSynthesizer>& out) noexcept;
+  ~SubspaceSynthesizer();
+
+  // Plans `request` for `material` and (re)allocates the output image, the work buffer and the item
+  // tables. Copies what it needs from `material`. Fails with invalid_argument for a request the
+  // material or the device cannot serve (unknown subspace, too many channels or neighbours, an image
+  // beyond the device's limits), naming the cause.
+  Status prepare(const Material& material, const SynthesisRequest& request) noexcept;
+
+  // Records the prepared synthesis. The output image goes from any layout to VK_IMAGE_LAYOUT_GENERAL
+  // (its previous contents are discarded) and ends visible to compute and fragment shader reads. With
+  // `timed`, writes GPU timestamps that timing() reads after the work has finished.
+  Status record(VkCommandBuffer command_buffer, bool timed = false) const noexcept;
+
+  // The output: an RGBA32F 2D-array image, one layer per requested subspace (layer_of), channels
+  // beyond the model's own set to 0 and alpha to 1. Null before a successful prepare().
+  VkImage image() const noexcept;
+  VkImageView image_view() const noexcept;
+  // The layer of subspace `subspace`, or UINT32_MAX when it was not requested.
+  std::uint32_t layer_of(std::uint32_t subspace) const noexcept;
+  std::uint32_t width() const noexcept;
+  std::uint32_t height() const noexcept;
+  CarScheme scheme() const noexcept;  // the scheme the prepared request runs (never automatic)
+  std::uint32_t batch_count() const noexcept;
+
+  // Records the 9-weight interpolation of the prepared images into layer 0 of `target` (an RGBA32F
+  // storage image of at least width() x height(), in VK_IMAGE_LAYOUT_GENERAL). Must follow record()
+  // in execution order. Fails when a pair with a non-zero weight falls in a subspace not synthesized.
+  Status record_interpolation(VkCommandBuffer command_buffer, const Material& material, const PairWeights& weights,
+                              VkImageView target) const noexcept;
+
+  // After a timed record() has executed: the GPU time per stage.
+  Status timing(SynthesisTiming& out) const noexcept;
+
+  // Convenience: prepare, record, submit, wait, read back. `timing` may be null.
+  Status synthesize(const Material& material, const SynthesisRequest& request, SynthesizedImages& out,
+                    SynthesisTiming* timing = nullptr) noexcept;
+  // Convenience after synthesize(): the interpolated image as width * height * channels floats.
+  Status interpolate(const Material& material, const PairWeights& weights, std::vector<float>& out) noexcept;
+
+  // Caps the loop iterations of one invocation (0: lavapipe's safe default). Tests lower it to
+  // exercise splitting the recursion over many dispatches.
+  void set_max_loop_iterations(std::uint32_t iterations) noexcept { max_loop_iterations_ = iterations; }
+  // Caps the bytes of one batch's work window (0: the device's storage-buffer range). Tests lower it to
+  // exercise batching.
+  void set_max_batch_bytes(VkDeviceSize bytes) noexcept { max_batch_bytes_ = bytes; }
+
+ private:
+  SubspaceSynthesizer() = default;
+  struct Pipelines;
+  struct Prepared;
+  Context* context_ = nullptr;
+  std::unique_ptr<Pipelines> pipelines_;
+  std::unique_ptr<Prepared> prepared_;
+  std::uint32_t max_loop_iterations_ = 0;
+  VkDeviceSize max_batch_bytes_ = 0;
+};
+
+}  // namespace carbtf

@@ -1,0 +1,50 @@
+// Where each field of a subspace-image synthesis lies, shared by the CPU reference and the GPU so that
+// both compute the same regions (DESIGN.md 4.4).
+//
+// A block of the unbounded texture is the level-0 region. Level l + 1 covers the coarse support that
+// expanding it to level l needs: fine rows [a, b) read coarse rows [floor((a - 1) / 2),
+// floor((b + 1) / 2) + 1), and the same for columns. Band (level l, channel c) of subspace s is the CAR
+// field with id s * 128 + l * 16 + c; its recursion runs over the level region extended by a burn-in
+// margin above and on both sides.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "carbtf/engine/material.hpp"
+
+namespace carbtf {
+
+// A rectangle of an unbounded field, in absolute coordinates.
+struct TextureRegion {
+  std::int64_t row0 = 0;
+  std::int64_t col0 = 0;
+  std::int64_t rows = 0;
+  std::int64_t cols = 0;
+  bool operator==(const TextureRegion&) const = default;
+};
+
+inline constexpr std::uint32_t kMaxFieldChannels = 16;
+inline constexpr std::uint32_t kMaxFieldLevels = 8;
+
+constexpr std::uint32_t field_id_of(std::uint32_t subspace, std::uint32_t level, std::uint32_t channel) {
+  return subspace * 128u + level * 16u + channel;
+}
+
+// floor(a / 2) for any sign.
+constexpr std::int64_t floor_half(std::int64_t a) { return a >= 0 ? a / 2 : -((-a + 1) / 2); }
+
+TextureRegion coarse_support(const TextureRegion& fine);
+
+// The regions of levels 0 .. levels - 1 for an output block.
+std::vector<TextureRegion> level_regions(const TextureRegion& block, std::uint32_t levels);
+
+// Rows above and columns to each side that a neighbourhood reaches: the frame a field is stored with.
+std::uint32_t car_frame_pad(std::span<const CarNeighbour> neighbourhood);
+
+// The wavefront skew a: pixel (r, c) can run at step a * r + c, a = max over neighbours with dr < 0 of
+// ceil((dc + 1) / -dr), at least 1. Every neighbour of a pixel then runs at an earlier step.
+std::uint32_t car_wavefront_skew(std::span<const CarNeighbour> neighbourhood);
+
+}  // namespace carbtf

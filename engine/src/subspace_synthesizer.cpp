@@ -1,0 +1,564 @@
+#include "carbtf/engine/subspace_synthesizer.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <limits>
+#include <string>
+
+#include <carbtf_gpu_shared.h>
+#include <carbtf_spirv/car_prepare.h>
+#include <carbtf_spirv/car_serial.h>
+#include <carbtf_spirv/car_wavefront.h>
+#include <carbtf_spirv/collapse_level.h>
+#include <carbtf_spirv/colour_transform.h>
+#include <carbtf_spirv/interpolate.h>
+
+#include "carbtf/engine/gpu_timer.hpp"
+#include "compute_pipeline.hpp"
+#include "synthesis_plan.hpp"
+#include "vk_check.hpp"
+
+namespace carbtf {
+namespace {
+
+// lavapipe stops a loop silently past 65,535 iterations per invocation (DESIGN.md 6); stay below.
+constexpr std::uint32_t kSafeLoopIterations = 60000;
+// Offsets in the kernels are 32-bit element indices.
+constexpr VkDeviceSize kMaxWindowBytes = VkDeviceSize{1} << 31;
+constexpr float kPoison = std::numeric_limits<float>::quiet_NaN();
+
+// Timestamps per batch: after prepare, after CAR, after collapse, after colour; plus one at the start.
+constexpr std::uint32_t kTimestampsPerBatch = 4;
+
+std::uint32_t ceil_div(std::uint64_t a, std::uint64_t b) { return static_cast<std::uint32_t>((a + b - 1) / b); }
+
+void compute_barrier(const VulkanFunctions& vk, VkCommandBuffer command_buffer, VkPipelineStageFlags source,
+                     VkAccessFlags source_access, VkPipelineStageFlags destination, VkAccessFlags destination_access) {
+  auto barrier = vk_struct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
+  barrier.srcAccessMask = source_access;
+  barrier.dstAccessMask = destination_access;
+  vk.vkCmdPipelineBarrier(command_buffer, source, destination, 0, 1, &barrier, 0, nullptr, 0, nullptr);
+}
+
+void shader_to_shader(const VulkanFunctions& vk, VkCommandBuffer command_buffer) {
+  compute_barrier(vk, command_buffer, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+}
+
+VkDeviceSize align_up(VkDeviceSize value, VkDeviceSize alignment) { return (value + alignment - 1) / alignment * alignment; }
+
+}  // namespace
+
+const char* car_scheme_name(CarScheme scheme) noexcept {
+  switch (scheme) {
+    case CarScheme::automatic: return "automatic";
+    case CarScheme::serial: return "serial";
+    case CarScheme::wavefront: return "wavefront";
+  }
+  return "unknown";
+}
+
+struct SubspaceSynthesizer::Pipelines {
+  detail::ComputePipeline prepare;
+  detail::ComputePipeline serial;
+  detail::ComputePipeline wavefront;
+  detail::ComputePipeline collapse;
+  detail::ComputePipeline colour;
+  detail::ComputePipeline interpolate;
+};
+
+// Where each batch's tables lie in the table buffer.
+struct BatchTables {
+  VkDeviceSize fields = 0;
+  std::vector<VkDeviceSize> collapse;
+  VkDeviceSize colour = 0;
+};
+
+struct SubspaceSynthesizer::Prepared {
+  detail::SynthesisPlan plan;
+  std::vector<BatchTables> tables;
+  std::uint64_t seed = 0;
+  CarScheme scheme = CarScheme::serial;
+  bool poison = false;
+  Buffer table_buffer;
+  Buffer arena;
+  Image image;
+  GpuTimer timer;
+  bool timer_ready = false;
+  std::uint32_t dispatches = 0;
+};
+
+SubspaceSynthesizer::~SubspaceSynthesizer() = default;
+
+Status SubspaceSynthesizer::create(Context& context, std::unique_ptr<SubspaceSynthesizer>& out) noexcept {
+  try {
+    std::unique_ptr<SubspaceSynthesizer> synthesizer(new SubspaceSynthesizer());
+    synthesizer->context_ = &context;
+    synthesizer->pipelines_ = std::make_unique<Pipelines>();
+    Pipelines& p = *synthesizer->pipelines_;
+    using detail::BindingKind;
+    auto build = [&](const std::uint32_t* spirv, std::size_t bytes, std::uint32_t bindings, std::uint32_t push_bytes,
+                     const char* name, detail::ComputePipeline& pipeline,
+                     std::initializer_list<std::pair<std::uint32_t, BindingKind>> kinds = {}) -> Status {
+      detail::ComputePipelineInfo info;
+      info.spirv = spirv;
+      info.spirv_bytes = bytes;
+      info.binding_count = bindings;
+      for (const auto& [binding, kind] : kinds) info.bindings[binding] = kind;
+      info.push_constant_bytes = push_bytes;
+      info.debug_name = name;
+      return detail::ComputePipeline::create(context, info, pipeline);
+    };
+    constexpr std::uint32_t pass_bytes = sizeof(gpu::SynthPassParams);
+    CARBTF_TRY(build(carbtf_spirv_car_prepare, sizeof(carbtf_spirv_car_prepare), 3, pass_bytes, "carbtf car_prepare", p.prepare));
+    CARBTF_TRY(build(carbtf_spirv_car_serial, sizeof(carbtf_spirv_car_serial), 2, pass_bytes, "carbtf car_serial", p.serial));
+    CARBTF_TRY(build(carbtf_spirv_car_wavefront, sizeof(carbtf_spirv_car_wavefront), 2, pass_bytes, "carbtf car_wavefront",
+                     p.wavefront));
+    CARBTF_TRY(build(carbtf_spirv_collapse_level, sizeof(carbtf_spirv_collapse_level), 2, pass_bytes, "carbtf collapse_level",
+                     p.collapse));
+    CARBTF_TRY(build(carbtf_spirv_colour_transform, sizeof(carbtf_spirv_colour_transform), 3, pass_bytes,
+                     "carbtf colour_transform", p.colour, {{2, BindingKind::storage_image}}));
+    CARBTF_TRY(build(carbtf_spirv_interpolate, sizeof(carbtf_spirv_interpolate), 2, sizeof(gpu::InterpolateParams),
+                     "carbtf interpolate", p.interpolate,
+                     {{0, BindingKind::storage_image}, {1, BindingKind::storage_image}}));
+    out = std::move(synthesizer);
+    return {};
+  } catch (const std::bad_alloc&) {
+    return {ErrorCode::out_of_host_memory, "out of host memory while creating the subspace synthesizer"};
+  }
+}
+
+Status SubspaceSynthesizer::prepare(const Material& material, const SynthesisRequest& request) noexcept {
+  try {
+    prepared_.reset();
+    const DeviceInfo& device = context_->device_info();
+    const VkDeviceSize alignment = std::max<VkDeviceSize>(device.min_storage_buffer_offset_alignment, 16);
+    VkDeviceSize window_bytes = std::min(device.max_storage_buffer_range, kMaxWindowBytes);
+    if (max_batch_bytes_ > 0) window_bytes = std::min(window_bytes, max_batch_bytes_);
+
+    auto prepared = std::make_unique<Prepared>();
+    CARBTF_TRY(detail::plan_synthesis(material, request, window_bytes, prepared->plan));
+    const detail::SynthesisPlan& plan = prepared->plan;
+    if (plan.width > device.max_image_dimension_2d || plan.height > device.max_image_dimension_2d ||
+        plan.subspaces.size() > device.max_image_array_layers) {
+      return {ErrorCode::invalid_argument, std::to_string(plan.width) + "x" + std::to_string(plan.height) + " with " +
+                                               std::to_string(plan.subspaces.size()) + " layers exceeds " + device.name +
+                                               "'s image limits (" + std::to_string(device.max_image_dimension_2d) +
+                                               " texels, " + std::to_string(device.max_image_array_layers) + " layers)"};
+    }
+    for (const detail::PlannedBatch& batch : plan.batches) {
+      const std::uint32_t groups_y = std::max(ceil_div(batch.max_padded_rows, gpu::CARBTF_SYNTH_GROUP_Y),
+                                              ceil_div(plan.height, gpu::CARBTF_SYNTH_GROUP_Y));
+      const std::uint32_t groups_x = std::max(ceil_div(batch.max_pitch, gpu::CARBTF_SYNTH_GROUP_X),
+                                              ceil_div(plan.width, gpu::CARBTF_SYNTH_GROUP_X));
+      if (groups_x > device.max_compute_group_count[0] || groups_y > device.max_compute_group_count[1] ||
+          batch.fields.size() > device.max_compute_group_count[2] || batch.fields.size() > device.max_compute_group_count[0]) {
+        return {ErrorCode::invalid_argument, "the synthesis needs more workgroups than " + device.name + " dispatches"};
+      }
+    }
+    prepared->seed = request.seed;
+    prepared->poison = request.poison;
+    prepared->scheme = request.scheme;
+    if (prepared->scheme == CarScheme::automatic) {
+      prepared->scheme = device.type == VK_PHYSICAL_DEVICE_TYPE_CPU ? CarScheme::serial : CarScheme::wavefront;
+    }
+
+    // Tables: per batch the fields, each level's collapse items and the colour items, each aligned.
+    VkDeviceSize table_bytes = 0;
+    auto reserve = [&](VkDeviceSize bytes) {
+      const VkDeviceSize at = table_bytes;
+      table_bytes = align_up(table_bytes + std::max<VkDeviceSize>(bytes, 16), alignment);
+      return at;
+    };
+    for (const detail::PlannedBatch& batch : plan.batches) {
+      BatchTables tables;
+      tables.fields = reserve(batch.fields.size() * sizeof(gpu::CarFieldGpu));
+      for (const auto& items : batch.collapse) tables.collapse.push_back(reserve(items.size() * sizeof(gpu::CollapseItemGpu)));
+      tables.colour = reserve(batch.colour.size() * sizeof(gpu::ColourItemGpu));
+      prepared->tables.push_back(std::move(tables));
+    }
+    CARBTF_TRY(Buffer::create(*context_,
+                              {table_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::host_upload,
+                               "carbtf synthesis tables"},
+                              prepared->table_buffer));
+    auto* bytes = static_cast<std::uint8_t*>(prepared->table_buffer.mapped());
+    for (std::size_t b = 0; b < plan.batches.size(); ++b) {
+      const detail::PlannedBatch& batch = plan.batches[b];
+      const BatchTables& tables = prepared->tables[b];
+      for (std::size_t f = 0; f < batch.fields.size(); ++f) {
+        std::memcpy(bytes + tables.fields + f * sizeof(gpu::CarFieldGpu), &batch.fields[f].gpu, sizeof(gpu::CarFieldGpu));
+      }
+      for (std::size_t level = 0; level < batch.collapse.size(); ++level) {
+        std::memcpy(bytes + tables.collapse[level], batch.collapse[level].data(),
+                    batch.collapse[level].size() * sizeof(gpu::CollapseItemGpu));
+      }
+      std::memcpy(bytes + tables.colour, batch.colour.data(), batch.colour.size() * sizeof(gpu::ColourItemGpu));
+    }
+
+    CARBTF_TRY(Buffer::create(*context_,
+                              {plan.window_floats * sizeof(float),
+                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                                   VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                               MemoryUsage::device_local, "carbtf synthesis fields"},
+                              prepared->arena));
+    ImageCreateInfo image_info;
+    image_info.width = plan.width;
+    image_info.height = plan.height;
+    image_info.array_layers = static_cast<std::uint32_t>(plan.subspaces.size());
+    image_info.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    image_info.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                       VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    image_info.debug_name = "carbtf subspace images";
+    CARBTF_TRY(Image::create(*context_, image_info, prepared->image));
+    if (device.timestamp_valid_bits > 0) {
+      CARBTF_TRY(GpuTimer::create(*context_, 1 + kTimestampsPerBatch * static_cast<std::uint32_t>(plan.batches.size()),
+                                  prepared->timer));
+      prepared->timer_ready = true;
+    }
+    prepared_ = std::move(prepared);
+    return {};
+  } catch (const std::bad_alloc&) {
+    return {ErrorCode::out_of_host_memory, "out of host memory while planning the synthesis"};
+  }
+}
+
+Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) const noexcept {
+  if (!prepared_) return {ErrorCode::invalid_argument, "record() before a successful prepare()"};
+  Prepared& p = *prepared_;
+  const VulkanFunctions& vk = context_->vk();
+  const detail::SynthesisPlan& plan = p.plan;
+  const Pipelines& pipelines = *pipelines_;
+  timed = timed && p.timer_ready;
+  p.dispatches = 0;
+  std::uint32_t loop_cap = max_loop_iterations_ > 0 ? max_loop_iterations_ : kSafeLoopIterations;
+
+  if (timed) {
+    p.timer.record_reset(command_buffer);
+    p.timer.record_timestamp(command_buffer, 0, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT);
+  }
+  // The image: previous contents discarded, then GENERAL for storage writes.
+  auto to_general = vk_struct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
+  to_general.srcAccessMask = 0;
+  to_general.dstAccessMask = p.poison ? VK_ACCESS_TRANSFER_WRITE_BIT : VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT;
+  to_general.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  to_general.newLayout = p.poison ? VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL : VK_IMAGE_LAYOUT_GENERAL;
+  to_general.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  to_general.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  to_general.image = p.image.handle();
+  to_general.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, static_cast<std::uint32_t>(plan.subspaces.size())};
+  vk.vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr,
+                          1, &to_general);
+  if (p.poison) {
+    VkClearColorValue nan{};
+    nan.float32[0] = nan.float32[1] = nan.float32[2] = nan.float32[3] = kPoison;
+    vk.vkCmdClearColorImage(command_buffer, p.image.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &nan, 1,
+                            &to_general.subresourceRange);
+    to_general.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    to_general.dstAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT;
+    to_general.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    to_general.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+    vk.vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr,
+                            0, nullptr, 1, &to_general);
+  }
+
+  const VkBuffer tables = p.table_buffer.handle();
+  gpu::SynthPassParams params{};
+  params.seed_lo = static_cast<std::uint32_t>(p.seed);
+  params.seed_hi = static_cast<std::uint32_t>(p.seed >> 32);
+  for (std::size_t b = 0; b < plan.batches.size(); ++b) {
+    const detail::PlannedBatch& batch = plan.batches[b];
+    const BatchTables& t = p.tables[b];
+    const VkDeviceSize window_bytes = batch.window_floats * sizeof(float);
+    const auto arena = detail::BindingResource::of(p.arena.handle(), 0, window_bytes);
+    const auto field_count = static_cast<std::uint32_t>(batch.fields.size());
+    const VkDeviceSize field_bytes = field_count * sizeof(gpu::CarFieldGpu);
+
+    // The previous batch's colour pass (or the clear) must be done before its work memory is reused.
+    if (p.poison) {
+      compute_barrier(vk, command_buffer, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                      VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+      std::uint32_t nan_bits = 0;
+      std::memcpy(&nan_bits, &kPoison, sizeof(nan_bits));
+      vk.vkCmdFillBuffer(command_buffer, p.arena.handle(), 0, window_bytes, nan_bits);
+    }
+    compute_barrier(vk, command_buffer, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                    VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
+                    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+
+    // Frames and noise.
+    {
+      const detail::BindingResource resources[3] = {detail::BindingResource::of(tables, t.fields, field_bytes), arena,
+                                                    detail::BindingResource::of(tables, t.fields, field_bytes)};
+      params.item_count = field_count;
+      pipelines.prepare.bind(*context_, command_buffer, resources, &params, sizeof(params));
+      vk.vkCmdDispatch(command_buffer, ceil_div(batch.max_pitch, gpu::CARBTF_SYNTH_GROUP_X),
+                       ceil_div(batch.max_padded_rows, gpu::CARBTF_SYNTH_GROUP_Y), field_count);
+      ++p.dispatches;
+    }
+    const std::uint32_t stamp = 1 + kTimestampsPerBatch * static_cast<std::uint32_t>(b);
+    if (timed) p.timer.record_timestamp(command_buffer, stamp, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
+
+    // The recursions, split so that no invocation loops past the cap.
+    {
+      const detail::BindingResource resources[2] = {detail::BindingResource::of(tables, t.fields, field_bytes), arena};
+      const bool serial = p.scheme == CarScheme::serial;
+      const detail::ComputePipeline& pipeline = serial ? pipelines.serial : pipelines.wavefront;
+      std::uint64_t total = 0;
+      std::uint64_t chunk = 0;
+      if (serial) {
+        total = batch.max_region_pixels;
+        chunk = loop_cap;
+      } else {
+        // Each step loops over at most ceil(rows / group) rows, plus the step loop itself.
+        total = batch.max_steps;
+        chunk = std::max<std::uint64_t>(1, loop_cap / (ceil_div(batch.max_region_rows, gpu::CARBTF_CAR_WAVEFRONT_GROUP) + 1));
+      }
+      params.item_count = field_count;
+      for (std::uint64_t begin = 0; begin < total; begin += chunk) {
+        shader_to_shader(vk, command_buffer);
+        params.begin = static_cast<std::uint32_t>(begin);
+        params.end = static_cast<std::uint32_t>(std::min(total, begin + chunk));
+        pipeline.bind(*context_, command_buffer, resources, &params, sizeof(params));
+        vk.vkCmdDispatch(command_buffer, serial ? ceil_div(field_count, gpu::CARBTF_CAR_SERIAL_GROUP) : field_count, 1, 1);
+        ++p.dispatches;
+      }
+      params.begin = params.end = 0;
+    }
+    if (timed) p.timer.record_timestamp(command_buffer, stamp + 1, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
+
+    // Collapse, coarsest level first.
+    for (std::size_t level = batch.collapse.size(); level-- > 0;) {
+      const auto& items = batch.collapse[level];
+      shader_to_shader(vk, command_buffer);
+      const detail::BindingResource resources[2] = {
+          detail::BindingResource::of(tables, t.collapse[level], items.size() * sizeof(gpu::CollapseItemGpu)), arena};
+      params.item_count = static_cast<std::uint32_t>(items.size());
+      pipelines.collapse.bind(*context_, command_buffer, resources, &params, sizeof(params));
+      vk.vkCmdDispatch(command_buffer, ceil_div(batch.max_window_cols, gpu::CARBTF_SYNTH_GROUP_X),
+                       ceil_div(batch.max_window_rows, gpu::CARBTF_SYNTH_GROUP_Y), params.item_count);
+      ++p.dispatches;
+    }
+    if (timed) p.timer.record_timestamp(command_buffer, stamp + 2, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
+
+    // Colour transform into the output layers.
+    {
+      shader_to_shader(vk, command_buffer);
+      const detail::BindingResource resources[3] = {
+          detail::BindingResource::of(tables, t.colour, batch.colour.size() * sizeof(gpu::ColourItemGpu)), arena,
+          detail::BindingResource::of(p.image.view())};
+      params.item_count = static_cast<std::uint32_t>(batch.colour.size());
+      pipelines.colour.bind(*context_, command_buffer, resources, &params, sizeof(params));
+      vk.vkCmdDispatch(command_buffer, ceil_div(plan.width, gpu::CARBTF_SYNTH_GROUP_X),
+                       ceil_div(plan.height, gpu::CARBTF_SYNTH_GROUP_Y), params.item_count);
+      ++p.dispatches;
+    }
+    if (timed) p.timer.record_timestamp(command_buffer, stamp + 3, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
+  }
+  compute_barrier(vk, command_buffer, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
+  return {};
+}
+
+VkImage SubspaceSynthesizer::image() const noexcept { return prepared_ ? prepared_->image.handle() : VK_NULL_HANDLE; }
+VkImageView SubspaceSynthesizer::image_view() const noexcept { return prepared_ ? prepared_->image.view() : VK_NULL_HANDLE; }
+std::uint32_t SubspaceSynthesizer::width() const noexcept { return prepared_ ? prepared_->plan.width : 0; }
+std::uint32_t SubspaceSynthesizer::height() const noexcept { return prepared_ ? prepared_->plan.height : 0; }
+CarScheme SubspaceSynthesizer::scheme() const noexcept { return prepared_ ? prepared_->scheme : CarScheme::automatic; }
+std::uint32_t SubspaceSynthesizer::batch_count() const noexcept {
+  return prepared_ ? static_cast<std::uint32_t>(prepared_->plan.batches.size()) : 0;
+}
+
+std::uint32_t SubspaceSynthesizer::layer_of(std::uint32_t subspace) const noexcept {
+  if (!prepared_) return std::numeric_limits<std::uint32_t>::max();
+  const auto& subspaces = prepared_->plan.subspaces;
+  const auto it = std::find(subspaces.begin(), subspaces.end(), subspace);
+  return it == subspaces.end() ? std::numeric_limits<std::uint32_t>::max()
+                               : static_cast<std::uint32_t>(it - subspaces.begin());
+}
+
+Status SubspaceSynthesizer::record_interpolation(VkCommandBuffer command_buffer, const Material& material,
+                                                 const PairWeights& weights, VkImageView target) const noexcept {
+  if (!prepared_) return {ErrorCode::invalid_argument, "record_interpolation() before a successful prepare()"};
+  gpu::InterpolateParams params{};
+  params.width = prepared_->plan.width;
+  params.height = prepared_->plan.height;
+  for (int k = 0; k < 9; ++k) {
+    params.weight[k] = weights.weight[k];
+    if (weights.weight[k] == 0.0f) continue;
+    if (weights.light[k] >= material.lights.size() || weights.view[k] >= material.views.size()) {
+      return {ErrorCode::invalid_argument, "interpolation pair out of the material's direction range"};
+    }
+    const std::uint32_t subspace = subspace_of(material, weights.light[k], weights.view[k]);
+    const std::uint32_t layer = layer_of(subspace);
+    if (layer == std::numeric_limits<std::uint32_t>::max()) {
+      return {ErrorCode::invalid_argument,
+              "interpolation needs subspace image " + std::to_string(subspace) + ", which was not synthesized"};
+    }
+    params.layer[k] = layer;
+  }
+  const detail::BindingResource resources[2] = {detail::BindingResource::of(prepared_->image.view()),
+                                                detail::BindingResource::of(target)};
+  pipelines_->interpolate.bind(*context_, command_buffer, resources, &params, sizeof(params));
+  context_->vk().vkCmdDispatch(command_buffer, ceil_div(params.width, gpu::CARBTF_SYNTH_GROUP_X),
+                               ceil_div(params.height, gpu::CARBTF_SYNTH_GROUP_Y), 1);
+  return {};
+}
+
+Status SubspaceSynthesizer::timing(SynthesisTiming& out) const noexcept {
+  out = {};
+  if (!prepared_) return {ErrorCode::invalid_argument, "timing() before a successful prepare()"};
+  out.batches = static_cast<std::uint32_t>(prepared_->plan.batches.size());
+  out.dispatches = prepared_->dispatches;
+  if (!prepared_->timer_ready) return {};
+  const GpuTimer& timer = prepared_->timer;
+  std::uint32_t previous = 0;
+  for (std::uint32_t b = 0; b < out.batches; ++b) {
+    const std::uint32_t stamp = 1 + kTimestampsPerBatch * b;
+    double ms[4] = {};
+    CARBTF_TRY(timer.elapsed_ms(previous, stamp, ms[0]));
+    CARBTF_TRY(timer.elapsed_ms(stamp, stamp + 1, ms[1]));
+    CARBTF_TRY(timer.elapsed_ms(stamp + 1, stamp + 2, ms[2]));
+    CARBTF_TRY(timer.elapsed_ms(stamp + 2, stamp + 3, ms[3]));
+    out.prepare_ms += ms[0];
+    out.car_ms += ms[1];
+    out.collapse_ms += ms[2];
+    out.colour_ms += ms[3];
+    previous = stamp + 3;
+  }
+  CARBTF_TRY(timer.elapsed_ms(0, previous, out.total_ms));
+  return {};
+}
+
+namespace {
+
+// Copies layers [0, layers) of an RGBA32F image (in GENERAL, last written by compute shaders) into a
+// host buffer, tightly packed; the image is back in GENERAL afterwards.
+void record_image_readback(const VulkanFunctions& vk, VkCommandBuffer command_buffer, VkImage image, std::uint32_t width,
+                           std::uint32_t height, std::uint32_t layers, VkBuffer destination) {
+  auto transition = vk_struct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
+  transition.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+  transition.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+  transition.oldLayout = VK_IMAGE_LAYOUT_GENERAL;
+  transition.newLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+  transition.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  transition.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  transition.image = image;
+  transition.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers};
+  vk.vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
+                          nullptr, 1, &transition);
+  VkBufferImageCopy copy{};
+  copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, layers};
+  copy.imageExtent = {width, height, 1};
+  vk.vkCmdCopyImageToBuffer(command_buffer, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, destination, 1, &copy);
+  transition.srcAccessMask = 0;  // a read needs no availability, only ordering before later writes
+  transition.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+  transition.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+  transition.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+  vk.vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0,
+                          nullptr, 1, &transition);
+  compute_barrier(vk, command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
+}
+
+void unpack_rgba(const float* rgba, std::size_t pixels, std::uint32_t channels, std::vector<float>& out) {
+  out.resize(pixels * channels);
+  for (std::size_t p = 0; p < pixels; ++p) {
+    for (std::uint32_t c = 0; c < channels; ++c) out[p * channels + c] = rgba[p * 4 + c];
+  }
+}
+
+}  // namespace
+
+Status SubspaceSynthesizer::synthesize(const Material& material, const SynthesisRequest& request, SynthesizedImages& out,
+                                       SynthesisTiming* timing_out) noexcept {
+  CARBTF_TRY(prepare(material, request));
+  try {
+    const detail::SynthesisPlan& plan = prepared_->plan;
+    const VkDeviceSize layer_bytes = VkDeviceSize{plan.width} * plan.height * 4 * sizeof(float);
+    Buffer readback;
+    CARBTF_TRY(Buffer::create(*context_,
+                              {layer_bytes * plan.subspaces.size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                               MemoryUsage::host_readback, "carbtf subspace readback"},
+                              readback));
+    const auto record_work = [&](VkCommandBuffer command_buffer) -> Status {
+      CARBTF_TRY(record(command_buffer, timing_out != nullptr));
+      record_image_readback(context_->vk(), command_buffer, prepared_->image.handle(), plan.width, plan.height,
+                            static_cast<std::uint32_t>(plan.subspaces.size()), readback.handle());
+      return {};
+    };
+    CARBTF_TRY(context_->submit_and_wait(record_work));
+    CARBTF_TRY(readback.invalidate_for_host_read());
+    if (timing_out) CARBTF_TRY(timing(*timing_out));
+    out = {};
+    out.width = plan.width;
+    out.height = plan.height;
+    out.channels.assign(material.subspaces.size(), 0);
+    out.images.assign(material.subspaces.size(), {});
+    const auto* rgba = static_cast<const float*>(readback.mapped());
+    const std::size_t pixels = std::size_t{plan.width} * plan.height;
+    for (std::size_t layer = 0; layer < plan.subspaces.size(); ++layer) {
+      const std::uint32_t s = plan.subspaces[layer];
+      out.channels[s] = plan.channels[layer];
+      unpack_rgba(rgba + layer * pixels * 4, pixels, plan.channels[layer], out.images[s]);
+    }
+    return {};
+  } catch (const std::bad_alloc&) {
+    return {ErrorCode::out_of_host_memory, "out of host memory while reading back subspace images"};
+  }
+}
+
+Status SubspaceSynthesizer::interpolate(const Material& material, const PairWeights& weights,
+                                        std::vector<float>& out) noexcept {
+  if (!prepared_) return {ErrorCode::invalid_argument, "interpolate() before synthesize()"};
+  try {
+    const detail::SynthesisPlan& plan = prepared_->plan;
+    ImageCreateInfo info;
+    info.width = plan.width;
+    info.height = plan.height;
+    info.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    info.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    info.debug_name = "carbtf interpolated image";
+    Image target;
+    CARBTF_TRY(Image::create(*context_, info, target));
+    Buffer readback;
+    const VkDeviceSize bytes = VkDeviceSize{plan.width} * plan.height * 4 * sizeof(float);
+    CARBTF_TRY(Buffer::create(*context_,
+                              {bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::host_readback, "carbtf interpolated readback"},
+                              readback));
+    const VulkanFunctions& vk = context_->vk();
+    const auto record_work = [&](VkCommandBuffer command_buffer) -> Status {
+      auto to_general = vk_struct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
+      to_general.dstAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+      to_general.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+      to_general.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+      to_general.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+      to_general.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+      to_general.image = target.handle();
+      to_general.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+      vk.vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0,
+                              nullptr, 0, nullptr, 1, &to_general);
+      CARBTF_TRY(record_interpolation(command_buffer, material, weights, target.view()));
+      record_image_readback(vk, command_buffer, target.handle(), plan.width, plan.height, 1, readback.handle());
+      return {};
+    };
+    CARBTF_TRY(context_->submit_and_wait(record_work));
+    CARBTF_TRY(readback.invalidate_for_host_read());
+    std::uint32_t channels = 0;
+    for (int k = 0; k < 9; ++k) {
+      if (weights.weight[k] != 0.0f) {
+        channels = plan.channels[layer_of(subspace_of(material, weights.light[k], weights.view[k]))];
+        break;
+      }
+    }
+    unpack_rgba(static_cast<const float*>(readback.mapped()), std::size_t{plan.width} * plan.height,
+                channels == 0 ? plan.channels[0] : channels, out);
+    return {};
+  } catch (const std::bad_alloc&) {
+    return {ErrorCode::out_of_host_memory, "out of host memory while interpolating"};
+  }
+}
+
+}  // namespace carbtf

@@ -1,0 +1,57 @@
+// Internal: the host-side plan of a GPU subspace synthesis. Lays out every CAR field (subspace x level x
+// channel) of a request in batches whose work window fits one storage-buffer binding, and fills the
+// item tables the kernels read (carbtf_gpu_shared.h). No Vulkan calls, so it is cheap to test.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <carbtf_gpu_shared.h>
+
+#include "carbtf/engine/material.hpp"
+#include "carbtf/engine/status.hpp"
+#include "carbtf/engine/subspace_synthesizer.hpp"
+#include "carbtf/engine/synthesis_layout.hpp"
+
+namespace carbtf::detail {
+
+// Where one field lies: which band, and its place in the batch window (gpu.offset and friends).
+struct PlannedField {
+  std::uint32_t subspace = 0;
+  std::uint32_t level = 0;
+  std::uint32_t channel = 0;
+  TextureRegion window;  // the level window the collapse uses (absolute coordinates)
+  gpu::CarFieldGpu gpu{};
+  std::uint32_t window_element() const noexcept;  // window (0, 0) in the batch window
+  std::uint32_t steps() const noexcept;           // wavefront steps: skew * (rows - 1) + cols
+};
+
+struct PlannedBatch {
+  std::vector<PlannedField> fields;                      // level 0 of every stack first, then level 1, ...
+  std::vector<std::vector<gpu::CollapseItemGpu>> collapse;  // [level]: the items collapsing that level
+  std::vector<gpu::ColourItemGpu> colour;
+  std::uint64_t window_floats = 0;
+  std::uint32_t max_padded_rows = 0;
+  std::uint32_t max_pitch = 0;
+  std::uint32_t max_window_rows = 0;
+  std::uint32_t max_window_cols = 0;
+  std::uint64_t max_region_pixels = 0;
+  std::uint32_t max_region_rows = 0;
+  std::uint32_t max_steps = 0;
+};
+
+struct SynthesisPlan {
+  std::vector<std::uint32_t> subspaces;  // one per output layer
+  std::vector<std::uint32_t> channels;   // per output layer
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  std::vector<PlannedBatch> batches;
+  std::uint64_t window_floats = 0;  // the largest batch window
+};
+
+// Plans `request` over `material` with batch windows of at most `max_window_bytes`. invalid_argument
+// (naming the cause) for a request the GPU path cannot serve.
+Status plan_synthesis(const Material& material, const SynthesisRequest& request, std::uint64_t max_window_bytes,
+                      SynthesisPlan& out);
+
+}  // namespace carbtf::detail
