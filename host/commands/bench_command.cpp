@@ -154,6 +154,7 @@ void register_bench_command(CLI::App& app) {
   data->callback([data_options] { run_data_bench(*data_options); });
 
   register_bench_analyze_command(*bench);
+  register_bench_synth_command(*bench);
 }
 
 }  // namespace carbtf::cli

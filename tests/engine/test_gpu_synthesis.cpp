@@ -7,8 +7,8 @@
 #include <limits>
 
 #include "carbtf/analysis/reference/subspace_synthesis.hpp"
+#include "carbtf/analysis/sample/synthetic_material.hpp"
 #include "carbtf/engine/subspace_synthesizer.hpp"
-#include "synthetic_material.hpp"
 #include "test_support.hpp"
 
 using namespace carbtf;
@@ -50,7 +50,7 @@ TEST_CASE("GPU subspace images equal the CPU float32 reference bit for bit, in b
   test::ValidatedContext context;
   auto synthesizer = make_synthesizer(*context);
   // 5 subspaces x 3 channels x 3 levels: 45 fields with 1 to 12 neighbours each.
-  const Material m = test::synthetic_material(5, 3);
+  const Material m = synthetic_material(5, 3);
   SynthesisRequest request;
   request.seed = 0x5eedULL;
   request.width = 512;
@@ -76,7 +76,7 @@ TEST_CASE("GPU subspace images equal the CPU float32 reference bit for bit, in b
 TEST_CASE("blocks at negative and odd offsets, split dispatches and small batches give the same bits", "[gpu_synthesis][gpu]") {
   test::ValidatedContext context;
   auto synthesizer = make_synthesizer(*context);
-  const Material m = test::synthetic_material(3, 3);
+  const Material m = synthetic_material(3, 3);
   SynthesisRequest request;
   request.seed = 77;
   request.row0 = -101;
@@ -115,7 +115,7 @@ TEST_CASE("blocks at negative and odd offsets, split dispatches and small batche
 TEST_CASE("a 4096x4096 subspace image leaves no texel unwritten and matches the CPU", "[gpu_synthesis][gpu][large]") {
   test::ValidatedContext context;
   auto synthesizer = make_synthesizer(*context);
-  const Material m = test::synthetic_material(1, 3);
+  const Material m = synthetic_material(1, 3);
   SynthesisRequest request;
   request.seed = 4096;
   request.width = 4096;
@@ -132,7 +132,7 @@ TEST_CASE("a 4096x4096 subspace image leaves no texel unwritten and matches the 
 TEST_CASE("a near-unit-root band stays bounded and equal to the CPU", "[gpu_synthesis][gpu][stiff]") {
   test::ValidatedContext context;
   auto synthesizer = make_synthesizer(*context);
-  Material m = test::synthetic_material(1, 1);
+  Material m = synthetic_material(1, 1);
   // Spectral radius 0.99 along rows and columns: y = 0.99 y(r - 1) ... the repaired ceiling of analysis.
   for (CarBandModel& band : m.subspaces[0].bands) {
     band.neighbourhood = {{0, -1}, {-1, 0}, {-1, -1}};
@@ -160,7 +160,7 @@ TEST_CASE("a near-unit-root band stays bounded and equal to the CPU", "[gpu_synt
 TEST_CASE("GPU interpolation equals the CPU blend of the same subspace images", "[gpu_synthesis][gpu][interpolation]") {
   test::ValidatedContext context;
   auto synthesizer = make_synthesizer(*context);
-  const Material m = test::synthetic_material(4, 2);
+  const Material m = synthetic_material(4, 2);
   SynthesisRequest request;
   request.seed = 11;
   request.width = 96;
@@ -187,7 +187,7 @@ TEST_CASE("GPU interpolation equals the CPU blend of the same subspace images", 
 TEST_CASE("requests the GPU path cannot serve fail with a message naming the cause", "[gpu_synthesis][gpu]") {
   test::ValidatedContext context;
   auto synthesizer = make_synthesizer(*context);
-  Material m = test::synthetic_material(2, 1);
+  Material m = synthetic_material(2, 1);
   SynthesisRequest request;
   request.width = request.height = 16;
   SynthesizedImages images;
@@ -207,12 +207,12 @@ TEST_CASE("requests the GPU path cannot serve fail with a message naming the cau
   CHECK_THAT(status.message(), Catch::Contains("at least 1x1"));
 
   request.width = 16;
-  Material wide = test::synthetic_material(1, 1, 5);
+  Material wide = synthetic_material(1, 1, 5);
   status = synthesizer->synthesize(wide, request, images);
   CHECK_THAT(status.message(), Catch::Contains("5 channels"));
 
   CarBandModel& band = m.subspaces[0].bands[0];
-  band.neighbourhood = test::wide_neighbourhood();
+  band.neighbourhood = wide_neighbourhood();
   for (int k = 0; k < 5; ++k) band.neighbourhood.push_back({-3, static_cast<std::int8_t>(k)});
   band.gamma.assign(band.neighbourhood.size(), 0.01f);
   status = synthesizer->synthesize(m, request, images);

@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "../parallel_for.hpp"
 #include "carbtf/analysis/reference/car_synthesis.hpp"
 #include "carbtf/engine/synthesis_layout.hpp"
 
@@ -89,7 +90,35 @@ void synthesize(const Material& material, std::uint32_t subspace, const Subspace
   }
 }
 
+template <typename Real>
+std::vector<std::vector<Real>> synthesize_many(const Material& material, std::span<const std::uint32_t> subspaces,
+                                               const SubspaceBlock& block, unsigned threads) {
+  std::vector<std::uint32_t> list(subspaces.begin(), subspaces.end());
+  if (list.empty()) {
+    for (std::uint32_t s = 0; s < material.subspaces.size(); ++s) list.push_back(s);
+  }
+  for (std::uint32_t s : list) {
+    if (s >= material.subspaces.size()) throw std::invalid_argument("subspace " + std::to_string(s) + " does not exist");
+  }
+  std::vector<std::vector<Real>> images(material.subspaces.size());
+  for (std::uint32_t s : list) images[s].resize(std::size_t{block.width} * block.height * material.subspaces[s].channels);
+  detail::parallel_for(list.size(), threads, [&](std::size_t i) {
+    synthesize(material, list[i], block, std::span<Real>(images[list[i]]));
+  });
+  return images;
+}
+
 }  // namespace
+
+std::vector<std::vector<float>> synthesize_subspaces(const Material& material, std::span<const std::uint32_t> subspaces,
+                                                     const SubspaceBlock& block, unsigned threads) {
+  return synthesize_many<float>(material, subspaces, block, threads);
+}
+
+std::vector<std::vector<double>> synthesize_subspaces_f64(const Material& material, std::span<const std::uint32_t> subspaces,
+                                                          const SubspaceBlock& block, unsigned threads) {
+  return synthesize_many<double>(material, subspaces, block, threads);
+}
 
 void synthesize_subspace(const Material& material, std::uint32_t subspace, const SubspaceBlock& block, std::span<float> out) {
   synthesize(material, subspace, block, out);

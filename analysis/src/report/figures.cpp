@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
+#include <string>
+
+#include "bitmap_font.hpp"
 
 namespace carbtf {
 namespace {
@@ -27,6 +31,22 @@ void draw_line(Figure& f, double x0, double y0, double x1, double y1, std::array
     const double t = static_cast<double>(i) / steps;
     set_pixel(f, std::lround(x0 + t * (x1 - x0)), std::lround(y0 + t * (y1 - y0)), colour);
   }
+}
+
+void draw_text(Figure& f, std::string_view text, int x, int y, std::array<float, 3> colour, int scale = 1) {
+  detail::rasterize_text(text, x, y, scale, [&](int px, int py) { set_pixel(f, px, py, colour); });
+}
+
+// Vertical text, bottom to top (a y-axis title).
+void draw_text_up(Figure& f, std::string_view text, int x, int y_bottom, std::array<float, 3> colour) {
+  detail::rasterize_text(text, 0, 0, 1, [&](int px, int py) { set_pixel(f, x + py, y_bottom - px, colour); });
+}
+
+// "1E-3", "0.1", "1", "10", "1E4": a decade's label, short.
+std::string decade_label(int exponent) {
+  if (exponent >= 0 && exponent <= 3) return std::to_string(static_cast<int>(std::lround(std::pow(10.0, exponent))));
+  if (exponent == -1) return "0.1";
+  return "1E" + std::to_string(exponent);
 }
 
 Figure blank(std::uint32_t width, std::uint32_t height, float grey) {
@@ -87,6 +107,59 @@ Figure eigenvalue_figure(std::span<const double> eigenvalues, std::uint32_t widt
   }
   draw_line(f, margin, margin, margin, margin + plot_h, axis);
   draw_line(f, margin, margin + plot_h, margin + plot_w, margin + plot_h, axis);
+  draw_text(f, "EIGENVALUE (LOG10) AGAINST RANK, " + std::to_string(logs.size()) + " VALUES", static_cast<int>(margin), 10, axis);
+  return f;
+}
+
+Figure scatter_figure(std::span<const ScatterPoint> points, std::string_view x_title, std::string_view y_title,
+                      std::span<const std::string_view> legend, std::uint32_t width, std::uint32_t height) {
+  Figure f = blank(width, height, 1.0f);
+  const std::array<float, 3> axis{0.0f, 0.0f, 0.0f}, grid{0.88f, 0.88f, 0.88f}, label{0.25f, 0.25f, 0.25f};
+  const double left = 70.0, right = 20.0, top = 20.0, bottom = 50.0;
+  const double plot_w = width - left - right, plot_h = height - top - bottom;
+  double x_lo = INFINITY, x_hi = -INFINITY, y_lo = INFINITY, y_hi = -INFINITY;
+  for (const ScatterPoint& p : points) {
+    if (!(p.x > 0.0) || !(p.y > 0.0)) continue;
+    x_lo = std::min(x_lo, std::log10(p.x));
+    x_hi = std::max(x_hi, std::log10(p.x));
+    y_lo = std::min(y_lo, std::log10(p.y));
+    y_hi = std::max(y_hi, std::log10(p.y));
+  }
+  if (!(x_lo <= x_hi)) x_lo = 0.0, x_hi = 1.0, y_lo = 0.0, y_hi = 1.0;
+  x_lo = std::floor(x_lo), x_hi = std::max(std::ceil(x_hi), x_lo + 1.0);
+  y_lo = std::floor(y_lo), y_hi = std::max(std::ceil(y_hi), y_lo + 1.0);
+  auto x_of = [&](double lg) { return left + (lg - x_lo) / (x_hi - x_lo) * plot_w; };
+  auto y_of = [&](double lg) { return top + (y_hi - lg) / (y_hi - y_lo) * plot_h; };
+  for (double d = x_lo; d <= x_hi; d += 1.0) {
+    draw_line(f, x_of(d), top, x_of(d), top + plot_h, grid);
+    const std::string text = decade_label(static_cast<int>(d));
+    draw_text(f, text, static_cast<int>(x_of(d)) - detail::text_width(text, 1) / 2, static_cast<int>(top + plot_h) + 6, label);
+  }
+  for (double d = y_lo; d <= y_hi; d += 1.0) {
+    draw_line(f, left, y_of(d), left + plot_w, y_of(d), grid);
+    const std::string text = decade_label(static_cast<int>(d));
+    draw_text(f, text, static_cast<int>(left) - 6 - detail::text_width(text, 1), static_cast<int>(y_of(d)) - 3, label);
+  }
+  draw_line(f, left, top, left, top + plot_h, axis);
+  draw_line(f, left, top + plot_h, left + plot_w, top + plot_h, axis);
+  draw_text(f, x_title, static_cast<int>(left + plot_w / 2) - detail::text_width(x_title, 1) / 2, static_cast<int>(height) - 18, axis);
+  draw_text_up(f, y_title, 8, static_cast<int>(top + plot_h / 2) + detail::text_width(y_title, 1) / 2, axis);
+  for (const ScatterPoint& p : points) {
+    if (!(p.x > 0.0) || !(p.y > 0.0)) continue;
+    const auto colour = subspace_colour(2 * p.series);
+    const long cx = std::lround(x_of(std::log10(p.x))), cy = std::lround(y_of(std::log10(p.y)));
+    for (int dy = -3; dy <= 3; ++dy)
+      for (int dx = -3; dx <= 3; ++dx)
+        if (dx * dx + dy * dy <= 9) set_pixel(f, cx + dx, cy + dy, colour);
+  }
+  for (std::size_t i = 0; i < legend.size(); ++i) {
+    const int y = static_cast<int>(top) + 8 + static_cast<int>(i) * 14;
+    const int x = static_cast<int>(left + plot_w) - 12 - detail::text_width(legend[i], 1);
+    const auto colour = subspace_colour(2 * static_cast<std::uint32_t>(i));
+    for (int dy = 0; dy < 7; ++dy)
+      for (int dx = 0; dx < 7; ++dx) set_pixel(f, x - 12 + dx, y + dy, colour);
+    draw_text(f, legend[i], x, y, axis);
+  }
   return f;
 }
 

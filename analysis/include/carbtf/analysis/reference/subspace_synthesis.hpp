@@ -38,6 +38,14 @@ struct SubspaceBlock {
 void synthesize_subspace(const Material& material, std::uint32_t subspace, const SubspaceBlock& block, std::span<float> out);
 void synthesize_subspace(const Material& material, std::uint32_t subspace, const SubspaceBlock& block, std::span<double> out);
 
+// Synthesizes the listed subspace images (empty: all) with one task per image on `threads` threads (0:
+// all hardware threads). Result indexed by subspace id, empty where not listed. Throws like
+// synthesize_subspace.
+std::vector<std::vector<float>> synthesize_subspaces(const Material& material, std::span<const std::uint32_t> subspaces,
+                                                     const SubspaceBlock& block, unsigned threads = 0);
+std::vector<std::vector<double>> synthesize_subspaces_f64(const Material& material, std::span<const std::uint32_t> subspaces,
+                                                          const SubspaceBlock& block, unsigned threads = 0);
+
 // The 9-weight interpolation of synthesized subspace images: out = sum_k w_k * images[subspace of
 // pair k]; `images[s]` holds subspace s (pixel_count * channels values) or is empty when not needed.
 // Throws std::invalid_argument when a needed subspace image is missing.

@@ -1,11 +1,12 @@
-// Pictures of an analysis, as RGB float images ready for write_rgb_image(..., srgb_encode = false):
-// values are already display-encoded in [0, 1]. No text is drawn; the accompanying CSV files and HTML
-// reports carry the numbers.
+// Pictures of an analysis and of benchmarks, as RGB float images ready for write_rgb_image(...,
+// srgb_encode = false): values are already display-encoded in [0, 1]. Plots carry axis titles and
+// decade labels in a 5x7 bitmap font; the accompanying CSV files carry the exact numbers.
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <span>
+#include <string_view>
 #include <vector>
 
 namespace carbtf {
@@ -24,6 +25,18 @@ Figure index_table_figure(std::span<const std::uint8_t> index, std::uint32_t lig
 
 // The paper's Fig. 4: log10 of the eigenvalues against their rank, with a light grid line per decade.
 Figure eigenvalue_figure(std::span<const double> eigenvalues, std::uint32_t width = 640, std::uint32_t height = 400);
+
+// A point of a scatter plot; `series` picks its colour (subspace_colour(2 * series)) and legend entry.
+struct ScatterPoint {
+  double x = 0.0;
+  double y = 0.0;
+  std::uint32_t series = 0;
+};
+
+// Log-log scatter plot with a grid line and a label per decade, axis titles, and a legend naming each
+// series (legend[i] for series i). Non-positive values are left out.
+Figure scatter_figure(std::span<const ScatterPoint> points, std::string_view x_title, std::string_view y_title,
+                      std::span<const std::string_view> legend = {}, std::uint32_t width = 720, std::uint32_t height = 480);
 
 // A display colour of subspace `index` (sRGB-encoded, [0, 1]).
 std::array<float, 3> subspace_colour(std::uint32_t index);

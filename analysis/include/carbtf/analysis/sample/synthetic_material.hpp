@@ -1,5 +1,6 @@
-// Materials built in code for synthesis tests: known, stable CAR bands with every neighbourhood shape
-// the analysis fits, so a test states exactly what it synthesizes.
+// Materials built in code with known, stable CAR bands in the neighbourhood shapes the analysis fits:
+// synthesis tests state exactly what they synthesize, and `carbtf bench synth` sweeps neighbourhood
+// size, pyramid levels and subspace count independently of any measurement.
 #pragma once
 
 #include <cstdint>
@@ -7,7 +8,7 @@
 
 #include "carbtf/engine/material.hpp"
 
-namespace carbtf::test {
+namespace carbtf {
 
 // The 12-neighbour causal neighbourhood (reach 2 rows up, |dc| <= 2), the largest the analysis fits.
 inline std::vector<CarNeighbour> wide_neighbourhood() {
@@ -26,18 +27,27 @@ inline CarBandModel spread_band(std::vector<CarNeighbour> neighbourhood, float t
   return band;
 }
 
-// `subspaces` subspace images over a 3x3 direction set, `levels` pyramid levels, 3 channels. Band
-// neighbourhoods cycle through 1, 2, 4, 6 and 12 neighbours so that every tap count is exercised.
-inline Material synthetic_material(std::uint32_t subspaces, std::uint32_t levels, std::uint32_t channels = 3) {
+// The causal neighbourhoods of 1, 2, 4, 6 and 12 neighbours.
+inline std::vector<std::vector<CarNeighbour>> neighbourhood_shapes() {
+  return {{{-1, 0}},
+          {{0, -1}, {-1, 0}},
+          {{0, -1}, {-1, -1}, {-1, 0}, {-1, 1}},
+          {{0, -1}, {0, -2}, {-1, -1}, {-1, 0}, {-1, 1}, {-2, 0}},
+          wide_neighbourhood()};
+}
+
+// `subspaces` subspace images over a 7-direction set, `levels` pyramid levels, `channels` channels.
+// Band neighbourhoods cycle through neighbourhood_shapes() so that every tap count is exercised, or all
+// have `neighbours` neighbours when that names one of the shapes' sizes.
+inline Material synthetic_material(std::uint32_t subspaces, std::uint32_t levels, std::uint32_t channels = 3,
+                                   std::uint32_t neighbours = 0) {
   Material m;
   m.lights = {{0.0f, 0.0f}, {0.6f, 0.0f}, {0.6f, 2.1f}, {0.6f, 4.2f}, {1.2f, 1.0f}, {1.2f, 3.1f}, {1.2f, 5.2f}};
   m.views = m.lights;
-  const std::vector<std::vector<CarNeighbour>> shapes = {
-      {{-1, 0}},
-      {{0, -1}, {-1, 0}},
-      {{0, -1}, {-1, -1}, {-1, 0}, {-1, 1}},
-      {{0, -1}, {0, -2}, {-1, -1}, {-1, 0}, {-1, 1}, {-2, 0}},
-      wide_neighbourhood()};
+  std::vector<std::vector<CarNeighbour>> shapes = neighbourhood_shapes();
+  for (const auto& candidate : neighbourhood_shapes()) {
+    if (candidate.size() == neighbours) shapes = {candidate};
+  }
   for (std::size_t i = 0; i < m.lights.size() * m.views.size(); ++i) m.subspace_index.push_back(static_cast<std::uint8_t>(i % subspaces));
   std::uint32_t shape = 0;
   for (std::uint32_t s = 0; s < subspaces; ++s) {
@@ -65,4 +75,4 @@ inline Material synthetic_material(std::uint32_t subspaces, std::uint32_t levels
   return m;
 }
 
-}  // namespace carbtf::test
+}  // namespace carbtf

@@ -1,0 +1,255 @@
+// `carbtf bench synth`: error against run time of subspace-image synthesis. Sweeps output size, pyramid
+// levels, neighbourhood size and subspace count one at a time around a base case, on the Vulkan device
+// and on the CPU reference, and writes what it measured as CSV, markdown and a PNG plot. Nothing here
+// asserts a timing.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include "carbtf/analysis/image_io.hpp"
+#include "carbtf/analysis/reference/conformance.hpp"
+#include "carbtf/analysis/reference/subspace_synthesis.hpp"
+#include "carbtf/analysis/report/figures.hpp"
+#include "carbtf/analysis/sample/synthetic_material.hpp"
+#include "carbtf/engine/material_file.hpp"
+#include "carbtf/engine/subspace_synthesizer.hpp"
+#include "cli/cli_support.hpp"
+#include "commands/commands.hpp"
+
+namespace carbtf::cli {
+namespace {
+
+struct SynthBenchOptions {
+  DeviceOptions device;
+  std::string material;  // empty: synthetic materials
+  std::string out = "carbtf-bench-synth";
+  std::vector<std::uint32_t> sizes = {128, 256, 512, 1024, 2048};
+  std::vector<std::uint32_t> levels = {1, 2, 3};
+  std::vector<std::uint32_t> neighbours = {1, 2, 4, 6, 12};
+  std::vector<std::uint32_t> subspace_counts = {1, 5, 10, 20};
+  std::uint32_t base_size = 512;
+  std::uint32_t base_levels = 3;
+  std::uint32_t base_subspaces = 20;
+  std::uint32_t size_sweep_subspaces = 5;
+  std::uint32_t margin = 64;
+  unsigned repeats = 5;
+  unsigned cpu_threads = 2;
+  std::string scheme = "automatic";
+  bool skip_cpu = false;
+};
+
+struct BenchCase {
+  std::string sweep;
+  std::uint32_t size = 512;
+  std::uint32_t levels = 3;
+  std::uint32_t neighbours = 0;  // 0: the material's own / mixed shapes
+  std::uint32_t subspaces = 20;
+};
+
+struct BenchRow {
+  BenchCase config;
+  std::string scheme;
+  double gpu_ms = 0.0;       // median GPU timestamps, whole synthesis
+  double gpu_car_ms = 0.0;   // of which the recursions
+  double gpu_wall_ms = 0.0;  // median wall time including submit, wait and readback
+  double cpu_ms = 0.0;       // CPU float32 reference on cpu_threads threads
+  double cpu64_ms = 0.0;     // CPU float64 reference (the accuracy reference)
+  reference::ConformanceError gpu_error;
+  reference::ConformanceError cpu_error;
+  std::uint32_t batches = 0;
+  std::uint32_t dispatches = 0;
+};
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+CarScheme parse_scheme(const std::string& name) {
+  if (name == "serial") return CarScheme::serial;
+  if (name == "wavefront") return CarScheme::wavefront;
+  return CarScheme::automatic;
+}
+
+Material material_for(const SynthBenchOptions& options, const BenchCase& c, const Material* loaded) {
+  if (!loaded) return synthetic_material(c.subspaces, c.levels, 3, c.neighbours);
+  Material m = *loaded;
+  m.subspaces.resize(std::min<std::size_t>(m.subspaces.size(), c.subspaces));
+  (void)options;
+  return m;
+}
+
+BenchRow run_case(const SynthBenchOptions& options, const BenchCase& c, SubspaceSynthesizer& synthesizer, const Material* loaded) {
+  const Material material = material_for(options, c, loaded);
+  SynthesisRequest request;
+  request.seed = 1;
+  request.width = request.height = c.size;
+  request.margin = options.margin;
+  request.scheme = parse_scheme(options.scheme);
+  BenchRow row;
+  row.config = c;
+  row.config.subspaces = static_cast<std::uint32_t>(material.subspaces.size());
+
+  SynthesizedImages images;
+  check(synthesizer.synthesize(material, request, images), "synthesis failed");  // warm-up
+  std::vector<double> gpu, car, wall;
+  for (unsigned i = 0; i < options.repeats; ++i) {
+    SynthesisTiming timing;
+    const auto start = std::chrono::steady_clock::now();
+    check(synthesizer.synthesize(material, request, images, &timing), "synthesis failed");
+    wall.push_back(seconds_since(start) * 1e3);
+    gpu.push_back(timing.total_ms);
+    car.push_back(timing.car_ms);
+    row.batches = timing.batches;
+    row.dispatches = timing.dispatches;
+  }
+  row.scheme = car_scheme_name(synthesizer.scheme());
+  row.gpu_ms = median(gpu);
+  row.gpu_car_ms = median(car);
+  row.gpu_wall_ms = median(wall);
+
+  reference::SubspaceBlock block;
+  block.seed = request.seed;
+  block.width = block.height = c.size;
+  block.margin = options.margin;
+  auto start = std::chrono::steady_clock::now();
+  const auto f64 = reference::synthesize_subspaces_f64(material, {}, block, options.cpu_threads);
+  row.cpu64_ms = seconds_since(start) * 1e3;
+  std::vector<std::vector<float>> f32;
+  if (!options.skip_cpu) {
+    start = std::chrono::steady_clock::now();
+    f32 = reference::synthesize_subspaces(material, {}, block, options.cpu_threads);
+    row.cpu_ms = seconds_since(start) * 1e3;
+  }
+  for (std::size_t s = 0; s < material.subspaces.size(); ++s) {
+    const std::uint32_t channels = material.subspaces[s].channels;
+    row.gpu_error = reference::worst_of(row.gpu_error, reference::conformance_error(images.images[s], f64[s], channels));
+    if (!f32.empty()) {
+      row.cpu_error = reference::worst_of(row.cpu_error, reference::conformance_error(f32[s], f64[s], channels));
+    }
+  }
+  return row;
+}
+
+std::string neighbours_text(std::uint32_t n) { return n == 0 ? "mixed" : std::to_string(n); }
+
+void write_tables(const std::filesystem::path& out, const std::vector<BenchRow>& rows, const std::string& device, unsigned threads) {
+  std::ofstream csv(out / "bench_synth.csv");
+  csv << "sweep,size,levels,neighbours,subspaces,scheme,batches,dispatches,gpu_ms,gpu_car_ms,gpu_wall_ms,cpu_f32_ms,cpu_f64_ms,"
+         "gpu_max_err_over_std,gpu_rms_err_over_std,cpu_f32_max_err_over_std,cpu_f32_rms_err_over_std\n";
+  std::ofstream md(out / "bench_synth.md");
+  md << "# carbtf bench synth\n\nDevice: " << device << ". CPU reference on " << threads
+     << " threads. Errors are against the float64 CPU reference, relative to each channel's standard deviation.\n\n"
+     << "| sweep | size | levels | neighbours | subspaces | scheme | GPU ms | of which CAR | GPU wall ms | CPU f32 ms | CPU f64 ms | "
+        "GPU max err/std | GPU RMS err/std | CPU f32 max err/std |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const BenchRow& r : rows) {
+    char line[512];
+    std::snprintf(line, sizeof line, "%s,%u,%u,%s,%u,%s,%u,%u,%.3f,%.3f,%.3f,%.3f,%.3f,%.3e,%.3e,%.3e,%.3e\n", r.config.sweep.c_str(),
+                  r.config.size, r.config.levels, neighbours_text(r.config.neighbours).c_str(), r.config.subspaces, r.scheme.c_str(),
+                  r.batches, r.dispatches, r.gpu_ms, r.gpu_car_ms, r.gpu_wall_ms, r.cpu_ms, r.cpu64_ms, r.gpu_error.max_relative,
+                  r.gpu_error.rms_relative, r.cpu_error.max_relative, r.cpu_error.rms_relative);
+    csv << line;
+    std::snprintf(line, sizeof line, "| %s | %u | %u | %s | %u | %s | %.1f | %.1f | %.1f | %.1f | %.1f | %.2e | %.2e | %.2e |\n",
+                  r.config.sweep.c_str(), r.config.size, r.config.levels, neighbours_text(r.config.neighbours).c_str(),
+                  r.config.subspaces, r.scheme.c_str(), r.gpu_ms, r.gpu_car_ms, r.gpu_wall_ms, r.cpu_ms, r.cpu64_ms,
+                  r.gpu_error.max_relative, r.gpu_error.rms_relative, r.cpu_error.max_relative);
+    md << line;
+  }
+}
+
+void run_synth_bench(const SynthBenchOptions& options) {
+  std::unique_ptr<Material> loaded;
+  if (!options.material.empty()) {
+    loaded = std::make_unique<Material>();
+    check(read_material_file(options.material, *loaded), "cannot read the material");
+  }
+  std::vector<BenchCase> cases;
+  for (std::uint32_t size : options.sizes) cases.push_back({"size", size, options.base_levels, 0, options.size_sweep_subspaces});
+  if (!loaded) {
+    for (std::uint32_t levels : options.levels) cases.push_back({"levels", options.base_size, levels, 0, options.base_subspaces});
+    for (std::uint32_t n : options.neighbours) cases.push_back({"neighbours", options.base_size, options.base_levels, n, options.base_subspaces});
+  }
+  for (std::uint32_t count : options.subspace_counts) cases.push_back({"subspaces", options.base_size, options.base_levels, 0, count});
+
+  auto context = make_context(options.device);
+  std::unique_ptr<SubspaceSynthesizer> synthesizer;
+  check(SubspaceSynthesizer::create(*context, synthesizer), "cannot build the synthesis pipelines");
+  const std::filesystem::path out = options.out;
+  std::filesystem::create_directories(out);
+  std::printf("bench synth on %s (%s scheme), CPU reference on %u threads, median of %u GPU runs after a warm-up\n",
+              context->device_info().name.c_str(), options.scheme.c_str(), options.cpu_threads, options.repeats);
+  std::printf("%-10s %5s %3s %5s %4s %9s %8s %8s %9s %9s %10s %10s\n", "sweep", "size", "lvl", "nbrs", "subs", "scheme", "GPU ms",
+              "CAR ms", "wall ms", "CPU f32", "GPU err", "RMS err");
+  std::vector<BenchRow> rows;
+  for (const BenchCase& c : cases) {
+    const BenchRow row = run_case(options, c, *synthesizer, loaded.get());
+    std::printf("%-10s %5u %3u %5s %4u %9s %8.1f %8.1f %9.1f %9.1f %10.2e %10.2e\n", c.sweep.c_str(), c.size, c.levels,
+                neighbours_text(c.neighbours).c_str(), row.config.subspaces, row.scheme.c_str(), row.gpu_ms, row.gpu_car_ms,
+                row.gpu_wall_ms, row.cpu_ms, row.gpu_error.max_relative, row.gpu_error.rms_relative);
+    std::fflush(stdout);
+    rows.push_back(row);
+  }
+  check_validation(*context);
+  write_tables(out, rows, context->device_info().name, options.cpu_threads);
+
+  std::vector<ScatterPoint> points;
+  for (const BenchRow& r : rows) {
+    points.push_back({r.gpu_ms, std::max(r.gpu_error.max_relative, 1e-9), 0});
+    if (r.cpu_ms > 0) points.push_back({r.cpu_ms, std::max(r.cpu_error.max_relative, 1e-9), 1});
+  }
+  const std::string device_entry = "GPU: " + context->device_info().name.substr(0, 40);
+  const std::string cpu_entry = "CPU REFERENCE, " + std::to_string(options.cpu_threads) + " THREADS";
+  const std::string_view legend[] = {device_entry, cpu_entry};
+  const Figure plot = scatter_figure(points, "RUN TIME (MS)", "MAX ERROR / STD AGAINST FLOAT64", legend);
+  write_rgb_image((out / "bench_synth.png").string(), plot.rgb, plot.width, plot.height, false);
+  std::printf("wrote %s/bench_synth.csv, bench_synth.md and bench_synth.png (error against run time)\n",
+              out.string().c_str());
+}
+
+}  // namespace
+
+void register_bench_synth_command(CLI::App& bench) {
+  auto options = std::make_shared<SynthBenchOptions>();
+  auto* command = bench.add_subcommand(
+      "synth", "Error against run time of subspace synthesis: sweeps size, levels, neighbourhood size and subspace count "
+               "on the Vulkan device and the CPU reference; writes CSV, markdown and a PNG plot");
+  command->add_option("--material", options->material,
+                      "A .cbtf material to synthesize (default: synthetic materials with known stable bands, which also allow "
+                      "the levels and neighbourhood sweeps)");
+  command->add_option("--out", options->out, "Folder for bench_synth.csv, .md and .png")->capture_default_str();
+  command->add_option("--sizes", options->sizes, "Output sizes of the size sweep")->delimiter(',')->check(CLI::Range(1u, 16384u));
+  command->add_option("--levels", options->levels, "Pyramid levels of the levels sweep")->delimiter(',')->check(CLI::Range(1u, 3u));
+  command->add_option("--neighbours", options->neighbours, "Neighbourhood sizes of the neighbourhood sweep (1, 2, 4, 6, 12)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({1u, 2u, 4u, 6u, 12u}));
+  command->add_option("--subspace-counts", options->subspace_counts, "Subspace counts of the subspace sweep")
+      ->delimiter(',')
+      ->check(CLI::Range(1u, 255u));
+  command->add_option("--base-size", options->base_size, "Size of the levels, neighbourhood and subspace sweeps")
+      ->check(CLI::Range(1u, 16384u))
+      ->capture_default_str();
+  command->add_option("--base-subspaces", options->base_subspaces, "Subspaces in the levels and neighbourhood sweeps")
+      ->check(CLI::Range(1u, 255u))
+      ->capture_default_str();
+  command->add_option("--size-sweep-subspaces", options->size_sweep_subspaces, "Subspaces in the size sweep")
+      ->check(CLI::Range(1u, 255u))
+      ->capture_default_str();
+  command->add_option("--margin", options->margin, "CAR burn-in margin per level")->check(CLI::Range(0u, 4096u))->capture_default_str();
+  command->add_option("--repeats", options->repeats, "Timed GPU runs per case (median reported)")
+      ->check(CLI::Range(1u, 1000u))
+      ->capture_default_str();
+  command->add_option("--cpu-threads", options->cpu_threads, "Threads of the CPU reference")->check(CLI::Range(1u, 256u))->capture_default_str();
+  command->add_option("--scheme", options->scheme, "CAR scheme on the device")
+      ->check(CLI::IsMember({"automatic", "serial", "wavefront"}))
+      ->capture_default_str();
+  command->add_flag("--skip-cpu", options->skip_cpu, "Skip the CPU float32 timing (the float64 reference still runs)");
+  add_device_options(*command, options->device);
+  command->callback([options] { run_synth_bench(*options); });
+}
+
+}  // namespace carbtf::cli
