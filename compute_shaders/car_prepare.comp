@@ -13,7 +13,7 @@ layout(std430, set = 0, binding = 1) writeonly buffer Arena { float arena[]; };
 layout(std430, set = 0, binding = 2) readonly buffer Frames { float frames[]; };
 
 void main() {
-  uint f = gl_WorkGroupID.z;
+  uint f = params.begin + gl_WorkGroupID.z;  // fields [begin, item_count): one level, one per z
   if (f >= params.item_count) return;
   uint pc = gl_GlobalInvocationID.x;
   uint pr = gl_GlobalInvocationID.y;

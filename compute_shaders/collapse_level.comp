@@ -2,7 +2,8 @@
 // One level of the pyramid collapse, in place: G = (mean + y) + expand(G_coarse), or mean + y for the
 // coarsest level. The expand is the reference's separable one (rows first, then columns, taps
 // k = -2..2 in order, weights 2 w_k); each horizontal sum is recomputed where needed instead of being
-// stored, which gives the same values with no temporary field.
+// stored, which gives the same values with no temporary field. Items [begin, item_count) of the table
+// (one level's bands) run in one dispatch, one item per z.
 #extension GL_GOOGLE_include_directive : require
 #include "carbtf_gpu_shared.h"
 
@@ -12,36 +13,48 @@ layout(push_constant, std430) uniform Push { SynthPassParams params; };
 layout(std430, set = 0, binding = 0) readonly buffer Items { CollapseItemGpu items[]; };
 layout(std430, set = 0, binding = 1) buffer Arena { float arena[]; };
 
-const float kExpandWeight[5] = float[5](0.125, 0.5, 0.75, 0.5, 0.125);
+// The taps of fine index i (absolute) in the reference's order k = -2..2 over the k with i - k even:
+// even i reads coarse h + 1, h, h - 1 with weights 2 w = 1/8, 3/4, 1/8; odd i reads h + 1, h with 1/2,
+// 1/2, and a third tap of weight 0 (adding +0 or -0 to a sum that starts from +0 changes no bit), so
+// neighbouring lanes of either parity run the same instructions.
+struct Taps {
+  ivec3 index;
+  vec3 weight;
+};
 
-// Sum over the taps along a coarse row `coarse_row` (relative) for absolute fine column `col`.
-float expand_along_row(in CollapseItemGpu item, int coarse_row, int col) {
-  precise float acc = 0.0;
-  for (int k = -2; k <= 2; ++k) {
-    if (((col - k) & 1) != 0) continue;
-    int j = (col - k) / 2 - int(item.coarse_col0);
-    acc = acc + kExpandWeight[k + 2] * arena[item.coarse_offset + uint(coarse_row) * item.coarse_pitch + uint(j)];
-  }
-  return acc;
+Taps expand_taps(int i) {
+  int h = i >> 1;  // floor(i / 2), also for negative i
+  bool even = (i & 1) == 0;
+  Taps t;
+  t.index = ivec3(h + 1, h, even ? h - 1 : h);
+  t.weight = even ? vec3(0.125, 0.75, 0.125) : vec3(0.5, 0.5, 0.0);
+  return t;
 }
 
 void main() {
-  uint i = gl_WorkGroupID.z;
+  uint i = params.begin + gl_WorkGroupID.z;
   if (i >= params.item_count) return;
-  CollapseItemGpu item = items[i];
   uint x = gl_GlobalInvocationID.x;
   uint y = gl_GlobalInvocationID.y;
-  if (x >= item.cols || y >= item.rows) return;
-  uint index = item.fine_offset + y * item.fine_pitch + x;
-  precise float band = item.mean + arena[index];
-  if (item.coarse_offset != CARBTF_NO_FRAME) {
-    int row = int(item.row0) + int(y);
-    int col = int(item.col0) + int(x);
+  uint fine_offset = items[i].fine_offset;
+  if (x >= items[i].cols || y >= items[i].rows) return;
+  uint index = fine_offset + y * items[i].fine_pitch + x;
+  precise float band = items[i].mean + arena[index];
+  uint coarse_offset = items[i].coarse_offset;
+  if (coarse_offset != CARBTF_NO_FRAME) {
+    uint pitch = items[i].coarse_pitch;
+    Taps rows = expand_taps(int(items[i].row0) + int(y));
+    Taps cols = expand_taps(int(items[i].col0) + int(x));
+    ivec3 r = rows.index - int(items[i].coarse_row0);
+    ivec3 c = cols.index - int(items[i].coarse_col0);
     precise float acc = 0.0;
-    for (int k = -2; k <= 2; ++k) {
-      if (((row - k) & 1) != 0) continue;
-      int j = (row - k) / 2 - int(item.coarse_row0);
-      acc = acc + kExpandWeight[k + 2] * expand_along_row(item, j, col);
+    for (int k = 0; k < 3; ++k) {
+      uint row_start = coarse_offset + uint(r[k]) * pitch;
+      precise float along_row = 0.0;
+      along_row = along_row + cols.weight.x * arena[row_start + uint(c.x)];
+      along_row = along_row + cols.weight.y * arena[row_start + uint(c.y)];
+      along_row = along_row + cols.weight.z * arena[row_start + uint(c.z)];
+      acc = acc + rows.weight[k] * along_row;
     }
     band = band + acc;
   }

@@ -12,6 +12,17 @@ layout(std430, set = 0, binding = 0) readonly buffer Items { ColourItemGpu items
 layout(std430, set = 0, binding = 1) readonly buffer Arena { float arena[]; };
 layout(set = 0, binding = 2, rgba32f) uniform image2DArray images;
 
+// Adds T[c][j] * g to channel c's sum for every output channel, constant indices only (dynamic
+// indexing of a vector makes lavapipe spill it to memory).
+#define CARBTF_COLOUR_TERM(j)                                                                       \
+  if (j >= begin && j < end) {                                                                      \
+    float g = arena[items[i].offset[j] + y * items[i].pitch[j] + x];                                \
+    acc.x = acc.x + items[i].transform[0u * channels + j] * g;                                      \
+    if (channels > 1u) acc.y = acc.y + items[i].transform[1u * channels + j] * g;                   \
+    if (channels > 2u) acc.z = acc.z + items[i].transform[2u * channels + j] * g;                   \
+    if (channels > 3u) acc.w = acc.w + items[i].transform[3u * channels + j] * g;                   \
+  }
+
 void main() {
   uint i = gl_WorkGroupID.z;
   if (i >= params.item_count) return;
@@ -20,15 +31,18 @@ void main() {
   if (x >= items[i].cols || y >= items[i].rows) return;
   ivec3 texel = ivec3(int(x), int(y), int(items[i].layer));
   uint channels = items[i].channels;
-  precise vec4 acc = vec4(0.0, 0.0, 0.0, 1.0);
-  if (items[i].channel_begin == 0u) {
-    for (uint c = 0u; c < channels; ++c) acc[c] = items[i].mean[c];
+  uint begin = items[i].channel_begin;
+  uint end = items[i].channel_end;
+  precise vec4 acc;
+  if (begin == 0u) {
+    acc = vec4(items[i].mean[0], channels > 1u ? items[i].mean[1] : 0.0, channels > 2u ? items[i].mean[2] : 0.0,
+               channels > 3u ? items[i].mean[3] : 1.0);
   } else {
     acc = imageLoad(images, texel);
   }
-  for (uint j = items[i].channel_begin; j < items[i].channel_end; ++j) {
-    float g = arena[items[i].offset[j] + y * items[i].pitch[j] + x];
-    for (uint c = 0u; c < channels; ++c) acc[c] = acc[c] + items[i].transform[c * channels + j] * g;
-  }
+  CARBTF_COLOUR_TERM(0u)
+  CARBTF_COLOUR_TERM(1u)
+  CARBTF_COLOUR_TERM(2u)
+  CARBTF_COLOUR_TERM(3u)
   imageStore(images, texel, acc);
 }

@@ -147,9 +147,9 @@ Status SubspaceSynthesizer::prepare(const Material& material, const SynthesisReq
                                                " texels, " + std::to_string(device.max_image_array_layers) + " layers)"};
     }
     for (const detail::PlannedBatch& batch : plan.batches) {
-      const std::uint32_t groups_y = std::max(ceil_div(batch.max_padded_rows, gpu::CARBTF_SYNTH_GROUP_Y),
+      const std::uint32_t groups_y = std::max(ceil_div(batch.levels[0].max_padded_rows, gpu::CARBTF_SYNTH_GROUP_Y),
                                               ceil_div(plan.height, gpu::CARBTF_SYNTH_GROUP_Y));
-      const std::uint32_t groups_x = std::max(ceil_div(batch.max_pitch, gpu::CARBTF_SYNTH_GROUP_X),
+      const std::uint32_t groups_x = std::max(ceil_div(batch.levels[0].max_pitch, gpu::CARBTF_SYNTH_GROUP_X),
                                               ceil_div(plan.width, gpu::CARBTF_SYNTH_GROUP_X));
       if (groups_x > device.max_compute_group_count[0] || groups_y > device.max_compute_group_count[1] ||
           batch.fields.size() > device.max_compute_group_count[2] || batch.fields.size() > device.max_compute_group_count[0]) {
@@ -291,11 +291,15 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
     {
       const detail::BindingResource resources[3] = {detail::BindingResource::of(tables, t.fields, field_bytes), arena,
                                                     detail::BindingResource::of(tables, t.fields, field_bytes)};
-      params.item_count = field_count;
-      pipelines.prepare.bind(*context_, command_buffer, resources, &params, sizeof(params));
-      vk.vkCmdDispatch(command_buffer, ceil_div(batch.max_pitch, gpu::CARBTF_SYNTH_GROUP_X),
-                       ceil_div(batch.max_padded_rows, gpu::CARBTF_SYNTH_GROUP_Y), field_count);
-      ++p.dispatches;
+      for (const detail::LevelGroup& group : batch.levels) {
+        params.begin = group.first;
+        params.item_count = group.first + group.count;
+        pipelines.prepare.bind(*context_, command_buffer, resources, &params, sizeof(params));
+        vk.vkCmdDispatch(command_buffer, ceil_div(group.max_pitch, gpu::CARBTF_SYNTH_GROUP_X),
+                         ceil_div(group.max_padded_rows, gpu::CARBTF_SYNTH_GROUP_Y), group.count);
+        ++p.dispatches;
+      }
+      params.begin = 0;
     }
     const std::uint32_t stamp = 1 + kTimestampsPerBatch * static_cast<std::uint32_t>(b);
     if (timed) p.timer.record_timestamp(command_buffer, stamp, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
@@ -336,8 +340,8 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
           detail::BindingResource::of(tables, t.collapse[level], items.size() * sizeof(gpu::CollapseItemGpu)), arena};
       params.item_count = static_cast<std::uint32_t>(items.size());
       pipelines.collapse.bind(*context_, command_buffer, resources, &params, sizeof(params));
-      vk.vkCmdDispatch(command_buffer, ceil_div(batch.max_window_cols, gpu::CARBTF_SYNTH_GROUP_X),
-                       ceil_div(batch.max_window_rows, gpu::CARBTF_SYNTH_GROUP_Y), params.item_count);
+      vk.vkCmdDispatch(command_buffer, ceil_div(batch.levels[level].max_window_cols, gpu::CARBTF_SYNTH_GROUP_X),
+                       ceil_div(batch.levels[level].max_window_rows, gpu::CARBTF_SYNTH_GROUP_Y), params.item_count);
       ++p.dispatches;
     }
     if (timed) p.timer.record_timestamp(command_buffer, stamp + 2, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);

@@ -70,21 +70,25 @@ void finish_batch(const Material& material, std::vector<Stack>& stacks, const Sy
   for (const Stack& stack : stacks) max_levels = std::max<std::uint32_t>(max_levels, static_cast<std::uint32_t>(stack.levels.size()));
   std::vector<std::vector<std::size_t>> field_index(stacks.size());
   for (std::uint32_t level = 0; level < max_levels; ++level) {
+    LevelGroup group;
+    group.first = static_cast<std::uint32_t>(batch.fields.size());
     for (std::size_t s = 0; s < stacks.size(); ++s) {
       if (level >= stacks[s].levels.size()) continue;
       PlannedField field = stacks[s].levels[level];
       field.gpu.offset = static_cast<std::uint32_t>(batch.window_floats);
       batch.window_floats += padded_floats(field.gpu);
-      batch.max_padded_rows = std::max(batch.max_padded_rows, field.gpu.rows + field.gpu.pad);
-      batch.max_pitch = std::max(batch.max_pitch, field.gpu.pitch);
-      batch.max_window_rows = std::max(batch.max_window_rows, static_cast<std::uint32_t>(field.window.rows));
-      batch.max_window_cols = std::max(batch.max_window_cols, static_cast<std::uint32_t>(field.window.cols));
+      ++group.count;
+      group.max_padded_rows = std::max(group.max_padded_rows, field.gpu.rows + field.gpu.pad);
+      group.max_pitch = std::max(group.max_pitch, field.gpu.pitch);
+      group.max_window_rows = std::max(group.max_window_rows, static_cast<std::uint32_t>(field.window.rows));
+      group.max_window_cols = std::max(group.max_window_cols, static_cast<std::uint32_t>(field.window.cols));
       batch.max_region_pixels = std::max(batch.max_region_pixels, std::uint64_t{field.gpu.rows} * field.gpu.cols);
       batch.max_region_rows = std::max(batch.max_region_rows, field.gpu.rows);
       batch.max_steps = std::max(batch.max_steps, field.steps());
       field_index[s].push_back(batch.fields.size());
       batch.fields.push_back(field);
     }
+    batch.levels.push_back(group);
   }
   batch.collapse.assign(max_levels, {});
   for (std::size_t s = 0; s < stacks.size(); ++s) {

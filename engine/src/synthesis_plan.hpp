@@ -26,15 +26,23 @@ struct PlannedField {
   std::uint32_t steps() const noexcept;           // wavefront steps: skew * (rows - 1) + cols
 };
 
-struct PlannedBatch {
-  std::vector<PlannedField> fields;                      // level 0 of every stack first, then level 1, ...
-  std::vector<std::vector<gpu::CollapseItemGpu>> collapse;  // [level]: the items collapsing that level
-  std::vector<gpu::ColourItemGpu> colour;
-  std::uint64_t window_floats = 0;
+// The fields of one pyramid level within a batch (consecutive in PlannedBatch::fields): dispatch grids
+// sized per level leave no mostly-empty workgroups for the smaller levels.
+struct LevelGroup {
+  std::uint32_t first = 0;
+  std::uint32_t count = 0;
   std::uint32_t max_padded_rows = 0;
   std::uint32_t max_pitch = 0;
   std::uint32_t max_window_rows = 0;
   std::uint32_t max_window_cols = 0;
+};
+
+struct PlannedBatch {
+  std::vector<LevelGroup> levels;                        // [level]
+  std::vector<PlannedField> fields;                      // level 0 of every stack first, then level 1, ...
+  std::vector<std::vector<gpu::CollapseItemGpu>> collapse;  // [level]: the items collapsing that level
+  std::vector<gpu::ColourItemGpu> colour;
+  std::uint64_t window_floats = 0;
   std::uint64_t max_region_pixels = 0;
   std::uint32_t max_region_rows = 0;
   std::uint32_t max_steps = 0;
