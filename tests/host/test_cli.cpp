@@ -6,6 +6,8 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include "scratch_folder.hpp"
 #include <string>
@@ -33,6 +35,11 @@ Run run(const std::string& arguments, const std::string& environment = "") {
 }
 
 using test::scratch_folder;
+
+std::string read_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
 
 std::size_t line_count(const std::string& text) {
   std::size_t lines = 0;
@@ -112,7 +119,7 @@ TEST_CASE("carbtf demo writes a report and says where", "[cli]") {
 
 TEST_CASE("--help answers for every command", "[cli]") {
   for (const std::string command : {"", "noise", "devices", "demo", "sample", "info", "analyze", "normals",
-                                    "bench noise", "bench data", "bench analyze"}) {
+                                    "synth", "bench noise", "bench data", "bench analyze", "bench synth"}) {
     const Run r = run(command + " --help");
     INFO("carbtf " << command << " --help\n" << r.output);
     CHECK(r.status == 0);
@@ -181,6 +188,31 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
     CHECK(r.status == 1);
     CHECK(line_count(r.output) == 1);
     CHECK_THAT(r.output, Catch::StartsWith("carbtf: error: ") && Catch::Contains(damaged.string()) && Catch::Contains("truncated"));
+  }
+  SECTION("carbtf synth gives the same bits on the Vulkan device and the CPU reference") {
+    const std::string common = "synth " + material.string() + " --size 48 --seed 9 --light 30,45 --view 60,120 --out ";
+    const Run gpu = run(common + (folder / "gpu").string() + " --validation");
+    INFO(gpu.output);
+    REQUIRE(gpu.status == 0);
+    CHECK_THAT(gpu.output, Catch::Contains("of 8 subspace images") && Catch::Contains("interpolated.png"));
+    const Run cpu = run(common + (folder / "cpu").string() + " --device cpu");
+    INFO(cpu.output);
+    REQUIRE(cpu.status == 0);
+    std::size_t compared = 0;
+    for (const auto& entry : fs::directory_iterator(folder / "gpu")) {
+      if (entry.path().extension() != ".exr") continue;
+      const fs::path twin = folder / "cpu" / entry.path().filename();
+      REQUIRE(fs::exists(twin));
+      CHECK(read_bytes(entry.path()) == read_bytes(twin));
+      ++compared;
+    }
+    CHECK(compared >= 2);  // at least one subspace image and the interpolated image
+    CHECK(fs::exists(folder / "gpu" / "interpolated.exr"));
+
+    const Run missing = run("synth " + material.string() + " --subspaces 8 --out " + (folder / "bad").string());
+    CHECK(missing.status == 1);
+    CHECK(line_count(missing.output) == 1);
+    CHECK_THAT(missing.output, Catch::Contains("subspace 8 does not exist"));
   }
   SECTION("bad analysis arguments") {
     for (const auto& [arguments, expected] : std::vector<std::pair<std::string, std::string>>{

@@ -1,0 +1,240 @@
+// `carbtf synth material.cbtf --size N --out DIR`: subspace images of a material at any size, on the
+// Vulkan device or the CPU reference, and the interpolated image of one (light, view).
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <numbers>
+#include <sstream>
+
+#include "carbtf/analysis/image_io.hpp"
+#include "carbtf/analysis/reference/subspace_synthesis.hpp"
+#include "carbtf/engine/direction_interpolation.hpp"
+#include "carbtf/engine/material_file.hpp"
+#include "carbtf/engine/subspace_synthesizer.hpp"
+#include "cli/cli_support.hpp"
+#include "commands/commands.hpp"
+
+namespace carbtf::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct SynthOptions {
+  DeviceOptions device;
+  std::string material;
+  std::string out = "synth";
+  std::uint32_t size = 512;
+  std::uint32_t width = 0;  // 0: --size
+  std::uint32_t height = 0;
+  std::int32_t row0 = 0;
+  std::int32_t col0 = 0;
+  std::uint64_t seed = 1;
+  std::uint32_t margin = 64;
+  std::vector<std::uint32_t> subspaces;
+  std::vector<double> light;  // theta, phi in degrees
+  std::vector<double> view;
+  std::string scheme = "automatic";
+  bool float64 = false;
+};
+
+struct Interpolation {
+  PairWeights weights;
+  std::vector<std::uint32_t> subspaces;  // those with a non-zero weight
+};
+
+Interpolation plan_interpolation(const Material& material, const SynthOptions& options) {
+  constexpr double kDegree = std::numbers::pi / 180.0;
+  DirectionTriangulation lights, views;
+  check(build_direction_triangulation(material.lights, lights), "cannot triangulate the material's light directions");
+  check(build_direction_triangulation(material.views, views), "cannot triangulate the material's view directions");
+  Interpolation result;
+  result.weights = pair_weights(lights, views, options.light[0] * kDegree, options.light[1] * kDegree,
+                                options.view[0] * kDegree, options.view[1] * kDegree);
+  for (int k = 0; k < 9; ++k) {
+    if (result.weights.weight[k] == 0.0f) continue;
+    const std::uint32_t s = subspace_of(material, result.weights.light[k], result.weights.view[k]);
+    if (std::find(result.subspaces.begin(), result.subspaces.end(), s) == result.subspaces.end()) result.subspaces.push_back(s);
+  }
+  return result;
+}
+
+// Model channels to display RGB: grey is repeated, a third channel of zeros pads two, extra are dropped.
+std::vector<float> to_rgb(const std::vector<float>& values, std::uint32_t channels, std::size_t pixels) {
+  std::vector<float> rgb(pixels * 3);
+  for (std::size_t p = 0; p < pixels; ++p) {
+    for (std::uint32_t c = 0; c < 3; ++c) {
+      rgb[p * 3 + c] = channels == 1 ? values[p] : c < channels ? values[p * channels + c] : 0.0f;
+    }
+  }
+  return rgb;
+}
+
+void write_image_pair(const fs::path& folder, const std::string& stem, const std::vector<float>& values, std::uint32_t channels,
+                      std::uint32_t width, std::uint32_t height) {
+  const std::vector<float> rgb = to_rgb(values, channels, std::size_t{width} * height);
+  write_rgb_image(folder / (stem + ".png"), rgb, width, height, true);
+  write_rgb_image(folder / (stem + ".exr"), rgb, width, height, true);
+}
+
+std::string two_digits(std::uint32_t s) {
+  char text[16];
+  std::snprintf(text, sizeof text, "%02u", s);
+  return text;
+}
+
+void run_synth(const SynthOptions& options) {
+  Material material;
+  check(read_material_file(options.material, material), "cannot read the material");
+  if (options.light.empty() != options.view.empty()) throw CommandError("--light and --view go together");
+
+  SynthesisRequest request;
+  request.seed = options.seed;
+  request.width = options.width ? options.width : options.size;
+  request.height = options.height ? options.height : options.size;
+  request.row0 = options.row0;
+  request.col0 = options.col0;
+  request.margin = options.margin;
+  request.subspaces = options.subspaces;
+  request.scheme = options.scheme == "serial" ? CarScheme::serial : options.scheme == "wavefront" ? CarScheme::wavefront : CarScheme::automatic;
+  for (std::uint32_t s : request.subspaces) {
+    if (s >= material.subspaces.size()) {
+      throw CommandError("--subspaces: subspace " + std::to_string(s) + " does not exist; " + options.material + " has " +
+                         std::to_string(material.subspaces.size()) + " (0 to " + std::to_string(material.subspaces.size() - 1) + ")");
+    }
+  }
+  Interpolation interpolation;
+  if (!options.light.empty()) {
+    interpolation = plan_interpolation(material, options);
+    if (request.subspaces.empty()) {
+      request.subspaces = interpolation.subspaces;  // only what the interpolated image needs
+    } else {
+      for (std::uint32_t s : interpolation.subspaces) {
+        if (std::find(request.subspaces.begin(), request.subspaces.end(), s) == request.subspaces.end()) {
+          throw CommandError("the (light, view) image needs subspace " + std::to_string(s) + ", which --subspaces leaves out");
+        }
+      }
+    }
+  }
+  std::vector<std::uint32_t> listed = request.subspaces;
+  if (listed.empty()) {
+    for (std::uint32_t s = 0; s < material.subspaces.size(); ++s) listed.push_back(s);
+  }
+  const fs::path out = options.out;
+  create_folder(out);
+
+  const bool on_cpu = options.device.device == "cpu";
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<std::vector<float>> images;
+  std::vector<float> interpolated;
+  std::string where;
+  double gpu_ms = 0.0;
+  if (on_cpu) {
+    reference::SubspaceBlock block{request.seed, request.row0, request.col0, request.width, request.height, request.margin};
+    std::printf("synthesizing %zu subspace images of %ux%u on the CPU reference (%s)...\n", listed.size(), request.width,
+                request.height, options.float64 ? "float64" : "float32");
+    std::fflush(stdout);
+    if (options.float64) {
+      const auto f64 = reference::synthesize_subspaces_f64(material, listed, block);
+      images.resize(f64.size());
+      for (std::size_t s = 0; s < f64.size(); ++s) images[s].assign(f64[s].begin(), f64[s].end());
+    } else {
+      images = reference::synthesize_subspaces(material, listed, block);
+    }
+    if (!interpolation.subspaces.empty()) {
+      interpolated.resize(std::size_t{request.width} * request.height * material.subspaces[interpolation.subspaces[0]].channels);
+      reference::interpolate_subspaces(material, interpolation.weights, images, interpolated);
+    }
+    where = "the CPU reference";
+  } else {
+    if (options.float64) throw CommandError("--float64 needs --device cpu (the GPU synthesizes in float32)");
+    DeviceOptions device = options.device;
+    if (device.device == "gpu") device.device.clear();
+    auto context = make_context(device);
+    std::unique_ptr<SubspaceSynthesizer> synthesizer;
+    check(SubspaceSynthesizer::create(*context, synthesizer), "cannot build the synthesis pipelines");
+    SynthesizedImages result;
+    SynthesisTiming timing;
+    check(synthesizer->synthesize(material, request, result, &timing), "synthesis failed");
+    images = std::move(result.images);
+    gpu_ms = timing.total_ms;
+    if (!interpolation.subspaces.empty()) {
+      check(synthesizer->interpolate(material, interpolation.weights, interpolated), "interpolation failed");
+    }
+    check_validation(*context);
+    where = context->device_info().name + " (" + car_scheme_name(synthesizer->scheme()) + " CAR scheme)";
+  }
+  const double seconds = seconds_since(start);
+
+  for (std::uint32_t s : listed) {
+    write_image_pair(out, "subspace_" + two_digits(s), images[s], material.subspaces[s].channels, request.width, request.height);
+  }
+  std::printf("synthesized %zu of %zu subspace images, %ux%u each (%.1f Mtexels), seed %llu, on %s in %.1f ms%s\n",
+              listed.size(), material.subspaces.size(), request.width, request.height,
+              static_cast<double>(listed.size()) * request.width * request.height * 1e-6,
+              static_cast<unsigned long long>(request.seed), where.c_str(), seconds * 1e3,
+              gpu_ms > 0 ? (" (GPU time " + std::to_string(static_cast<int>(std::lround(gpu_ms))) + " ms)").c_str() : "");
+  std::printf("wrote %s/subspace_NN.png (sRGB) and .exr (linear)\n", out.string().c_str());
+  if (!interpolated.empty()) {
+    std::ostringstream weights;
+    for (int k = 0; k < 9; ++k) {
+      if (interpolation.weights.weight[k] == 0.0f) continue;
+      weights << " (light " << interpolation.weights.light[k] << ", view " << interpolation.weights.view[k] << ") "
+              << interpolation.weights.weight[k];
+    }
+    write_image_pair(out, "interpolated", interpolated, material.subspaces[interpolation.subspaces[0]].channels, request.width,
+                     request.height);
+    std::printf("wrote %s/interpolated.png and .exr: light (%g, %g) deg, view (%g, %g) deg, weights:%s\n",
+                out.string().c_str(), options.light[0], options.light[1], options.view[0], options.view[1],
+                weights.str().c_str());
+  }
+}
+
+}  // namespace
+
+void register_synth_command(CLI::App& app) {
+  auto options = std::make_shared<SynthOptions>();
+  auto* command = app.add_subcommand(
+      "synth", "Synthesize subspace images of a material at any size (PNG sRGB and EXR linear), and the image of one "
+               "(light, view) by 9-weight interpolation");
+  command->add_option("material", options->material, "Material file (.cbtf) from `carbtf analyze`")->required();
+  command->add_option("--out", options->out, "Output folder")->capture_default_str();
+  command->add_option("--size", options->size, "Width and height in texels")->check(CLI::Range(1u, 16384u))->capture_default_str();
+  command->add_option("--width", options->width, "Width, overriding --size")->check(CLI::Range(1u, 16384u));
+  command->add_option("--height", options->height, "Height, overriding --size")->check(CLI::Range(1u, 16384u));
+  command->add_option("--row0", options->row0,
+                      "First row of the block of the unbounded texture (noise is addressed by absolute position, so blocks of one seed continue each other once the burn-in has decayed)")
+      ->capture_default_str();
+  command->add_option("--col0", options->col0, "First column of the block")->capture_default_str();
+  command->add_option("--seed", options->seed, "Seed (64-bit): same seed, same images, on the CPU and the GPU")
+      ->check(non_negative())
+      ->capture_default_str();
+  command->add_option("--margin", options->margin, "CAR burn-in rows and columns per pyramid level")
+      ->check(CLI::Range(0u, 4096u))
+      ->capture_default_str();
+  command->add_option("--subspaces", options->subspaces,
+                      "Comma-separated subspace indices to synthesize (default: all, or with --light/--view only those "
+                      "the interpolated image needs)")
+      ->delimiter(',')
+      ->check(non_negative());
+  command->add_option("--light", options->light, "Light direction THETA,PHI in degrees: also write the interpolated image")
+      ->delimiter(',')
+      ->expected(2)
+      ->check(CLI::Range(-360.0, 360.0));
+  command->add_option("--view", options->view, "View direction THETA,PHI in degrees (with --light)")
+      ->delimiter(',')
+      ->expected(2)
+      ->check(CLI::Range(-360.0, 360.0));
+  command->add_option("--scheme", options->scheme, "CAR scheme on a Vulkan device (automatic: serial on CPU devices, wavefront on GPUs)")
+      ->check(CLI::IsMember({"automatic", "serial", "wavefront"}))
+      ->capture_default_str();
+  command->add_flag("--float64", options->float64, "With --device cpu: the float64 reference (the accuracy reference)");
+  command->add_option("--device", options->device.device,
+                      "cpu: the CPU reference; gpu: the best Vulkan device; else a Vulkan device index or part of its name, "
+                      "as `carbtf devices` lists them (default: $CARBTF_DEVICE, else the best device)");
+  command->add_flag("--validation", options->device.validation,
+                    "Enable the Vulkan validation layer; any message it reports fails the command");
+  command->callback([options] { run_synth(*options); });
+}
+
+}  // namespace carbtf::cli
