@@ -82,6 +82,9 @@ struct SubspaceSynthesizer::Prepared {
   bool poison = false;
   Buffer table_buffer;
   Buffer arena;
+  Buffer capture;  // host copy of every batch's window after request.capture's stage
+  std::vector<VkDeviceSize> capture_offsets;
+  SynthesisStage capture_stage = SynthesisStage::none;
   Image image;
   GpuTimer timer;
   bool timer_ready = false;
@@ -157,6 +160,18 @@ Status SubspaceSynthesizer::prepare(const Material& material, const SynthesisReq
       }
     }
     prepared->seed = request.seed;
+    prepared->capture_stage = request.capture;
+    if (request.capture != SynthesisStage::none) {
+      VkDeviceSize capture_bytes = 0;
+      for (const detail::PlannedBatch& batch : plan.batches) {
+        prepared->capture_offsets.push_back(capture_bytes);
+        capture_bytes += batch.window_floats * sizeof(float);
+      }
+      CARBTF_TRY(Buffer::create(*context_,
+                                {capture_bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::host_readback,
+                                 "carbtf synthesis capture"},
+                                prepared->capture));
+    }
     prepared->poison = request.poison;
     prepared->scheme = request.scheme;
     if (prepared->scheme == CarScheme::automatic) {
@@ -220,6 +235,45 @@ Status SubspaceSynthesizer::prepare(const Material& material, const SynthesisReq
   } catch (const std::bad_alloc&) {
     return {ErrorCode::out_of_host_memory, "out of host memory while planning the synthesis"};
   }
+}
+
+// Copies batch `b`'s work window to the capture buffer; the next stage's writes wait for the copy.
+void SubspaceSynthesizer::record_capture(const VulkanFunctions& vk, VkCommandBuffer command_buffer, Prepared& p, std::size_t b,
+                                         VkDeviceSize window_bytes) noexcept {
+  compute_barrier(vk, command_buffer, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+  const VkBufferCopy region{0, p.capture_offsets[b], window_bytes};
+  vk.vkCmdCopyBuffer(command_buffer, p.arena.handle(), p.capture.handle(), 1, &region);
+  compute_barrier(vk, command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_HOST_BIT,
+                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_HOST_READ_BIT);
+}
+
+Status SubspaceSynthesizer::read_band(std::uint32_t subspace, std::uint32_t level, std::uint32_t channel, std::vector<float>& out,
+                                      std::uint32_t& rows, std::uint32_t& cols) const noexcept {
+  if (!prepared_ || prepared_->capture_stage == SynthesisStage::none) {
+    return {ErrorCode::invalid_argument, "read_band() needs a synthesize() whose request captured a stage"};
+  }
+  const Prepared& p = *prepared_;
+  for (std::size_t b = 0; b < p.plan.batches.size(); ++b) {
+    for (const detail::PlannedField& field : p.plan.batches[b].fields) {
+      if (field.subspace != subspace || field.level != level || field.channel != channel) continue;
+      try {
+        rows = static_cast<std::uint32_t>(field.window.rows);
+        cols = static_cast<std::uint32_t>(field.window.cols);
+        out.resize(std::size_t{rows} * cols);
+        const float* base = static_cast<const float*>(p.capture.mapped()) + p.capture_offsets[b] / sizeof(float);
+        for (std::uint32_t r = 0; r < rows; ++r) {
+          std::memcpy(&out[std::size_t{r} * cols], base + field.window_element() + std::size_t{r} * field.gpu.pitch, cols * sizeof(float));
+        }
+        return {};
+      } catch (const std::bad_alloc&) {
+        return {ErrorCode::out_of_host_memory, "out of host memory while reading a band"};
+      }
+    }
+  }
+  return {ErrorCode::invalid_argument, "band (subspace " + std::to_string(subspace) + ", level " + std::to_string(level) +
+                                           ", channel " + std::to_string(channel) + ") was not synthesized"};
 }
 
 Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) const noexcept {
@@ -303,6 +357,7 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
     }
     const std::uint32_t stamp = 1 + kTimestampsPerBatch * static_cast<std::uint32_t>(b);
     if (timed) p.timer.record_timestamp(command_buffer, stamp, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
+    if (p.capture_stage == SynthesisStage::noise) record_capture(vk, command_buffer, p, b, window_bytes);
 
     // The recursions, split so that no invocation loops past the cap.
     {
@@ -331,6 +386,7 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
       params.begin = params.end = 0;
     }
     if (timed) p.timer.record_timestamp(command_buffer, stamp + 1, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
+    if (p.capture_stage == SynthesisStage::car) record_capture(vk, command_buffer, p, b, window_bytes);
 
     // Collapse, coarsest level first.
     for (std::size_t level = batch.collapse.size(); level-- > 0;) {
@@ -345,6 +401,7 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
       ++p.dispatches;
     }
     if (timed) p.timer.record_timestamp(command_buffer, stamp + 2, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
+    if (p.capture_stage == SynthesisStage::collapse) record_capture(vk, command_buffer, p, b, window_bytes);
 
     // Colour transform into the output layers.
     {
@@ -495,6 +552,7 @@ Status SubspaceSynthesizer::synthesize(const Material& material, const Synthesis
     };
     CARBTF_TRY(context_->submit_and_wait(record_work));
     CARBTF_TRY(readback.invalidate_for_host_read());
+    if (prepared_->capture_stage != SynthesisStage::none) CARBTF_TRY(prepared_->capture.invalidate_for_host_read());
     if (timing_out) CARBTF_TRY(timing(*timing_out));
     out = {};
     out.width = plan.width;

@@ -119,7 +119,7 @@ TEST_CASE("carbtf demo writes a report and says where", "[cli]") {
 
 TEST_CASE("--help answers for every command", "[cli]") {
   for (const std::string command : {"", "noise", "devices", "demo", "sample", "info", "analyze", "normals",
-                                    "synth", "bench noise", "bench data", "bench analyze", "bench synth"}) {
+                                    "synth", "conform", "bench noise", "bench data", "bench analyze", "bench synth"}) {
     const Run r = run(command + " --help");
     INFO("carbtf " << command << " --help\n" << r.output);
     CHECK(r.status == 0);
@@ -208,6 +208,12 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
     }
     CHECK(compared >= 2);  // at least one subspace image and the interpolated image
     CHECK(fs::exists(folder / "gpu" / "interpolated.exr"));
+
+    const Run conform = run("conform " + material.string() + " --size 40 --large-size 96 --growth-sizes 32,64 --validation");
+    INFO(conform.output);
+    CHECK(conform.status == 0);
+    CHECK_THAT(conform.output, Catch::Contains("near-unit-root") && Catch::Contains("HDR") && Catch::Contains("interpolation") &&
+                                   Catch::Contains("all stages within"));
 
     const Run missing = run("synth " + material.string() + " --subspaces 8 --out " + (folder / "bad").string());
     CHECK(missing.status == 1);

@@ -49,7 +49,8 @@ std::vector<Real> expand(const std::vector<Real>& coarse, const TextureRegion& f
 }
 
 template <typename Real>
-void synthesize(const Material& material, std::uint32_t subspace, const SubspaceBlock& block, std::span<Real> out) {
+void synthesize(const Material& material, std::uint32_t subspace, const SubspaceBlock& block, std::span<Real> out,
+                SubspaceStages* stages = nullptr) {
   if (subspace >= material.subspaces.size()) throw std::invalid_argument("subspace " + std::to_string(subspace) + " does not exist");
   const SubspaceModel& model = material.subspaces[subspace];
   const std::size_t pixels = std::size_t{block.width} * block.height;
@@ -57,6 +58,11 @@ void synthesize(const Material& material, std::uint32_t subspace, const Subspace
   const std::vector<TextureRegion> regions = level_regions({block.row0, block.col0, block.height, block.width}, model.levels);
 
   std::vector<std::vector<Real>> collapsed(model.channels);
+  if (stages) {
+    stages->regions = regions;
+    stages->band.assign(std::size_t{model.levels} * model.channels, {});
+    stages->collapsed.assign(std::size_t{model.levels} * model.channels, {});
+  }
   for (std::uint32_t channel = 0; channel < model.channels; ++channel) {
     std::vector<Real> current;
     for (std::uint32_t level = model.levels; level-- > 0;) {
@@ -71,10 +77,13 @@ void synthesize(const Material& material, std::uint32_t subspace, const Subspace
       field.margin = block.margin;
       std::vector<Real> band(static_cast<std::size_t>(region.rows * region.cols));
       synthesize_car_block(model.bands[level * model.channels + channel], field, std::span<Real>(band));
+      const std::size_t index = std::size_t{level} * model.channels + channel;
+      if (stages) stages->band[index].assign(band.begin(), band.end());
       if (level + 1 < model.levels) {
         const std::vector<Real> expanded = expand(current, regions[level + 1], region);
         for (std::size_t i = 0; i < band.size(); ++i) band[i] = band[i] + expanded[i];
       }
+      if (stages) stages->collapsed[index].assign(band.begin(), band.end());
       current = std::move(band);
     }
     collapsed[channel] = std::move(current);
@@ -120,11 +129,13 @@ std::vector<std::vector<double>> synthesize_subspaces_f64(const Material& materi
   return synthesize_many<double>(material, subspaces, block, threads);
 }
 
-void synthesize_subspace(const Material& material, std::uint32_t subspace, const SubspaceBlock& block, std::span<float> out) {
-  synthesize(material, subspace, block, out);
+void synthesize_subspace(const Material& material, std::uint32_t subspace, const SubspaceBlock& block, std::span<float> out,
+                         SubspaceStages* stages) {
+  synthesize(material, subspace, block, out, stages);
 }
-void synthesize_subspace(const Material& material, std::uint32_t subspace, const SubspaceBlock& block, std::span<double> out) {
-  synthesize(material, subspace, block, out);
+void synthesize_subspace(const Material& material, std::uint32_t subspace, const SubspaceBlock& block, std::span<double> out,
+                         SubspaceStages* stages) {
+  synthesize(material, subspace, block, out, stages);
 }
 
 void interpolate_subspaces(const Material& material, const PairWeights& weights, const std::vector<std::vector<float>>& images,

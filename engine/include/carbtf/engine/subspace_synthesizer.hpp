@@ -38,6 +38,9 @@ inline constexpr std::uint32_t kMaxGpuChannels = 4;
 // Neighbours per CAR band a GPU synthesis supports (the analysis fits at most 12).
 inline constexpr std::uint32_t kMaxGpuNeighbours = 16;
 
+// The stages of a synthesis, in order; a request may capture the work buffer after one of them.
+enum class SynthesisStage { none, noise, car, collapse };
+
 struct SynthesisRequest {
   std::uint64_t seed = 0;
   // The block of the unbounded texture: rows [row0, row0 + height), columns [col0, col0 + width).
@@ -53,6 +56,8 @@ struct SynthesisRequest {
   // Fill the work buffer and the output image with NaN first, so that anything left unwritten shows
   // (tests and conformance use it).
   bool poison = false;
+  // Conformance: after this stage of every batch, copy the bands to host memory for read_band().
+  SynthesisStage capture = SynthesisStage::none;
 };
 
 // GPU time per stage, summed over batches, in milliseconds (0 where the queue has no timestamps).
@@ -115,6 +120,12 @@ class SubspaceSynthesizer {
   // Convenience: prepare, record, submit, wait, read back. `timing` may be null.
   Status synthesize(const Material& material, const SynthesisRequest& request, SynthesizedImages& out,
                     SynthesisTiming* timing = nullptr) noexcept;
+  // After a synthesize() with request.capture set: band (level, channel) of `subspace` over its level
+  // window (row-major; rows x cols of that level's region): the noise, the CAR field y (its mean not
+  // yet added) or the collapsed level G, as captured.
+  Status read_band(std::uint32_t subspace, std::uint32_t level, std::uint32_t channel, std::vector<float>& out,
+                   std::uint32_t& rows, std::uint32_t& cols) const noexcept;
+
   // Convenience after synthesize(): the interpolated image as width * height * channels floats.
   Status interpolate(const Material& material, const PairWeights& weights, std::vector<float>& out) noexcept;
 
@@ -129,6 +140,8 @@ class SubspaceSynthesizer {
   SubspaceSynthesizer() = default;
   struct Pipelines;
   struct Prepared;
+  static void record_capture(const VulkanFunctions& vk, VkCommandBuffer command_buffer, Prepared& prepared, std::size_t batch,
+                             VkDeviceSize window_bytes) noexcept;
   Context* context_ = nullptr;
   std::unique_ptr<Pipelines> pipelines_;
   std::unique_ptr<Prepared> prepared_;

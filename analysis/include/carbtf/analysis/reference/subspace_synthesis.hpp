@@ -33,10 +33,22 @@ struct SubspaceBlock {
   std::uint32_t margin = 64;  // CAR burn-in, per level
 };
 
+// The intermediate stages of one subspace synthesis, per band at index level * channels + channel, over
+// that level's window (level_regions()): the band (mean + CAR field) and the collapsed level G.
+// Stored in double; float32 values convert exactly.
+struct SubspaceStages {
+  std::vector<TextureRegion> regions;  // per level
+  std::vector<std::vector<double>> band;
+  std::vector<std::vector<double>> collapsed;
+};
+
 // Synthesizes subspace image `subspace` into `out` (width * height * channels). Throws
 // std::invalid_argument for a subspace index out of range or an output span too small.
-void synthesize_subspace(const Material& material, std::uint32_t subspace, const SubspaceBlock& block, std::span<float> out);
-void synthesize_subspace(const Material& material, std::uint32_t subspace, const SubspaceBlock& block, std::span<double> out);
+// With `stages`, also keeps every band and collapsed level.
+void synthesize_subspace(const Material& material, std::uint32_t subspace, const SubspaceBlock& block, std::span<float> out,
+                         SubspaceStages* stages = nullptr);
+void synthesize_subspace(const Material& material, std::uint32_t subspace, const SubspaceBlock& block, std::span<double> out,
+                         SubspaceStages* stages = nullptr);
 
 // Synthesizes the listed subspace images (empty: all) with one task per image on `threads` threads (0:
 // all hardware threads). Result indexed by subspace id, empty where not listed. Throws like
