@@ -40,6 +40,22 @@ void compute_barrier(const VulkanFunctions& vk, VkCommandBuffer command_buffer, 
   vk.vkCmdPipelineBarrier(command_buffer, source, destination, 0, 1, &barrier, 0, nullptr, 0, nullptr);
 }
 
+// One layout transition of layers [0, layers) of a colour image, with its execution and memory dependency.
+void transition_image(const VulkanFunctions& vk, VkCommandBuffer command_buffer, VkImage image, std::uint32_t layers,
+                      VkImageLayout from, VkImageLayout to, VkPipelineStageFlags source, VkAccessFlags source_access,
+                      VkPipelineStageFlags destination, VkAccessFlags destination_access) {
+  auto barrier = vk_struct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
+  barrier.srcAccessMask = source_access;
+  barrier.dstAccessMask = destination_access;
+  barrier.oldLayout = from;
+  barrier.newLayout = to;
+  barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  barrier.image = image;
+  barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers};
+  vk.vkCmdPipelineBarrier(command_buffer, source, destination, 0, 0, nullptr, 0, nullptr, 1, &barrier);
+}
+
 void shader_to_shader(const VulkanFunctions& vk, VkCommandBuffer command_buffer) {
   compute_barrier(vk, command_buffer, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
@@ -291,29 +307,22 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
     p.timer.record_timestamp(command_buffer, 0, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT);
   }
   // The image: previous contents discarded, then GENERAL for storage writes.
-  auto to_general = vk_struct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
-  to_general.srcAccessMask = 0;
-  to_general.dstAccessMask = p.poison ? VK_ACCESS_TRANSFER_WRITE_BIT : VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT;
-  to_general.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  to_general.newLayout = p.poison ? VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL : VK_IMAGE_LAYOUT_GENERAL;
-  to_general.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  to_general.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  to_general.image = p.image.handle();
-  to_general.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, static_cast<std::uint32_t>(plan.subspaces.size())};
-  vk.vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
-                          VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr,
-                          1, &to_general);
+  const auto layers = static_cast<std::uint32_t>(plan.subspaces.size());
+  const VkImage image = p.image.handle();
   if (p.poison) {
+    transition_image(vk, command_buffer, image, layers, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                     VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
     VkClearColorValue nan{};
     nan.float32[0] = nan.float32[1] = nan.float32[2] = nan.float32[3] = kPoison;
-    vk.vkCmdClearColorImage(command_buffer, p.image.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &nan, 1,
-                            &to_general.subresourceRange);
-    to_general.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    to_general.dstAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT;
-    to_general.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-    to_general.newLayout = VK_IMAGE_LAYOUT_GENERAL;
-    vk.vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr,
-                            0, nullptr, 1, &to_general);
+    const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers};
+    vk.vkCmdClearColorImage(command_buffer, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &nan, 1, &all);
+    transition_image(vk, command_buffer, image, layers, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
+                     VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                     VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT);
+  } else {
+    transition_image(vk, command_buffer, image, layers, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                     VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                     VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT);
   }
 
   const VkBuffer tables = p.table_buffer.handle();
@@ -499,27 +508,17 @@ namespace {
 // host buffer, tightly packed; the image is back in GENERAL afterwards.
 void record_image_readback(const VulkanFunctions& vk, VkCommandBuffer command_buffer, VkImage image, std::uint32_t width,
                            std::uint32_t height, std::uint32_t layers, VkBuffer destination) {
-  auto transition = vk_struct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
-  transition.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-  transition.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
-  transition.oldLayout = VK_IMAGE_LAYOUT_GENERAL;
-  transition.newLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-  transition.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  transition.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  transition.image = image;
-  transition.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers};
-  vk.vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
-                          nullptr, 1, &transition);
+  transition_image(vk, command_buffer, image, layers, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                   VK_ACCESS_TRANSFER_READ_BIT);
   VkBufferImageCopy copy{};
   copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, layers};
   copy.imageExtent = {width, height, 1};
   vk.vkCmdCopyImageToBuffer(command_buffer, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, destination, 1, &copy);
-  transition.srcAccessMask = 0;  // a read needs no availability, only ordering before later writes
-  transition.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
-  transition.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-  transition.newLayout = VK_IMAGE_LAYOUT_GENERAL;
-  vk.vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0,
-                          nullptr, 1, &transition);
+  // A read needs no availability, only ordering before later writes.
+  transition_image(vk, command_buffer, image, layers, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
+                   VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                   VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
   compute_barrier(vk, command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                   VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
 }
@@ -592,16 +591,8 @@ Status SubspaceSynthesizer::interpolate(const Material& material, const PairWeig
                               readback));
     const VulkanFunctions& vk = context_->vk();
     const auto record_work = [&](VkCommandBuffer command_buffer) -> Status {
-      auto to_general = vk_struct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
-      to_general.dstAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-      to_general.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-      to_general.newLayout = VK_IMAGE_LAYOUT_GENERAL;
-      to_general.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-      to_general.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-      to_general.image = target.handle();
-      to_general.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-      vk.vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0,
-                              nullptr, 0, nullptr, 1, &to_general);
+      transition_image(vk, command_buffer, target.handle(), 1, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
+                       VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
       CARBTF_TRY(record_interpolation(command_buffer, material, weights, target.view()));
       record_image_readback(vk, command_buffer, target.handle(), plan.width, plan.height, 1, readback.handle());
       return {};

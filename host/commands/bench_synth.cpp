@@ -112,10 +112,7 @@ BenchRow run_case(const SynthBenchOptions& options, const BenchCase& c, Subspace
   row.gpu_car_ms = median(car);
   row.gpu_wall_ms = median(wall);
 
-  reference::SubspaceBlock block;
-  block.seed = request.seed;
-  block.width = block.height = c.size;
-  block.margin = options.margin;
+  const SynthesisBlock& block = request;
   auto start = std::chrono::steady_clock::now();
   const auto f64 = reference::synthesize_subspaces_f64(material, {}, block, options.cpu_threads);
   row.cpu64_ms = seconds_since(start) * 1e3;

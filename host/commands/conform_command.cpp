@@ -86,7 +86,7 @@ CaseReport run_case(const std::string& name, const Material& material, std::uint
   const std::size_t count = material.subspaces.size();
 
   // CPU float32 with every stage, and float64 for accuracy.
-  reference::SubspaceBlock block{request.seed, 0, 0, size, size, request.margin};
+  const SynthesisBlock& block = request;
   std::vector<reference::SubspaceStages> stages(count);
   std::vector<std::vector<float>> cpu(count);
   auto start = std::chrono::steady_clock::now();
@@ -230,7 +230,7 @@ void run_conform(const ConformOptions& options) {
       request.margin = options.margin;
       SynthesizedImages gpu;
       check(synthesizer->synthesize(stiff, request, gpu), "GPU synthesis failed");
-      reference::SubspaceBlock block{options.seed, 0, 0, size, size, options.margin};
+      const SynthesisBlock& block = request;
       std::vector<float> f32(std::size_t{size} * size * 3);
       std::vector<double> f64(f32.size());
       reference::synthesize_subspace(stiff, 0, block, f32);

@@ -130,7 +130,7 @@ void run_synth(const SynthOptions& options) {
   std::string where;
   double gpu_ms = 0.0;
   if (on_cpu) {
-    reference::SubspaceBlock block{request.seed, request.row0, request.col0, request.width, request.height, request.margin};
+    const SynthesisBlock& block = request;
     std::printf("synthesizing %zu subspace images of %ux%u on the CPU reference (%s)...\n", listed.size(), request.width,
                 request.height, options.float64 ? "float64" : "float32");
     std::fflush(stdout);

@@ -16,15 +16,8 @@ using namespace carbtf;
 namespace {
 
 std::vector<float> cpu_subspace(const Material& m, std::uint32_t s, const SynthesisRequest& r) {
-  reference::SubspaceBlock block;
-  block.seed = r.seed;
-  block.row0 = r.row0;
-  block.col0 = r.col0;
-  block.width = r.width;
-  block.height = r.height;
-  block.margin = r.margin;
   std::vector<float> out(std::size_t{r.width} * r.height * m.subspaces[s].channels);
-  reference::synthesize_subspace(m, s, block, out);
+  reference::synthesize_subspace(m, s, r, out);  // a request is a SynthesisBlock
   return out;
 }
 

@@ -24,6 +24,7 @@
 #include "carbtf/engine/context.hpp"
 #include "carbtf/engine/direction_interpolation.hpp"
 #include "carbtf/engine/material.hpp"
+#include "carbtf/engine/synthesis_layout.hpp"
 
 namespace carbtf {
 
@@ -41,15 +42,8 @@ inline constexpr std::uint32_t kMaxGpuNeighbours = 16;
 // The stages of a synthesis, in order; a request may capture the work buffer after one of them.
 enum class SynthesisStage { none, noise, car, collapse };
 
-struct SynthesisRequest {
-  std::uint64_t seed = 0;
-  // The block of the unbounded texture: rows [row0, row0 + height), columns [col0, col0 + width).
-  std::int32_t row0 = 0;
-  std::int32_t col0 = 0;
-  std::uint32_t width = 512;
-  std::uint32_t height = 512;
-  // CAR burn-in per level: rows above and columns each side computed from a zero start and dropped.
-  std::uint32_t margin = 64;
+// The block to synthesize (synthesis_layout.hpp) and what to synthesize of it.
+struct SynthesisRequest : SynthesisBlock {
   // Which subspace images, in output-layer order; empty means all of them.
   std::vector<std::uint32_t> subspaces;
   CarScheme scheme = CarScheme::automatic;

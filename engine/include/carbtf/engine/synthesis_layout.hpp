@@ -25,6 +25,18 @@ struct TextureRegion {
   bool operator==(const TextureRegion&) const = default;
 };
 
+// What a synthesis computes, on the CPU and the GPU alike: rows [row0, row0 + height) and columns
+// [col0, col0 + width) of the unbounded texture of `seed`, each level's CAR recursion started `margin`
+// rows above and columns each side of its region (burn-in) from zeros.
+struct SynthesisBlock {
+  std::uint64_t seed = 0;
+  std::int32_t row0 = 0;
+  std::int32_t col0 = 0;
+  std::uint32_t width = 512;
+  std::uint32_t height = 512;
+  std::uint32_t margin = 64;
+};
+
 inline constexpr std::uint32_t kMaxFieldChannels = 16;
 inline constexpr std::uint32_t kMaxFieldLevels = 8;
 

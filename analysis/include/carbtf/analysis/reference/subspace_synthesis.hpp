@@ -24,14 +24,7 @@
 
 namespace carbtf::reference {
 
-struct SubspaceBlock {
-  std::uint64_t seed = 0;
-  std::int32_t row0 = 0;
-  std::int32_t col0 = 0;
-  std::uint32_t width = 0;
-  std::uint32_t height = 0;
-  std::uint32_t margin = 64;  // CAR burn-in, per level
-};
+using SubspaceBlock = SynthesisBlock;
 
 // The intermediate stages of one subspace synthesis, per band at index level * channels + channel, over
 // that level's window (level_regions()): the band (mean + CAR field) and the collapsed level G.
