@@ -61,6 +61,19 @@ void shader_to_shader(const VulkanFunctions& vk, VkCommandBuffer command_buffer)
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
 }
 
+// Copies `bytes` of the work buffer to the host-visible `destination` at `offset`, between the stage
+// that wrote them and the next one (which waits for the copy before overwriting).
+void record_capture(const VulkanFunctions& vk, VkCommandBuffer command_buffer, VkBuffer source, VkBuffer destination,
+                    VkDeviceSize offset, VkDeviceSize bytes) {
+  compute_barrier(vk, command_buffer, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
+  const VkBufferCopy region{0, offset, bytes};
+  vk.vkCmdCopyBuffer(command_buffer, source, destination, 1, &region);
+  compute_barrier(vk, command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_HOST_BIT,
+                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_HOST_READ_BIT);
+}
+
 VkDeviceSize align_up(VkDeviceSize value, VkDeviceSize alignment) { return (value + alignment - 1) / alignment * alignment; }
 
 }  // namespace
@@ -253,18 +266,6 @@ Status SubspaceSynthesizer::prepare(const Material& material, const SynthesisReq
   }
 }
 
-// Copies batch `b`'s work window to the capture buffer; the next stage's writes wait for the copy.
-void SubspaceSynthesizer::record_capture(const VulkanFunctions& vk, VkCommandBuffer command_buffer, Prepared& p, std::size_t b,
-                                         VkDeviceSize window_bytes) noexcept {
-  compute_barrier(vk, command_buffer, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                  VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-  const VkBufferCopy region{0, p.capture_offsets[b], window_bytes};
-  vk.vkCmdCopyBuffer(command_buffer, p.arena.handle(), p.capture.handle(), 1, &region);
-  compute_barrier(vk, command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_HOST_BIT,
-                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_HOST_READ_BIT);
-}
-
 Status SubspaceSynthesizer::read_band(std::uint32_t subspace, std::uint32_t level, std::uint32_t channel, std::vector<float>& out,
                                       std::uint32_t& rows, std::uint32_t& cols) const noexcept {
   if (!prepared_ || prepared_->capture_stage == SynthesisStage::none) {
@@ -335,6 +336,9 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
     const VkDeviceSize window_bytes = batch.window_floats * sizeof(float);
     const auto arena = detail::BindingResource::of(p.arena.handle(), 0, window_bytes);
     const auto field_count = static_cast<std::uint32_t>(batch.fields.size());
+    const auto capture = [&] {
+      record_capture(vk, command_buffer, p.arena.handle(), p.capture.handle(), p.capture_offsets[b], window_bytes);
+    };
     const VkDeviceSize field_bytes = field_count * sizeof(gpu::CarFieldGpu);
 
     // The previous batch's colour pass (or the clear) must be done before its work memory is reused.
@@ -350,7 +354,8 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
                     VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
                     VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
 
-    // Frames and noise.
+    // Frames and noise. No field has a stored frame yet (frame_offset is CARBTF_NO_FRAME), so the frame
+    // binding only needs a valid buffer: the field table stands in.
     {
       const detail::BindingResource resources[3] = {detail::BindingResource::of(tables, t.fields, field_bytes), arena,
                                                     detail::BindingResource::of(tables, t.fields, field_bytes)};
@@ -366,7 +371,7 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
     }
     const std::uint32_t stamp = 1 + kTimestampsPerBatch * static_cast<std::uint32_t>(b);
     if (timed) p.timer.record_timestamp(command_buffer, stamp, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
-    if (p.capture_stage == SynthesisStage::noise) record_capture(vk, command_buffer, p, b, window_bytes);
+    if (p.capture_stage == SynthesisStage::noise) capture();
 
     // The recursions, split so that no invocation loops past the cap.
     {
@@ -395,7 +400,7 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
       params.begin = params.end = 0;
     }
     if (timed) p.timer.record_timestamp(command_buffer, stamp + 1, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
-    if (p.capture_stage == SynthesisStage::car) record_capture(vk, command_buffer, p, b, window_bytes);
+    if (p.capture_stage == SynthesisStage::car) capture();
 
     // Collapse, coarsest level first.
     for (std::size_t level = batch.collapse.size(); level-- > 0;) {
@@ -410,7 +415,7 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
       ++p.dispatches;
     }
     if (timed) p.timer.record_timestamp(command_buffer, stamp + 2, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
-    if (p.capture_stage == SynthesisStage::collapse) record_capture(vk, command_buffer, p, b, window_bytes);
+    if (p.capture_stage == SynthesisStage::collapse) capture();
 
     // Colour transform into the output layers.
     {

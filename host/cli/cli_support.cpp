@@ -1,15 +1,32 @@
 #include "cli/cli_support.hpp"
 
+
 #include <iostream>
 
 namespace carbtf::cli {
 
 void add_device_options(CLI::App& command, DeviceOptions& options) {
   command.add_option("--device", options.device,
-                     "Vulkan device: index or part of the name, as `carbtf devices` lists them "
+                     "Vulkan device: index or part of the name, as `carbtf devices` lists them, or gpu "
                      "(default: $CARBTF_DEVICE, else the best device)");
   command.add_flag("--validation", options.validation,
                    "Enable the Vulkan validation layer; any message it reports fails the command");
+}
+
+void add_car_scheme_option(CLI::App& command, CarScheme& scheme) {
+  command
+      .add_option_function<std::string>(
+          "--scheme",
+          [&scheme](const std::string& name) {
+            for (CarScheme s : {CarScheme::automatic, CarScheme::serial, CarScheme::wavefront}) {
+              if (name == car_scheme_name(s)) scheme = s;
+            }
+          },
+          "CAR scheme on the Vulkan device: serial (one invocation per field, for CPU devices), wavefront (one "
+          "workgroup per field, for GPUs), or automatic by device type")
+      ->check(CLI::IsMember({car_scheme_name(CarScheme::automatic), car_scheme_name(CarScheme::serial),
+                             car_scheme_name(CarScheme::wavefront)}))
+      ->default_str(car_scheme_name(scheme));
 }
 
 const CLI::Validator& non_negative() {
@@ -21,7 +38,8 @@ const CLI::Validator& non_negative() {
 
 std::unique_ptr<Context> make_context(const DeviceOptions& options) {
   ContextCreateInfo info;
-  info.device_selector = options.device;
+  // "gpu" names the default choice, so that commands with a CPU path can offer --device cpu|gpu.
+  info.device_selector = options.device == "gpu" ? std::string() : options.device;
   info.enable_validation = options.validation;
   if (options.validation) {
     info.on_message = [](MessageSeverity severity, const char* text) {

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "carbtf/engine/context.hpp"
+#include "carbtf/engine/subspace_synthesizer.hpp"
 
 namespace carbtf::cli {
 
@@ -24,6 +25,9 @@ struct DeviceOptions {
   bool validation = false;  // enable the Vulkan validation layer and fail on its messages
 };
 void add_device_options(CLI::App& command, DeviceOptions& options);
+
+// --scheme automatic|serial|wavefront: how CAR recursions run on the Vulkan device.
+void add_car_scheme_option(CLI::App& command, CarScheme& scheme);
 
 // For unsigned options: CLI11 would otherwise wrap "-3" around to a huge value.
 const CLI::Validator& non_negative();

@@ -38,7 +38,7 @@ struct SynthBenchOptions {
   std::uint32_t margin = 64;
   unsigned repeats = 5;
   unsigned cpu_threads = 2;
-  std::string scheme = "automatic";
+  CarScheme scheme = CarScheme::automatic;
   bool skip_cpu = false;
 };
 
@@ -69,27 +69,21 @@ double median(std::vector<double> v) {
   return v.empty() ? 0.0 : v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
-CarScheme parse_scheme(const std::string& name) {
-  if (name == "serial") return CarScheme::serial;
-  if (name == "wavefront") return CarScheme::wavefront;
-  return CarScheme::automatic;
-}
-
-Material material_for(const SynthBenchOptions& options, const BenchCase& c, const Material* loaded) {
+// The first `c.subspaces` subspaces of the loaded material, or a synthetic one with the case's shape.
+Material material_for(const BenchCase& c, const Material* loaded) {
   if (!loaded) return synthetic_material(c.subspaces, c.levels, 3, c.neighbours);
   Material m = *loaded;
   m.subspaces.resize(std::min<std::size_t>(m.subspaces.size(), c.subspaces));
-  (void)options;
   return m;
 }
 
 BenchRow run_case(const SynthBenchOptions& options, const BenchCase& c, SubspaceSynthesizer& synthesizer, const Material* loaded) {
-  const Material material = material_for(options, c, loaded);
+  const Material material = material_for(c, loaded);
   SynthesisRequest request;
   request.seed = 1;
   request.width = request.height = c.size;
   request.margin = options.margin;
-  request.scheme = parse_scheme(options.scheme);
+  request.scheme = options.scheme;
   BenchRow row;
   row.config = c;
   row.config.subspaces = static_cast<std::uint32_t>(material.subspaces.size());
@@ -179,7 +173,7 @@ void run_synth_bench(const SynthBenchOptions& options) {
   const std::filesystem::path out = options.out;
   std::filesystem::create_directories(out);
   std::printf("bench synth on %s (%s scheme), CPU reference on %u threads, median of %u GPU runs after a warm-up\n",
-              context->device_info().name.c_str(), options.scheme.c_str(), options.cpu_threads, options.repeats);
+              context->device_info().name.c_str(), car_scheme_name(options.scheme), options.cpu_threads, options.repeats);
   std::printf("%-10s %5s %3s %5s %4s %9s %8s %8s %9s %9s %10s %10s\n", "sweep", "size", "lvl", "nbrs", "subs", "scheme", "GPU ms",
               "CAR ms", "wall ms", "CPU f32", "GPU err", "RMS err");
   std::vector<BenchRow> rows;
@@ -241,9 +235,7 @@ void register_bench_synth_command(CLI::App& bench) {
       ->check(CLI::Range(1u, 1000u))
       ->capture_default_str();
   command->add_option("--cpu-threads", options->cpu_threads, "Threads of the CPU reference")->check(CLI::Range(1u, 256u))->capture_default_str();
-  command->add_option("--scheme", options->scheme, "CAR scheme on the device")
-      ->check(CLI::IsMember({"automatic", "serial", "wavefront"}))
-      ->capture_default_str();
+  add_car_scheme_option(*command, options->scheme);
   command->add_flag("--skip-cpu", options->skip_cpu, "Skip the CPU float32 timing (the float64 reference still runs)");
   add_device_options(*command, options->device);
   command->callback([options] { run_synth_bench(*options); });

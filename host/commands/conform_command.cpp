@@ -33,7 +33,7 @@ struct ConformOptions {
   bool extremes = true;
   std::uint32_t large_size = 4096;
   std::vector<std::uint32_t> growth_sizes = {256, 512, 1024, 2048, 4096};
-  std::string scheme = "automatic";
+  CarScheme scheme = CarScheme::automatic;
 };
 
 struct StageResult {
@@ -82,7 +82,7 @@ CaseReport run_case(const std::string& name, const Material& material, std::uint
   request.width = request.height = size;
   request.margin = options.margin;
   request.poison = true;
-  request.scheme = options.scheme == "serial" ? CarScheme::serial : options.scheme == "wavefront" ? CarScheme::wavefront : CarScheme::automatic;
+  request.scheme = options.scheme;
   const std::size_t count = material.subspaces.size();
 
   // CPU float32 with every stage, and float64 for accuracy.
@@ -275,9 +275,7 @@ void register_conform_command(CLI::App& app) {
   command->add_option("--growth-sizes", options->growth_sizes, "Sizes of the float32 error-growth study")
       ->delimiter(',')
       ->check(CLI::Range(1u, 16384u));
-  command->add_option("--scheme", options->scheme, "CAR scheme on the device")
-      ->check(CLI::IsMember({"automatic", "serial", "wavefront"}))
-      ->capture_default_str();
+  add_car_scheme_option(*command, options->scheme);
   add_device_options(*command, options->device);
   command->callback([options] { run_conform(*options); });
 }

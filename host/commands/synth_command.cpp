@@ -34,7 +34,7 @@ struct SynthOptions {
   std::vector<std::uint32_t> subspaces;
   std::vector<double> light;  // theta, phi in degrees
   std::vector<double> view;
-  std::string scheme = "automatic";
+  CarScheme scheme = CarScheme::automatic;
   bool float64 = false;
 };
 
@@ -96,7 +96,7 @@ void run_synth(const SynthOptions& options) {
   request.col0 = options.col0;
   request.margin = options.margin;
   request.subspaces = options.subspaces;
-  request.scheme = options.scheme == "serial" ? CarScheme::serial : options.scheme == "wavefront" ? CarScheme::wavefront : CarScheme::automatic;
+  request.scheme = options.scheme;
   for (std::uint32_t s : request.subspaces) {
     if (s >= material.subspaces.size()) {
       throw CommandError("--subspaces: subspace " + std::to_string(s) + " does not exist; " + options.material + " has " +
@@ -148,9 +148,7 @@ void run_synth(const SynthOptions& options) {
     where = "the CPU reference";
   } else {
     if (options.float64) throw CommandError("--float64 needs --device cpu (the GPU synthesizes in float32)");
-    DeviceOptions device = options.device;
-    if (device.device == "gpu") device.device.clear();
-    auto context = make_context(device);
+    auto context = make_context(options.device);
     std::unique_ptr<SubspaceSynthesizer> synthesizer;
     check(SubspaceSynthesizer::create(*context, synthesizer), "cannot build the synthesis pipelines");
     SynthesizedImages result;
@@ -225,9 +223,7 @@ void register_synth_command(CLI::App& app) {
       ->delimiter(',')
       ->expected(2)
       ->check(CLI::Range(-360.0, 360.0));
-  command->add_option("--scheme", options->scheme, "CAR scheme on a Vulkan device (automatic: serial on CPU devices, wavefront on GPUs)")
-      ->check(CLI::IsMember({"automatic", "serial", "wavefront"}))
-      ->capture_default_str();
+  add_car_scheme_option(*command, options->scheme);
   command->add_flag("--float64", options->float64, "With --device cpu: the float64 reference (the accuracy reference)");
   command->add_option("--device", options->device.device,
                       "cpu: the CPU reference; gpu: the best Vulkan device; else a Vulkan device index or part of its name, "

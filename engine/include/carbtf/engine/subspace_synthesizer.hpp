@@ -134,8 +134,6 @@ class SubspaceSynthesizer {
   SubspaceSynthesizer() = default;
   struct Pipelines;
   struct Prepared;
-  static void record_capture(const VulkanFunctions& vk, VkCommandBuffer command_buffer, Prepared& prepared, std::size_t batch,
-                             VkDeviceSize window_bytes) noexcept;
   Context* context_ = nullptr;
   std::unique_ptr<Pipelines> pipelines_;
   std::unique_ptr<Prepared> prepared_;

@@ -37,9 +37,6 @@ struct SynthesisBlock {
   std::uint32_t margin = 64;
 };
 
-inline constexpr std::uint32_t kMaxFieldChannels = 16;
-inline constexpr std::uint32_t kMaxFieldLevels = 8;
-
 constexpr std::uint32_t field_id_of(std::uint32_t subspace, std::uint32_t level, std::uint32_t channel) {
   return subspace * 128u + level * 16u + channel;
 }
