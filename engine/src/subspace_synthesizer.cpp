@@ -110,6 +110,7 @@ struct SubspaceSynthesizer::Prepared {
   CarScheme scheme = CarScheme::serial;
   bool poison = false;
   Buffer table_buffer;
+  Buffer frames;  // block initialization values, when the request has them
   Buffer arena;
   Buffer capture;  // host copy of every batch's window after request.capture's stage
   std::vector<VkDeviceSize> capture_offsets;
@@ -239,6 +240,18 @@ Status SubspaceSynthesizer::prepare(const Material& material, const SynthesisReq
       std::memcpy(bytes + tables.colour, batch.colour.data(), batch.colour.size() * sizeof(gpu::ColourItemGpu));
     }
 
+    if (!request.initial_values.empty()) {
+      const VkDeviceSize frame_bytes = request.initial_values.size_bytes();
+      if (frame_bytes > device.max_storage_buffer_range) {
+        return {ErrorCode::invalid_argument, "the block initialization values exceed " + device.name +
+                                                 "'s storage-buffer range; synthesize smaller blocks"};
+      }
+      CARBTF_TRY(Buffer::create(*context_,
+                                {frame_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::host_upload,
+                                 "carbtf block initialization values"},
+                                prepared->frames));
+      std::memcpy(prepared->frames.mapped(), request.initial_values.data(), frame_bytes);
+    }
     CARBTF_TRY(Buffer::create(*context_,
                               {plan.window_floats * sizeof(float),
                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
@@ -354,11 +367,13 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
                     VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
                     VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
 
-    // Frames and noise. No field has a stored frame yet (frame_offset is CARBTF_NO_FRAME), so the frame
-    // binding only needs a valid buffer: the field table stands in.
+    // Frames and noise. Without block initialization values no field reads a frame (frame_offset is
+    // CARBTF_NO_FRAME), and the binding only needs a valid buffer: the field table stands in.
     {
-      const detail::BindingResource resources[3] = {detail::BindingResource::of(tables, t.fields, field_bytes), arena,
-                                                    detail::BindingResource::of(tables, t.fields, field_bytes)};
+      const detail::BindingResource frames = p.frames.handle() != VK_NULL_HANDLE
+                                                 ? detail::BindingResource::of(p.frames.handle(), 0, p.frames.size())
+                                                 : detail::BindingResource::of(tables, t.fields, field_bytes);
+      const detail::BindingResource resources[3] = {detail::BindingResource::of(tables, t.fields, field_bytes), arena, frames};
       for (const detail::LevelGroup& group : batch.levels) {
         params.begin = group.first;
         params.item_count = group.first + group.count;

@@ -18,7 +18,7 @@ std::vector<TextureRegion> level_regions(const TextureRegion& block, std::uint32
 }
 
 std::uint32_t car_frame_pad(std::span<const CarNeighbour> neighbourhood) {
-  int pad = 0;
+  int pad = 1;
   for (const CarNeighbour& n : neighbourhood) pad = std::max({pad, -int{n.dr}, std::abs(int{n.dc})});
   return static_cast<std::uint32_t>(pad);
 }
@@ -32,6 +32,61 @@ std::uint32_t car_wavefront_skew(std::span<const CarNeighbour> neighbourhood) {
     if (need > 0) skew = std::max(skew, (need + up - 1) / up);
   }
   return static_cast<std::uint32_t>(skew);
+}
+
+TextureRegion car_region(const TextureRegion& level_region, std::uint32_t margin) {
+  return {level_region.row0 - margin, level_region.col0 - margin, level_region.rows + margin,
+          level_region.cols + 2 * std::int64_t{margin}};
+}
+
+std::uint64_t car_frame_floats(const TextureRegion& car, std::uint32_t pad) {
+  return static_cast<std::uint64_t>(pad * (car.cols + 2 * std::int64_t{pad}) + car.rows * 2 * std::int64_t{pad});
+}
+
+BlockFrameLayout block_frame_layout(const Material& material, const SynthesisBlock& block,
+                                    std::span<const std::uint32_t> subspaces) {
+  BlockFrameLayout layout;
+  for (const std::uint32_t s : subspaces) {
+    const SubspaceModel& model = material.subspaces[s];
+    const auto regions = level_regions({block.row0, block.col0, block.height, block.width}, model.levels);
+    for (std::uint32_t level = 0; level < model.levels; ++level) {
+      for (std::uint32_t channel = 0; channel < model.channels; ++channel) {
+        BlockFrameField field;
+        field.subspace = s;
+        field.level = level;
+        field.channel = channel;
+        field.car = car_region(regions[level], block.margin);
+        field.pad = car_frame_pad(model.bands[std::size_t{level} * model.channels + channel].neighbourhood);
+        field.offset = layout.floats;
+        layout.floats += car_frame_floats(field.car, field.pad);
+        layout.fields.push_back(field);
+      }
+    }
+  }
+  return layout;
+}
+
+bool extract_car_frame(const TextureRegion& car, std::uint32_t pad, std::span<const float> source,
+                       const TextureRegion& source_region, std::span<float> out) {
+  const std::int64_t top = car.row0 - pad, left = car.col0 - pad;
+  const std::int64_t right = car.col0 + car.cols + pad, bottom = car.row0 + car.rows;
+  if (top < source_region.row0 || left < source_region.col0 || bottom > source_region.row0 + source_region.rows ||
+      right > source_region.col0 + source_region.cols || out.size() < car_frame_floats(car, pad) ||
+      source.size() < static_cast<std::uint64_t>(source_region.rows * source_region.cols)) {
+    return false;
+  }
+  auto at = [&](std::int64_t row, std::int64_t col) {
+    return source[static_cast<std::size_t>((row - source_region.row0) * source_region.cols + (col - source_region.col0))];
+  };
+  std::size_t i = 0;
+  for (std::int64_t row = top; row < car.row0; ++row) {
+    for (std::int64_t col = left; col < right; ++col) out[i++] = at(row, col);
+  }
+  for (std::int64_t row = car.row0; row < bottom; ++row) {
+    for (std::int64_t col = left; col < car.col0; ++col) out[i++] = at(row, col);
+    for (std::int64_t col = car.col0 + car.cols; col < right; ++col) out[i++] = at(row, col);
+  }
+  return true;
 }
 
 }  // namespace carbtf

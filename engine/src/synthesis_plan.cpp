@@ -23,8 +23,21 @@ std::uint64_t padded_floats(const gpu::CarFieldGpu& field) {
   return std::uint64_t{field.rows + field.pad} * field.pitch;
 }
 
+// The frame of field (subspace, level, channel) in the request's initial values, or none.
+std::uint32_t frame_offset_of(const BlockFrameLayout* frames, std::uint32_t subspace, std::uint32_t level,
+                              std::uint32_t channel) {
+  if (frames == nullptr) return gpu::CARBTF_NO_FRAME;
+  for (const BlockFrameField& field : frames->fields) {
+    if (field.subspace == subspace && field.level == level && field.channel == channel) {
+      return static_cast<std::uint32_t>(field.offset);
+    }
+  }
+  return gpu::CARBTF_NO_FRAME;
+}
+
 Status make_stack(const Material& material, std::uint32_t subspace, std::uint32_t channel,
-                  const std::vector<TextureRegion>& regions, std::uint32_t margin, Stack& out) {
+                  const std::vector<TextureRegion>& regions, std::uint32_t margin, const BlockFrameLayout* frames,
+                  Stack& out) {
   const SubspaceModel& model = material.subspaces[subspace];
   out.subspace = subspace;
   out.channel = channel;
@@ -43,16 +56,17 @@ Status make_stack(const Material& material, std::uint32_t subspace, std::uint32_
     field.channel = channel;
     field.window = regions[level];
     gpu::CarFieldGpu& g = field.gpu;
-    g.pad = std::max<std::uint32_t>(car_frame_pad(band.neighbourhood), 1);
-    g.rows = static_cast<std::uint32_t>(field.window.rows + margin);
-    g.cols = static_cast<std::uint32_t>(field.window.cols + 2 * std::int64_t{margin});
+    const TextureRegion car = car_region(field.window, margin);
+    g.pad = car_frame_pad(band.neighbourhood);
+    g.rows = static_cast<std::uint32_t>(car.rows);
+    g.cols = static_cast<std::uint32_t>(car.cols);
     g.pitch = g.cols + 2 * g.pad;
     g.field_id = field_id_of(subspace, level, channel);
-    g.row0 = static_cast<std::uint32_t>(static_cast<std::int32_t>(field.window.row0 - margin));
-    g.col0 = static_cast<std::uint32_t>(static_cast<std::int32_t>(field.window.col0 - margin));
+    g.row0 = static_cast<std::uint32_t>(static_cast<std::int32_t>(car.row0));
+    g.col0 = static_cast<std::uint32_t>(static_cast<std::int32_t>(car.col0));
     g.neighbour_count = static_cast<std::uint32_t>(band.neighbourhood.size());
     g.skew = car_wavefront_skew(band.neighbourhood);
-    g.frame_offset = gpu::CARBTF_NO_FRAME;
+    g.frame_offset = frame_offset_of(frames, subspace, level, channel);
     g.sigma = band.sigma;
     for (std::size_t k = 0; k < band.neighbourhood.size(); ++k) {
       g.tap[k] = int{band.neighbourhood[k].dr} * static_cast<int>(g.pitch) + int{band.neighbourhood[k].dc};
@@ -178,6 +192,18 @@ Status plan_synthesis(const Material& material, const SynthesisRequest& request,
   if (out.subspaces.empty()) return {ErrorCode::invalid_argument, "the material has no subspace images"};
   out.width = request.width;
   out.height = request.height;
+  BlockFrameLayout frames;
+  if (!request.initial_values.empty()) {
+    frames = block_frame_layout(material, request, out.subspaces);
+    if (request.initial_values.size() != frames.floats) {
+      return {ErrorCode::invalid_argument, "the request has " + std::to_string(request.initial_values.size()) +
+                                               " block initialization values; its block and subspaces need " +
+                                               std::to_string(frames.floats)};
+    }
+    if (frames.floats >= gpu::CARBTF_NO_FRAME) {
+      return {ErrorCode::invalid_argument, "block initialization values beyond 32-bit offsets; synthesize smaller blocks"};
+    }
+  }
 
   std::vector<Stack> all;
   for (std::uint32_t s : out.subspaces) {
@@ -191,7 +217,7 @@ Status plan_synthesis(const Material& material, const SynthesisRequest& request,
     const auto regions = level_regions({request.row0, request.col0, request.height, request.width}, model.levels);
     for (std::uint32_t c = 0; c < model.channels; ++c) {
       Stack stack;
-      CARBTF_TRY(make_stack(material, s, c, regions, request.margin, stack));
+      CARBTF_TRY(make_stack(material, s, c, regions, request.margin, request.initial_values.empty() ? nullptr : &frames, stack));
       if (stack.floats * sizeof(float) > max_window_bytes) {
         return {ErrorCode::invalid_argument,
                 "a " + std::to_string(request.width) + "x" + std::to_string(request.height) + " subspace image with margin " +

@@ -58,7 +58,8 @@ struct SynthesisPlan {
 };
 
 // Plans `request` over `material` with batch windows of at most `max_window_bytes`. invalid_argument
-// (naming the cause) for a request the GPU path cannot serve.
+// (naming the cause) for a request the GPU path cannot serve. With request.initial_values, every field's
+// frame_offset points into them (block_frame_layout()).
 Status plan_synthesis(const Material& material, const SynthesisRequest& request, std::uint64_t max_window_bytes,
                       SynthesisPlan& out);
 

@@ -210,5 +210,72 @@ TEST_CASE("requests the GPU path cannot serve fail with a message naming the cau
   band.gamma.assign(band.neighbourhood.size(), 0.01f);
   status = synthesizer->synthesize(m, request, images);
   CHECK_THAT(status.message(), Catch::Contains("at most 16"));
+
+  const Material plain = synthetic_material(1, 2);
+  const std::vector<float> too_few(10, 0.0f);
+  request.initial_values = too_few;
+  status = synthesizer->synthesize(plain, request, images);
+  CHECK(status.code() == ErrorCode::invalid_argument);
+  CHECK_THAT(status.message(), Catch::Contains("block initialization values"));
+  context.require_clean();
+}
+
+TEST_CASE("GPU block-wise synthesis from stored initialization values equals the whole synthesis", "[gpu_synthesis][gpu][blockwise]") {
+  test::ValidatedContext context;
+  auto synthesizer = make_synthesizer(*context);
+  const Material m = synthetic_material(3, 3);
+  SynthesisRequest whole;
+  whole.seed = 99;
+  whole.row0 = 300;
+  whole.col0 = -250;
+  whole.width = 160;
+  whole.height = 120;
+  whole.margin = 40;
+  whole.subspaces = {1, 2};
+  const SynthesizedImages big = gpu_synthesize(*synthesizer, m, whole);
+  // Tiles of a 2 x 2 grid with uneven sizes, each synthesized on its own with margin 0.
+  std::vector<SynthesisBlock> blocks;
+  for (const auto& [row, height] : {std::pair{300, 57}, std::pair{357, 63}}) {
+    for (const auto& [col, width] : {std::pair{-250, 85}, std::pair{-165, 75}}) {
+      SynthesisBlock block = whole;
+      block.row0 = row;
+      block.col0 = col;
+      block.width = static_cast<std::uint32_t>(width);
+      block.height = static_cast<std::uint32_t>(height);
+      block.margin = 0;
+      blocks.push_back(block);
+    }
+  }
+  const auto initial = reference::block_initial_values(m, whole.subspaces, whole, blocks);
+  for (CarScheme scheme : {CarScheme::serial, CarScheme::wavefront}) {
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+      INFO(car_scheme_name(scheme) << " block " << b);
+      SynthesisRequest request;
+      static_cast<SynthesisBlock&>(request) = blocks[b];
+      request.subspaces = whole.subspaces;
+      request.scheme = scheme;
+      request.poison = true;
+      request.initial_values = initial[b];
+      // The last block also runs split into per-band batches and short dispatches.
+      const bool split = b + 1 == blocks.size();
+      synthesizer->set_max_batch_bytes(split ? 40 * 1024 : 0);
+      synthesizer->set_max_loop_iterations(split ? 61 : 0);
+      const SynthesizedImages tile = gpu_synthesize(*synthesizer, m, request);
+      if (split) CHECK(synthesizer->batch_count() > 2);
+      for (std::uint32_t s : whole.subspaces) {
+        INFO("subspace " << s);
+        std::vector<float> expected;
+        for (std::int64_t r = 0; r < request.height; ++r) {
+          const std::size_t first = static_cast<std::size_t>(((request.row0 - whole.row0 + r) * std::int64_t{whole.width} +
+                                                              request.col0 - whole.col0) * 3);
+          expected.insert(expected.end(), big.images[s].begin() + static_cast<std::ptrdiff_t>(first),
+                          big.images[s].begin() + static_cast<std::ptrdiff_t>(first + std::size_t{request.width} * 3));
+        }
+        test::require_bitwise_equal(tile.images[s], expected, std::size_t{request.width} * 3);
+      }
+    }
+  }
+  synthesizer->set_max_batch_bytes(0);
+  synthesizer->set_max_loop_iterations(0);
   context.require_clean();
 }

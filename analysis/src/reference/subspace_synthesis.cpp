@@ -48,11 +48,21 @@ std::vector<Real> expand(const std::vector<Real>& coarse, const TextureRegion& f
   return out;
 }
 
+void check_subspace(const Material& material, std::uint32_t subspace) {
+  if (subspace >= material.subspaces.size()) throw std::invalid_argument("subspace " + std::to_string(subspace) + " does not exist");
+}
+
 template <typename Real>
 void synthesize(const Material& material, std::uint32_t subspace, const SubspaceBlock& block, std::span<Real> out,
-                SubspaceStages* stages = nullptr) {
-  if (subspace >= material.subspaces.size()) throw std::invalid_argument("subspace " + std::to_string(subspace) + " does not exist");
+                SubspaceStages* stages, std::span<const float> initial_values) {
+  check_subspace(material, subspace);
   const SubspaceModel& model = material.subspaces[subspace];
+  const std::uint32_t single[1] = {subspace};
+  const BlockFrameLayout frames = initial_values.empty() ? BlockFrameLayout{} : block_frame_layout(material, block, single);
+  if (!initial_values.empty() && initial_values.size() != frames.floats) {
+    throw std::invalid_argument("subspace " + std::to_string(subspace) + ": " + std::to_string(initial_values.size()) +
+                                " block initialization values, the block needs " + std::to_string(frames.floats));
+  }
   const std::size_t pixels = std::size_t{block.width} * block.height;
   if (out.size() < pixels * model.channels) throw std::invalid_argument("subspace synthesis: output span too small");
   const std::vector<TextureRegion> regions = level_regions({block.row0, block.col0, block.height, block.width}, model.levels);
@@ -75,6 +85,10 @@ void synthesize(const Material& material, std::uint32_t subspace, const Subspace
       field.width = static_cast<std::uint32_t>(region.cols);
       field.height = static_cast<std::uint32_t>(region.rows);
       field.margin = block.margin;
+      if (!initial_values.empty()) {
+        const BlockFrameField& frame = frames.fields[std::size_t{level} * model.channels + channel];
+        field.frame = initial_values.subspan(frame.offset, car_frame_floats(frame.car, frame.pad));
+      }
       std::vector<Real> band(static_cast<std::size_t>(region.rows * region.cols));
       synthesize_car_block(model.bands[level * model.channels + channel], field, std::span<Real>(band));
       const std::size_t index = std::size_t{level} * model.channels + channel;
@@ -99,20 +113,42 @@ void synthesize(const Material& material, std::uint32_t subspace, const Subspace
   }
 }
 
-template <typename Real>
-std::vector<std::vector<Real>> synthesize_many(const Material& material, std::span<const std::uint32_t> subspaces,
-                                               const SubspaceBlock& block, unsigned threads) {
+std::vector<std::uint32_t> resolve_list(const Material& material, std::span<const std::uint32_t> subspaces) {
   std::vector<std::uint32_t> list(subspaces.begin(), subspaces.end());
   if (list.empty()) {
     for (std::uint32_t s = 0; s < material.subspaces.size(); ++s) list.push_back(s);
   }
-  for (std::uint32_t s : list) {
-    if (s >= material.subspaces.size()) throw std::invalid_argument("subspace " + std::to_string(s) + " does not exist");
+  for (std::uint32_t s : list) check_subspace(material, s);
+  return list;
+}
+
+template <typename Real>
+std::vector<std::vector<Real>> synthesize_many(const Material& material, std::span<const std::uint32_t> subspaces,
+                                               const SubspaceBlock& block, unsigned threads,
+                                               std::span<const float> initial_values) {
+  const std::vector<std::uint32_t> list = resolve_list(material, subspaces);
+  // Each subspace's frames are consecutive in the layout: slice them per task.
+  std::vector<std::span<const float>> slices(list.size());
+  if (!initial_values.empty()) {
+    const BlockFrameLayout layout = block_frame_layout(material, block, list);
+    if (initial_values.size() != layout.floats) {
+      throw std::invalid_argument(std::to_string(initial_values.size()) + " block initialization values, the block needs " +
+                                  std::to_string(layout.floats));
+    }
+    std::size_t field = 0;
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const SubspaceModel& model = material.subspaces[list[i]];
+      const std::size_t count = std::size_t{model.levels} * model.channels;
+      const std::uint64_t begin = layout.fields[field].offset;
+      const std::uint64_t end = field + count < layout.fields.size() ? layout.fields[field + count].offset : layout.floats;
+      slices[i] = initial_values.subspan(begin, end - begin);
+      field += count;
+    }
   }
   std::vector<std::vector<Real>> images(material.subspaces.size());
   for (std::uint32_t s : list) images[s].resize(std::size_t{block.width} * block.height * material.subspaces[s].channels);
   detail::parallel_for(list.size(), threads, [&](std::size_t i) {
-    synthesize(material, list[i], block, std::span<Real>(images[list[i]]));
+    synthesize(material, list[i], block, std::span<Real>(images[list[i]]), nullptr, slices[i]);
   });
   return images;
 }
@@ -120,22 +156,66 @@ std::vector<std::vector<Real>> synthesize_many(const Material& material, std::sp
 }  // namespace
 
 std::vector<std::vector<float>> synthesize_subspaces(const Material& material, std::span<const std::uint32_t> subspaces,
-                                                     const SubspaceBlock& block, unsigned threads) {
-  return synthesize_many<float>(material, subspaces, block, threads);
+                                                     const SubspaceBlock& block, unsigned threads,
+                                                     std::span<const float> initial_values) {
+  return synthesize_many<float>(material, subspaces, block, threads, initial_values);
 }
 
 std::vector<std::vector<double>> synthesize_subspaces_f64(const Material& material, std::span<const std::uint32_t> subspaces,
-                                                          const SubspaceBlock& block, unsigned threads) {
-  return synthesize_many<double>(material, subspaces, block, threads);
+                                                          const SubspaceBlock& block, unsigned threads,
+                                                          std::span<const float> initial_values) {
+  return synthesize_many<double>(material, subspaces, block, threads, initial_values);
 }
 
 void synthesize_subspace(const Material& material, std::uint32_t subspace, const SubspaceBlock& block, std::span<float> out,
-                         SubspaceStages* stages) {
-  synthesize(material, subspace, block, out, stages);
+                         SubspaceStages* stages, std::span<const float> initial_values) {
+  synthesize(material, subspace, block, out, stages, initial_values);
 }
 void synthesize_subspace(const Material& material, std::uint32_t subspace, const SubspaceBlock& block, std::span<double> out,
-                         SubspaceStages* stages) {
-  synthesize(material, subspace, block, out, stages);
+                         SubspaceStages* stages, std::span<const float> initial_values) {
+  synthesize(material, subspace, block, out, stages, initial_values);
+}
+
+std::vector<std::vector<float>> block_initial_values(const Material& material, std::span<const std::uint32_t> subspaces,
+                                                     const SubspaceBlock& whole, std::span<const SubspaceBlock> blocks,
+                                                     unsigned threads) {
+  const std::vector<std::uint32_t> list = resolve_list(material, subspaces);
+  std::vector<BlockFrameLayout> layouts;
+  std::vector<std::vector<float>> values;
+  for (const SubspaceBlock& block : blocks) {
+    if (block.seed != whole.seed) throw std::invalid_argument("block initialization values: a block's seed differs from the whole synthesis's");
+    layouts.push_back(block_frame_layout(material, block, list));
+    values.emplace_back(layouts.back().floats);
+  }
+  // One task per (subspace, level, channel) band of the whole; layouts share the field order.
+  const std::vector<BlockFrameField> bands = block_frame_layout(material, whole, list).fields;
+  detail::parallel_for(bands.size(), threads, [&](std::size_t i) {
+    const BlockFrameField& band = bands[i];
+    const SubspaceModel& model = material.subspaces[band.subspace];
+    const TextureRegion level = level_regions({whole.row0, whole.col0, whole.height, whole.width}, model.levels)[band.level];
+    CarFieldBlock field;
+    field.seed = whole.seed;
+    field.field_id = field_id_of(band.subspace, band.level, band.channel);
+    field.row0 = static_cast<std::int32_t>(level.row0);
+    field.col0 = static_cast<std::int32_t>(level.col0);
+    field.width = static_cast<std::uint32_t>(level.cols);
+    field.height = static_cast<std::uint32_t>(level.rows);
+    field.margin = whole.margin;
+    const CarFieldValues source = synthesize_car_field(model.bands[std::size_t{band.level} * model.channels + band.channel], field);
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+      const BlockFrameField& target = layouts[b].fields[i];
+      const std::size_t count = car_frame_floats(target.car, target.pad);
+      if (!extract_car_frame(target.car, target.pad, source.values, source.region,
+                             std::span<float>(values[b]).subspan(target.offset, count))) {
+        throw std::invalid_argument("block " + std::to_string(b) + " (" + std::to_string(blocks[b].width) + "x" +
+                                    std::to_string(blocks[b].height) + " at row " + std::to_string(blocks[b].row0) +
+                                    ", col " + std::to_string(blocks[b].col0) + ", margin " +
+                                    std::to_string(blocks[b].margin) +
+                                    ") does not lie inside the whole synthesis with its burn-in margin and frame");
+      }
+    }
+  });
+  return values;
 }
 
 void interpolate_subspaces(const Material& material, const PairWeights& weights, const std::vector<std::vector<float>>& images,

@@ -18,6 +18,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "carbtf/engine/buffer.hpp"
@@ -52,6 +53,11 @@ struct SynthesisRequest : SynthesisBlock {
   bool poison = false;
   // Conformance: after this stage of every batch, copy the bands to host memory for read_band().
   SynthesisStage capture = SynthesisStage::none;
+  // Block-wise synthesis: block initialization values laid out by block_frame_layout(material, *this,
+  // subspaces as resolved), e.g. from the CPU reference's block_initial_values(). Every band's
+  // recursion then starts from them instead of zeros, so the block equals the same region of the
+  // larger synthesis they came from. Empty: zeros. Read during prepare() only.
+  std::span<const float> initial_values;
 };
 
 // GPU time per stage, summed over batches, in milliseconds (0 where the queue has no timestamps).

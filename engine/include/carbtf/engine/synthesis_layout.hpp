@@ -49,8 +49,45 @@ TextureRegion coarse_support(const TextureRegion& fine);
 // The regions of levels 0 .. levels - 1 for an output block.
 std::vector<TextureRegion> level_regions(const TextureRegion& block, std::uint32_t levels);
 
-// Rows above and columns to each side that a neighbourhood reaches: the frame a field is stored with.
+// Rows above and columns to each side that a neighbourhood reaches, at least 1: the frame a field is
+// stored with.
 std::uint32_t car_frame_pad(std::span<const CarNeighbour> neighbourhood);
+
+// The region a band's recursion runs over: its level region extended by the burn-in margin above and on
+// both sides.
+TextureRegion car_region(const TextureRegion& level_region, std::uint32_t margin);
+
+// Block initialization values (the paper's "block initialization values"): to synthesize a block on its
+// own yet equal to the same region of a larger synthesis, each band's recursion starts from that
+// larger synthesis's values around the band's CAR region instead of from zeros. One field's frame holds,
+// in order, the `pad` rows above its CAR region, each cols + 2 pad wide (from column col0 - pad), then
+// for every region row its `pad` values to the left and its `pad` values to the right.
+std::uint64_t car_frame_floats(const TextureRegion& car, std::uint32_t pad);
+
+// Where each field's frame lies in the block initialization values of a request: fields in request
+// order (subspace as listed, then level, then channel), frames back to back.
+struct BlockFrameField {
+  std::uint32_t subspace = 0;
+  std::uint32_t level = 0;
+  std::uint32_t channel = 0;
+  TextureRegion car;  // the recursion's region (absolute coordinates)
+  std::uint32_t pad = 1;
+  std::uint64_t offset = 0;  // first value of the frame
+};
+struct BlockFrameLayout {
+  std::vector<BlockFrameField> fields;
+  std::uint64_t floats = 0;  // total
+};
+// `subspaces` must exist in `material` (callers validate first).
+BlockFrameLayout block_frame_layout(const Material& material, const SynthesisBlock& block,
+                                    std::span<const std::uint32_t> subspaces);
+
+// Copies one field's frame (CAR region `car`, `pad`) out of the stored recursion values `source` of a
+// larger synthesis of the same field, which cover `source_region` row-major (frame included: outside
+// its own recursion a field's values are its frame). Returns false, writing nothing, when the frame does
+// not lie inside `source_region` or `out` is shorter than car_frame_floats().
+bool extract_car_frame(const TextureRegion& car, std::uint32_t pad, std::span<const float> source,
+                       const TextureRegion& source_region, std::span<float> out);
 
 // The wavefront skew a: pixel (r, c) can run at step a * r + c, a = max over neighbours with dr < 0 of
 // ceil((dc + 1) / -dr), at least 1. Every neighbour of a pixel then runs at an earlier step.

@@ -36,20 +36,35 @@ struct SubspaceStages {
 };
 
 // Synthesizes subspace image `subspace` into `out` (width * height * channels). Throws
-// std::invalid_argument for a subspace index out of range or an output span too small.
-// With `stages`, also keeps every band and collapsed level.
+// std::invalid_argument for a subspace index out of range, an output span too small or initial values
+// of the wrong size. With `stages`, also keeps every band and collapsed level.
+// Block-wise synthesis: `initial_values` (empty: every recursion starts from zeros) are the block
+// initialization values laid out by block_frame_layout(material, block, {subspace}), as
+// block_initial_values() computes them.
 void synthesize_subspace(const Material& material, std::uint32_t subspace, const SubspaceBlock& block, std::span<float> out,
-                         SubspaceStages* stages = nullptr);
+                         SubspaceStages* stages = nullptr, std::span<const float> initial_values = {});
 void synthesize_subspace(const Material& material, std::uint32_t subspace, const SubspaceBlock& block, std::span<double> out,
-                         SubspaceStages* stages = nullptr);
+                         SubspaceStages* stages = nullptr, std::span<const float> initial_values = {});
 
 // Synthesizes the listed subspace images (empty: all) with one task per image on `threads` threads (0:
-// all hardware threads). Result indexed by subspace id, empty where not listed. Throws like
-// synthesize_subspace.
+// all hardware threads). Result indexed by subspace id, empty where not listed. `initial_values` as
+// above, laid out by block_frame_layout(material, block, list). Throws like synthesize_subspace.
 std::vector<std::vector<float>> synthesize_subspaces(const Material& material, std::span<const std::uint32_t> subspaces,
-                                                     const SubspaceBlock& block, unsigned threads = 0);
+                                                     const SubspaceBlock& block, unsigned threads = 0,
+                                                     std::span<const float> initial_values = {});
 std::vector<std::vector<double>> synthesize_subspaces_f64(const Material& material, std::span<const std::uint32_t> subspaces,
-                                                          const SubspaceBlock& block, unsigned threads = 0);
+                                                          const SubspaceBlock& block, unsigned threads = 0,
+                                                          std::span<const float> initial_values = {});
+
+// The block initialization values that let each of `blocks` be synthesized on its own (on the CPU or
+// the GPU) and still equal, bit for bit in float32, the same region of the synthesis `whole`: for every
+// listed subspace (empty: all) and band, the float32 recursion values of `whole` around the block's
+// band (block_frame_layout()). Runs each band of `whole` once, on `threads` threads. Throws
+// std::invalid_argument when a block (with its burn-in margin and frame) does not lie inside `whole`
+// or the seeds differ.
+std::vector<std::vector<float>> block_initial_values(const Material& material, std::span<const std::uint32_t> subspaces,
+                                                     const SubspaceBlock& whole, std::span<const SubspaceBlock> blocks,
+                                                     unsigned threads = 0);
 
 // The 9-weight interpolation of synthesized subspace images: out = sum_k w_k * images[subspace of
 // pair k]; `images[s]` holds subspace s (pixel_count * channels values) or is empty when not needed.
