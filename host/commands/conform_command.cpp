@@ -1,6 +1,7 @@
 // `carbtf conform [material.cbtf]`: headless GPU-vs-CPU conformance of subspace synthesis. Runs the
 // Vulkan pipeline and the CPU float32 reference on the same material, seed and size, compares every
-// stage pixel by pixel, reports float32 against float64, and exits non-zero beyond the tolerance.
+// stage pixel by pixel, checks block-wise synthesis against the whole, reports float32 against float64,
+// and exits non-zero beyond the tolerance.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -71,6 +72,49 @@ std::vector<std::array<double, 4>> interpolation_queries(const Material& m) {
   return {{m.lights[0].theta, m.lights[0].phi, m.views[m.views.size() - 1].theta, m.views[m.views.size() - 1].phi},
           {37.0 * d, 101.0 * d, 52.0 * d, 203.0 * d},
           {89.0 * d, 10.0 * d, 87.0 * d, 190.0 * d}};
+}
+
+// Block-wise synthesis: the output as a 2 x 2 grid of blocks, each synthesized on its own (margin 0)
+// from block initialization values of `whole`, against the same region of the whole GPU images.
+StageResult blockwise_stage(const Material& material, const SynthesisRequest& whole, const SynthesizedImages& images,
+                            SubspaceSynthesizer& synthesizer) {
+  StageResult stage("block-wise");
+  std::vector<SynthesisBlock> blocks;
+  const std::uint32_t half_rows = std::max(1u, whole.height / 2), half_cols = std::max(1u, whole.width / 2);
+  for (std::uint32_t r = 0; r < whole.height; r += half_rows) {
+    for (std::uint32_t c = 0; c < whole.width; c += half_cols) {
+      SynthesisBlock block = whole;
+      block.row0 = whole.row0 + static_cast<std::int32_t>(r);
+      block.col0 = whole.col0 + static_cast<std::int32_t>(c);
+      block.height = std::min(half_rows, whole.height - r);
+      block.width = std::min(half_cols, whole.width - c);
+      block.margin = 0;
+      blocks.push_back(block);
+    }
+  }
+  const auto initial = reference::block_initial_values(material, {}, whole, blocks);
+  for (std::size_t b = 0; b < blocks.size(); ++b) {
+    SynthesisRequest request;
+    static_cast<SynthesisBlock&>(request) = blocks[b];
+    request.scheme = whole.scheme;
+    request.poison = true;
+    request.initial_values = initial[b];
+    SynthesizedImages tile;
+    check(synthesizer.synthesize(material, request, tile), "block-wise GPU synthesis failed");
+    for (std::size_t s = 0; s < material.subspaces.size(); ++s) {
+      const std::uint32_t channels = material.subspaces[s].channels;
+      std::vector<float> expected;
+      for (std::uint32_t r = 0; r < request.height; ++r) {
+        const std::size_t first =
+            (std::size_t{static_cast<std::uint32_t>(request.row0 - whole.row0) + r} * whole.width +
+             static_cast<std::uint32_t>(request.col0 - whole.col0)) * channels;
+        expected.insert(expected.end(), images.images[s].begin() + static_cast<std::ptrdiff_t>(first),
+                        images.images[s].begin() + static_cast<std::ptrdiff_t>(first + std::size_t{request.width} * channels));
+      }
+      accumulate(stage, tile.images[s], expected, channels);
+    }
+  }
+  return stage;
 }
 
 CaseReport run_case(const std::string& name, const Material& material, std::uint32_t size, const ConformOptions& options,
@@ -145,7 +189,7 @@ CaseReport run_case(const std::string& name, const Material& material, std::uint
     reference::interpolate_subspaces(material, weights, cpu, expected);
     accumulate(interpolation, gpu, expected, material.subspaces[0].channels);
   }
-  report.stages = {noise, band, collapse, colour, interpolation};
+  report.stages = {noise, band, collapse, colour, interpolation, blockwise_stage(material, request, images, synthesizer)};
   return report;
 }
 
@@ -257,7 +301,7 @@ void register_conform_command(CLI::App& app) {
   auto options = std::make_shared<ConformOptions>();
   auto* command = app.add_subcommand(
       "conform", "Headless GPU-vs-CPU conformance of synthesis: every stage (noise, band fields, collapse, colour, "
-                 "interpolation) compared pixel by pixel, stiff and extreme cases, float32 error growth against float64; "
+                 "interpolation) compared pixel by pixel, 2x2 blocks from stored initialization values against the whole, stiff and extreme cases, float32 error growth against float64; "
                  "exits non-zero beyond the tolerance");
   command->add_option("material", options->material, "Material file (.cbtf); without one only the built-in extreme cases run");
   command->add_option("--size", options->size, "Output size for the material")->check(CLI::Range(1u, 16384u))->capture_default_str();
