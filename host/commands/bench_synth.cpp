@@ -4,13 +4,17 @@
 // asserts a timing.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstring>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <thread>
 
+#include "carbtf/analysis/btf/btf_reader.hpp"
 #include "carbtf/analysis/image_io.hpp"
+#include "carbtf/analysis/quality/fidelity.hpp"
 #include "carbtf/analysis/reference/conformance.hpp"
 #include "carbtf/analysis/reference/subspace_synthesis.hpp"
 #include "carbtf/analysis/report/figures.hpp"
@@ -26,6 +30,7 @@ namespace {
 struct SynthBenchOptions {
   DeviceOptions device;
   std::string material;  // empty: synthetic materials
+  std::string btf;       // the material's measured BTF: fidelity error against it
   std::string out = "carbtf-bench-synth";
   std::vector<std::uint32_t> sizes = {128, 256, 512, 1024, 2048};
   std::vector<std::uint32_t> levels = {1, 2, 3};
@@ -54,12 +59,16 @@ struct BenchRow {
   BenchCase config;
   std::string scheme;
   double gpu_ms = 0.0;       // median GPU timestamps, whole synthesis
-  double gpu_car_ms = 0.0;   // of which the recursions
+  double gpu_prepare_ms = 0.0;   // of which frames and noise,
+  double gpu_car_ms = 0.0;       // the recursions,
+  double gpu_collapse_ms = 0.0;  // the pyramid collapse
+  double gpu_colour_ms = 0.0;    // and the colour transform
   double gpu_wall_ms = 0.0;  // median wall time including submit, wait and readback
   double cpu_ms = 0.0;       // CPU float32 reference on cpu_threads threads
   double cpu64_ms = 0.0;     // CPU float64 reference (the accuracy reference)
   reference::ConformanceError gpu_error;
   reference::ConformanceError cpu_error;
+  FidelitySummary fidelity;  // of the GPU images against the measured pairs they represent (pairs 0: none)
   std::uint32_t batches = 0;
   std::uint32_t dispatches = 0;
 };
@@ -69,60 +78,129 @@ double median(std::vector<double> v) {
   return v.empty() ? 0.0 : v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
 }
 
-// The first `c.subspaces` subspaces of the loaded material, or a synthetic one with the case's shape.
-Material material_for(const BenchCase& c, const Material* loaded) {
-  if (!loaded) return synthetic_material(c.subspaces, c.levels, 3, c.neighbours);
-  Material m = *loaded;
-  m.subspaces.resize(std::min<std::size_t>(m.subspaces.size(), c.subspaces));
-  return m;
+// The measured images the fidelity error compares with, each analysed once (quality/fidelity.hpp).
+struct MeasuredStatistics {
+  std::vector<LightView> pairs;
+  std::vector<FidelityStatistics> statistics;  // per pair
+};
+
+MeasuredStatistics measure_dataset(const std::string& path, const Material& material) {
+  std::vector<std::string> warnings;
+  const BtfDataset dataset = load_btf(path, {}, warnings);
+  auto same = [](const std::vector<Direction>& a, const std::vector<MaterialDirection>& b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      if (std::abs(a[i].theta - b[i].theta) > 1e-4 || std::abs(a[i].phi - b[i].phi) > 1e-4) return false;
+    }
+    return true;
+  };
+  if (!same(dataset.lights(), material.lights) || !same(dataset.views(), material.views)) {
+    throw CommandError(path + ": its light and view directions are not the material's (" + std::to_string(dataset.lights().size()) +
+                       " x " + std::to_string(dataset.views().size()) + " against " + std::to_string(material.lights.size()) +
+                       " x " + std::to_string(material.views.size()) + "); give the BTF the material was analysed from");
+  }
+  MeasuredStatistics measured;
+  measured.pairs = dataset.present_pairs();
+  std::printf("fidelity: analysing %zu measured images of %s\n", measured.pairs.size(), path.c_str());
+  std::fflush(stdout);
+  measured.statistics.resize(measured.pairs.size());
+  std::vector<std::thread> workers;
+  const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+  for (unsigned t = 0; t < threads; ++t) {
+    workers.emplace_back([&, t] {
+      std::vector<float> rgb(dataset.pixel_count() * 3);
+      for (std::size_t i = t; i < measured.pairs.size(); i += threads) {
+        dataset.linear_rgb(measured.pairs[i], rgb);
+        measured.statistics[i] = fidelity_statistics(rgb, dataset.width(), dataset.height());
+      }
+    });
+  }
+  for (std::thread& worker : workers) worker.join();
+  return measured;
 }
 
-BenchRow run_case(const SynthBenchOptions& options, const BenchCase& c, SubspaceSynthesizer& synthesizer, const Material* loaded) {
-  const Material material = material_for(c, loaded);
+// Fidelity of synthesized subspace images against every measured pair whose subspace was synthesized:
+// a pair's model image is its subspace image (DESIGN.md 4.1).
+FidelitySummary fidelity_of(const Material& material, const SynthesizedImages& images, const MeasuredStatistics& measured) {
+  std::vector<FidelityStatistics> model(material.subspaces.size());
+  for (std::size_t s = 0; s < material.subspaces.size(); ++s) {
+    if (!images.images[s].empty()) model[s] = fidelity_statistics(images.images[s], images.width, images.height);
+  }
+  FidelitySummary summary;
+  for (std::size_t i = 0; i < measured.pairs.size(); ++i) {
+    const std::uint32_t s = subspace_of(material, measured.pairs[i].light, measured.pairs[i].view);
+    if (s < model.size() && !model[s].log_spectrum.empty()) summary.add(fidelity_error(model[s], measured.statistics[i]));
+  }
+  return summary;
+}
+
+// The material of a case and the subspaces to synthesize: the first `c.subspaces` of the loaded material
+// (the whole material, so that its index table stays valid), or a synthetic one with the case's shape.
+Material material_for(const BenchCase& c, const Material* loaded, std::vector<std::uint32_t>& subspaces) {
+  subspaces.clear();
+  if (!loaded) return synthetic_material(c.subspaces, c.levels, 3, c.neighbours);
+  const auto count = static_cast<std::uint32_t>(std::min<std::size_t>(loaded->subspaces.size(), c.subspaces));
+  for (std::uint32_t s = 0; s < count; ++s) subspaces.push_back(s);
+  return *loaded;
+}
+
+BenchRow run_case(const SynthBenchOptions& options, const BenchCase& c, SubspaceSynthesizer& synthesizer, const Material* loaded,
+                  const MeasuredStatistics* measured) {
+  std::vector<std::uint32_t> subspaces;
+  const Material material = material_for(c, loaded, subspaces);
   SynthesisRequest request;
   request.seed = 1;
   request.width = request.height = c.size;
   request.margin = options.margin;
   request.scheme = options.scheme;
+  request.subspaces = subspaces;
   BenchRow row;
   row.config = c;
-  row.config.subspaces = static_cast<std::uint32_t>(material.subspaces.size());
+  row.config.subspaces = static_cast<std::uint32_t>(subspaces.empty() ? material.subspaces.size() : subspaces.size());
 
   SynthesizedImages images;
   check(synthesizer.synthesize(material, request, images), "synthesis failed");  // warm-up
-  std::vector<double> gpu, car, wall;
+  std::vector<double> gpu, prepare, car, collapse, colour, wall;
   for (unsigned i = 0; i < options.repeats; ++i) {
     SynthesisTiming timing;
     const auto start = std::chrono::steady_clock::now();
     check(synthesizer.synthesize(material, request, images, &timing), "synthesis failed");
     wall.push_back(seconds_since(start) * 1e3);
     gpu.push_back(timing.total_ms);
+    prepare.push_back(timing.prepare_ms);
     car.push_back(timing.car_ms);
+    collapse.push_back(timing.collapse_ms);
+    colour.push_back(timing.colour_ms);
     row.batches = timing.batches;
     row.dispatches = timing.dispatches;
   }
   row.scheme = car_scheme_name(synthesizer.scheme());
   row.gpu_ms = median(gpu);
+  row.gpu_prepare_ms = median(prepare);
   row.gpu_car_ms = median(car);
+  row.gpu_collapse_ms = median(collapse);
+  row.gpu_colour_ms = median(colour);
   row.gpu_wall_ms = median(wall);
 
   const SynthesisBlock& block = request;
   auto start = std::chrono::steady_clock::now();
-  const auto f64 = reference::synthesize_subspaces_f64(material, {}, block, options.cpu_threads);
+  const auto f64 = reference::synthesize_subspaces_f64(material, subspaces, block, options.cpu_threads);
   row.cpu64_ms = seconds_since(start) * 1e3;
   std::vector<std::vector<float>> f32;
   if (!options.skip_cpu) {
     start = std::chrono::steady_clock::now();
-    f32 = reference::synthesize_subspaces(material, {}, block, options.cpu_threads);
+    f32 = reference::synthesize_subspaces(material, subspaces, block, options.cpu_threads);
     row.cpu_ms = seconds_since(start) * 1e3;
   }
   for (std::size_t s = 0; s < material.subspaces.size(); ++s) {
+    if (images.images[s].empty()) continue;
     const std::uint32_t channels = material.subspaces[s].channels;
     row.gpu_error = reference::worst_of(row.gpu_error, reference::conformance_error(images.images[s], f64[s], channels));
     if (!f32.empty()) {
       row.cpu_error = reference::worst_of(row.cpu_error, reference::conformance_error(f32[s], f64[s], channels));
     }
   }
+  if (measured) row.fidelity = fidelity_of(material, images, *measured);
   return row;
 }
 
@@ -130,26 +208,47 @@ std::string neighbours_text(std::uint32_t n) { return n == 0 ? "mixed" : std::to
 
 void write_tables(const std::filesystem::path& out, const std::vector<BenchRow>& rows, const std::string& device, unsigned threads) {
   std::ofstream csv(out / "bench_synth.csv");
-  csv << "sweep,size,levels,neighbours,subspaces,scheme,batches,dispatches,gpu_ms,gpu_car_ms,gpu_wall_ms,cpu_f32_ms,cpu_f64_ms,"
-         "gpu_max_err_over_std,gpu_rms_err_over_std,cpu_f32_max_err_over_std,cpu_f32_rms_err_over_std\n";
+  csv << "sweep,size,levels,neighbours,subspaces,scheme,batches,dispatches,gpu_ms,gpu_prepare_ms,gpu_car_ms,gpu_collapse_ms,gpu_colour_ms,gpu_wall_ms,cpu_f32_ms,cpu_f64_ms,"
+         "gpu_max_err_over_std,gpu_rms_err_over_std,cpu_f32_max_err_over_std,cpu_f32_rms_err_over_std,fidelity_pairs,"
+         "delta_e_mean,delta_e_worst,std_rel_mean,std_rel_worst,spectrum_l1_mean,spectrum_l1_worst,histogram_w1_mean,"
+         "histogram_w1_worst\n";
   std::ofstream md(out / "bench_synth.md");
   md << "# carbtf bench synth\n\nDevice: " << device << ". CPU reference on " << threads
-     << " threads. Errors are against the float64 CPU reference, relative to each channel's standard deviation.\n\n"
-     << "| sweep | size | levels | neighbours | subspaces | scheme | GPU ms | of which CAR | GPU wall ms | CPU f32 ms | CPU f64 ms | "
-        "GPU max err/std | GPU RMS err/std | CPU f32 max err/std |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+     << " threads. Errors are against the float64 CPU reference, relative to each channel's standard deviation"
+     << ". Fidelity (DESIGN.md 5) is of the GPU images against the measured images of every pair they represent, "
+        "mean (worst): CIE76 delta E of the mean Lab colour, relative error of the Lab std, L1 distance of the normalised "
+        "log10 radial power spectra of L*, Wasserstein-1 distance of the Lab histograms in Lab units.\n\n"
+     << "| sweep | size | levels | neighbours | subspaces | scheme | GPU ms | noise | CAR | collapse | colour | GPU wall ms | "
+        "CPU f32 ms | CPU f64 ms | GPU max err/std | GPU RMS err/std | CPU f32 max err/std | delta E | std rel. | spectrum L1 | "
+        "histogram W1 |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const BenchRow& r : rows) {
     char line[512];
-    std::snprintf(line, sizeof line, "%s,%u,%u,%s,%u,%s,%u,%u,%.3f,%.3f,%.3f,%.3f,%.3f,%.3e,%.3e,%.3e,%.3e\n", r.config.sweep.c_str(),
-                  r.config.size, r.config.levels, neighbours_text(r.config.neighbours).c_str(), r.config.subspaces, r.scheme.c_str(),
-                  r.batches, r.dispatches, r.gpu_ms, r.gpu_car_ms, r.gpu_wall_ms, r.cpu_ms, r.cpu64_ms, r.gpu_error.max_relative,
-                  r.gpu_error.rms_relative, r.cpu_error.max_relative, r.cpu_error.rms_relative);
-    csv << line;
-    std::snprintf(line, sizeof line, "| %s | %u | %u | %s | %u | %s | %.1f | %.1f | %.1f | %.1f | %.1f | %.2e | %.2e | %.2e |\n",
+    std::snprintf(line, sizeof line, "%s,%u,%u,%s,%u,%s,%u,%u,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3e,%.3e,%.3e,%.3e\n",
                   r.config.sweep.c_str(), r.config.size, r.config.levels, neighbours_text(r.config.neighbours).c_str(),
-                  r.config.subspaces, r.scheme.c_str(), r.gpu_ms, r.gpu_car_ms, r.gpu_wall_ms, r.cpu_ms, r.cpu64_ms,
+                  r.config.subspaces, r.scheme.c_str(), r.batches, r.dispatches, r.gpu_ms, r.gpu_prepare_ms, r.gpu_car_ms,
+                  r.gpu_collapse_ms, r.gpu_colour_ms, r.gpu_wall_ms, r.cpu_ms, r.cpu64_ms, r.gpu_error.max_relative,
+                  r.gpu_error.rms_relative, r.cpu_error.max_relative, r.cpu_error.rms_relative);
+    csv << std::string(line, std::strlen(line) - 1);  // the fidelity columns follow
+    const FidelitySummary& f = r.fidelity;
+    std::snprintf(line, sizeof line, ",%u,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n", f.pairs, f.mean.delta_e, f.worst.delta_e,
+                  f.mean.std_relative, f.worst.std_relative, f.mean.spectrum_l1, f.worst.spectrum_l1, f.mean.histogram_w1,
+                  f.worst.histogram_w1);
+    csv << line;
+    std::snprintf(line, sizeof line, "| %s | %u | %u | %s | %u | %s | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.2e | %.2e | %.2e |",
+                  r.config.sweep.c_str(), r.config.size, r.config.levels, neighbours_text(r.config.neighbours).c_str(),
+                  r.config.subspaces, r.scheme.c_str(), r.gpu_ms, r.gpu_prepare_ms, r.gpu_car_ms, r.gpu_collapse_ms, r.gpu_colour_ms,
+                  r.gpu_wall_ms, r.cpu_ms, r.cpu64_ms,
                   r.gpu_error.max_relative, r.gpu_error.rms_relative, r.cpu_error.max_relative);
     md << line;
+    if (f.pairs == 0) {
+      md << " - | - | - | - |\n";
+    } else {
+      std::snprintf(line, sizeof line, " %.2f (%.2f) | %.3f (%.3f) | %.3f (%.3f) | %.2f (%.2f) |\n", f.mean.delta_e, f.worst.delta_e,
+                    f.mean.std_relative, f.worst.std_relative, f.mean.spectrum_l1, f.worst.spectrum_l1, f.mean.histogram_w1,
+                    f.worst.histogram_w1);
+      md << line;
+    }
   }
 }
 
@@ -158,6 +257,11 @@ void run_synth_bench(const SynthBenchOptions& options) {
   if (!options.material.empty()) {
     loaded = std::make_unique<Material>();
     check(read_material_file(options.material, *loaded), "cannot read the material");
+  }
+  std::unique_ptr<MeasuredStatistics> measured;
+  if (!options.btf.empty()) {
+    if (!loaded) throw CommandError("--btf needs --material: the fidelity error compares a material with its measured BTF");
+    measured = std::make_unique<MeasuredStatistics>(measure_dataset(options.btf, *loaded));
   }
   std::vector<BenchCase> cases;
   for (std::uint32_t size : options.sizes) cases.push_back({"size", size, options.base_levels, 0, options.size_sweep_subspaces});
@@ -174,14 +278,14 @@ void run_synth_bench(const SynthBenchOptions& options) {
   std::filesystem::create_directories(out);
   std::printf("bench synth on %s (%s scheme), CPU reference on %u threads, median of %u GPU runs after a warm-up\n",
               context->device_info().name.c_str(), car_scheme_name(options.scheme), options.cpu_threads, options.repeats);
-  std::printf("%-10s %5s %3s %5s %4s %9s %8s %8s %9s %9s %10s %10s\n", "sweep", "size", "lvl", "nbrs", "subs", "scheme", "GPU ms",
-              "CAR ms", "wall ms", "CPU f32", "GPU err", "RMS err");
+  std::printf("%-10s %5s %3s %5s %4s %9s %8s %7s %7s %7s %7s %9s %9s %10s %10s\n", "sweep", "size", "lvl", "nbrs", "subs",
+              "scheme", "GPU ms", "noise", "CAR", "collapse", "colour", "wall ms", "CPU f32", "GPU err", "RMS err");
   std::vector<BenchRow> rows;
   for (const BenchCase& c : cases) {
-    const BenchRow row = run_case(options, c, *synthesizer, loaded.get());
-    std::printf("%-10s %5u %3u %5s %4u %9s %8.1f %8.1f %9.1f %9.1f %10.2e %10.2e\n", c.sweep.c_str(), c.size, c.levels,
-                neighbours_text(c.neighbours).c_str(), row.config.subspaces, row.scheme.c_str(), row.gpu_ms, row.gpu_car_ms,
-                row.gpu_wall_ms, row.cpu_ms, row.gpu_error.max_relative, row.gpu_error.rms_relative);
+    const BenchRow row = run_case(options, c, *synthesizer, loaded.get(), measured.get());
+    std::printf("%-10s %5u %3u %5s %4u %9s %8.1f %7.1f %7.1f %7.1f %7.1f %9.1f %9.1f %10.2e %10.2e\n", c.sweep.c_str(),
+                c.size, c.levels, neighbours_text(c.neighbours).c_str(), row.config.subspaces, row.scheme.c_str(), row.gpu_ms,
+                row.gpu_prepare_ms, row.gpu_car_ms, row.gpu_collapse_ms, row.gpu_colour_ms, row.gpu_wall_ms, row.cpu_ms, row.gpu_error.max_relative, row.gpu_error.rms_relative);
     std::fflush(stdout);
     rows.push_back(row);
   }
@@ -198,6 +302,22 @@ void run_synth_bench(const SynthBenchOptions& options) {
   const std::string_view legend[] = {device_entry, cpu_entry};
   const Figure plot = scatter_figure(points, "RUN TIME (MS)", "MAX ERROR / STD AGAINST FLOAT64", legend);
   write_rgb_image((out / "bench_synth.png").string(), plot.rgb, plot.width, plot.height, false);
+  if (measured) {
+    std::vector<ScatterPoint> fidelity;
+    for (const BenchRow& r : rows) {
+      if (r.fidelity.pairs > 0) fidelity.push_back({r.gpu_ms, std::max(r.fidelity.mean.delta_e, 1e-3), 0});
+    }
+    const std::string_view fidelity_legend[] = {device_entry};
+    const Figure figure = scatter_figure(fidelity, "RUN TIME (MS)", "MEAN DELTA E AGAINST THE MEASURED IMAGES", fidelity_legend);
+    write_rgb_image((out / "bench_synth_fidelity.png").string(), figure.rgb, figure.width, figure.height, false);
+    std::printf("fidelity against the measured images (mean over the pairs each row's subspaces represent):\n");
+    for (const BenchRow& r : rows) {
+      std::printf("  %-10s %5u %4u subspaces, %4u pairs: delta E %.2f, std rel. %.3f, spectrum L1 %.3f, histogram W1 %.2f\n",
+                  r.config.sweep.c_str(), r.config.size, r.config.subspaces, r.fidelity.pairs, r.fidelity.mean.delta_e,
+                  r.fidelity.mean.std_relative, r.fidelity.mean.spectrum_l1, r.fidelity.mean.histogram_w1);
+    }
+    std::printf("bench_synth_fidelity.png plots delta E against run time\n");
+  }
   std::printf("wrote %s/bench_synth.csv, bench_synth.md and bench_synth.png (error against run time)\n",
               out.string().c_str());
 }
@@ -212,6 +332,10 @@ void register_bench_synth_command(CLI::App& bench) {
   command->add_option("--material", options->material,
                       "A .cbtf material to synthesize (default: synthetic materials with known stable bands, which also allow "
                       "the levels and neighbourhood sweeps)");
+  command->add_option("--btf", options->btf,
+                      "The measured BTF the --material was analysed from (folder, .zip or manifest): adds the fidelity error "
+                      "of DESIGN.md 5 against every measured image to each row")
+      ->check(CLI::ExistingPath);
   command->add_option("--out", options->out, "Folder for bench_synth.csv, .md and .png")->capture_default_str();
   command->add_option("--sizes", options->sizes, "Output sizes of the size sweep")->delimiter(',')->check(CLI::Range(1u, 16384u));
   command->add_option("--levels", options->levels, "Pyramid levels of the levels sweep")->delimiter(',')->check(CLI::Range(1u, 3u));

@@ -219,6 +219,26 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
     CHECK(line_count(missing.output) == 1);
     CHECK_THAT(missing.output, Catch::Contains("subspace 8 does not exist"));
   }
+  SECTION("carbtf bench synth reports conformance and fidelity error against run time") {
+    const fs::path out = folder / "bench";
+    const Run bench = run("bench synth --material " + material.string() + " --btf " + (folder / "leather" / "btf").string() +
+                          " --sizes 32 --subspace-counts 3 --repeats 1 --validation --out " + out.string());
+    INFO(bench.output);
+    REQUIRE(bench.status == 0);
+    for (const char* file : {"bench_synth.csv", "bench_synth.md", "bench_synth.png", "bench_synth_fidelity.png"}) CHECK(fs::exists(out / file));
+    const auto csv_bytes = read_file_bytes(out / "bench_synth.csv");
+    std::string csv;
+    for (const std::byte b : csv_bytes) csv.push_back(static_cast<char>(b));
+    CHECK_THAT(csv, Catch::Contains("delta_e_mean") && Catch::Contains("histogram_w1_worst"));
+    // Every pair of the 81 x 81 dataset falls in one of the 8 subspaces; the size row synthesizes 5 of
+    // them, the subspace row 3, so both compare a positive number of pairs (the column after the errors).
+    CHECK_THAT(bench.output, Catch::Contains("pairs: delta E"));
+    CHECK_THAT(bench.output, !Catch::Contains(" 0 pairs"));
+
+    const Run mismatch = run("bench synth --material " + material.string() + " --btf " + (folder / "missing").string());
+    CHECK(mismatch.status != 0);
+    CHECK(line_count(mismatch.output) == 1);
+  }
   SECTION("bad analysis arguments") {
     for (const auto& [arguments, expected] : std::vector<std::pair<std::string, std::string>>{
              {"analyze " + (folder / "leather" / "btf").string() + " --out x.cbtf --subspaces 21", "--subspaces"},
