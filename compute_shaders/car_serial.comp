@@ -20,14 +20,16 @@ void main() {
   CarFieldGpu field = fields[f];
   uint end = min(params.end, field.rows * field.cols);
   if (params.begin >= end) return;
+  uint r = params.begin / field.cols;
   uint c = params.begin % field.cols;
-  uint base = field.offset + (params.begin / field.cols + field.pad) * field.pitch + c + field.pad;
+  uint base = field.offset + (r + field.pad) * field.pitch + c + field.pad;
   for (uint i = params.begin; i < end; ++i) {
-    carbtf_car_pixel(field, base);
+    carbtf_car_pixel(field, base, r, c);
     ++c;
     ++base;
     if (c == field.cols) {
       c = 0u;
+      ++r;
       base += 2u * field.pad;
     }
   }

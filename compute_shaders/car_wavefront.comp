@@ -23,7 +23,7 @@ void main() {
     uint last = min(t / field.skew + 1u, field.rows);
     for (uint r = first + gl_LocalInvocationID.x; r < last; r += CARBTF_CAR_WAVEFRONT_GROUP) {
       uint c = t - field.skew * r;
-      carbtf_car_pixel(field, field.offset + (r + field.pad) * field.pitch + c + field.pad);
+      carbtf_car_pixel(field, field.offset + (r + field.pad) * field.pitch + c + field.pad, r, c);
     }
     memoryBarrierBuffer();
     barrier();

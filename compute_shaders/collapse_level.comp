@@ -34,29 +34,34 @@ Taps expand_taps(int i) {
 void main() {
   uint i = params.begin + gl_WorkGroupID.z;
   if (i >= params.item_count) return;
-  uint x = gl_GlobalInvocationID.x;
   uint y = gl_GlobalInvocationID.y;
+  if (y >= items[i].rows) return;
+  uint cols = items[i].cols;
   uint fine_offset = items[i].fine_offset;
-  if (x >= items[i].cols || y >= items[i].rows) return;
-  uint index = fine_offset + y * items[i].fine_pitch + x;
-  precise float band = items[i].mean + arena[index];
   uint coarse_offset = items[i].coarse_offset;
-  if (coarse_offset != CARBTF_NO_FRAME) {
-    uint pitch = items[i].coarse_pitch;
-    Taps rows = expand_taps(int(items[i].row0) + int(y));
-    Taps cols = expand_taps(int(items[i].col0) + int(x));
-    ivec3 r = rows.index - int(items[i].coarse_row0);
-    ivec3 c = cols.index - int(items[i].coarse_col0);
-    precise float acc = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      uint row_start = coarse_offset + uint(r[k]) * pitch;
-      precise float along_row = 0.0;
-      along_row = along_row + cols.weight.x * arena[row_start + uint(c.x)];
-      along_row = along_row + cols.weight.y * arena[row_start + uint(c.y)];
-      along_row = along_row + cols.weight.z * arena[row_start + uint(c.z)];
-      acc = acc + rows.weight[k] * along_row;
+  uint pitch = items[i].coarse_pitch;
+  Taps rows = expand_taps(int(items[i].row0) + int(y));
+  ivec3 r = rows.index - int(items[i].coarse_row0);
+  // CARBTF_COLLAPSE_SPAN consecutive pixels per invocation: lavapipe pays per workgroup and per table read.
+  for (uint k = 0u; k < CARBTF_COLLAPSE_SPAN; ++k) {
+    uint x = gl_GlobalInvocationID.x * CARBTF_COLLAPSE_SPAN + k;
+    if (x >= cols) break;
+    uint index = fine_offset + y * items[i].fine_pitch + x;
+    precise float band = items[i].mean + arena[index];
+    if (coarse_offset != CARBTF_NO_FRAME) {
+      Taps taps = expand_taps(int(items[i].col0) + int(x));
+      ivec3 c = taps.index - int(items[i].coarse_col0);
+      precise float acc = 0.0;
+      for (int t = 0; t < 3; ++t) {
+        uint row_start = coarse_offset + uint(r[t]) * pitch;
+        precise float along_row = 0.0;
+        along_row = along_row + taps.weight.x * arena[row_start + uint(c.x)];
+        along_row = along_row + taps.weight.y * arena[row_start + uint(c.y)];
+        along_row = along_row + taps.weight.z * arena[row_start + uint(c.z)];
+        acc = acc + rows.weight[t] * along_row;
+      }
+      band = band + acc;
     }
-    band = band + acc;
+    arena[index] = band;
   }
-  arena[index] = band;
 }

@@ -16,33 +16,39 @@ layout(set = 0, binding = 2, rgba32f) uniform image2DArray images;
 // indexing of a vector makes lavapipe spill it to memory).
 #define CARBTF_COLOUR_TERM(j)                                                                       \
   if (j >= begin && j < end) {                                                                      \
-    float g = arena[items[i].offset[j] + y * items[i].pitch[j] + x];                                \
-    acc.x = acc.x + items[i].transform[0u * channels + j] * g;                                      \
-    if (channels > 1u) acc.y = acc.y + items[i].transform[1u * channels + j] * g;                   \
-    if (channels > 2u) acc.z = acc.z + items[i].transform[2u * channels + j] * g;                   \
-    if (channels > 3u) acc.w = acc.w + items[i].transform[3u * channels + j] * g;                   \
+    float g = arena[offset[j] + y * pitch[j] + x];                                                  \
+    acc.x = acc.x + t[0u * channels + j] * g;                                                       \
+    if (channels > 1u) acc.y = acc.y + t[1u * channels + j] * g;                                    \
+    if (channels > 2u) acc.z = acc.z + t[2u * channels + j] * g;                                    \
+    if (channels > 3u) acc.w = acc.w + t[3u * channels + j] * g;                                    \
   }
 
 void main() {
   uint i = gl_WorkGroupID.z;
   if (i >= params.item_count) return;
-  uint x = gl_GlobalInvocationID.x;
   uint y = gl_GlobalInvocationID.y;
-  if (x >= items[i].cols || y >= items[i].rows) return;
-  ivec3 texel = ivec3(int(x), int(y), int(items[i].layer));
+  if (y >= items[i].rows) return;
+  uint cols = items[i].cols;
   uint channels = items[i].channels;
   uint begin = items[i].channel_begin;
   uint end = items[i].channel_end;
-  precise vec4 acc;
-  if (begin == 0u) {
-    acc = vec4(items[i].mean[0], channels > 1u ? items[i].mean[1] : 0.0, channels > 2u ? items[i].mean[2] : 0.0,
-               channels > 3u ? items[i].mean[3] : 1.0);
-  } else {
-    acc = imageLoad(images, texel);
+  int layer = int(items[i].layer);
+  // The item's table entries once per invocation, for CARBTF_COLOUR_SPAN pixels (lavapipe pays per
+  // workgroup and per table read).
+  uint offset[CARBTF_SYNTH_MAX_CHANNELS] = items[i].offset;
+  uint pitch[CARBTF_SYNTH_MAX_CHANNELS] = items[i].pitch;
+  float t[CARBTF_SYNTH_MAX_CHANNELS * CARBTF_SYNTH_MAX_CHANNELS] = items[i].transform;
+  vec4 start = vec4(items[i].mean[0], channels > 1u ? items[i].mean[1] : 0.0, channels > 2u ? items[i].mean[2] : 0.0,
+                    channels > 3u ? items[i].mean[3] : 1.0);
+  for (uint k = 0u; k < CARBTF_COLOUR_SPAN; ++k) {
+    uint x = gl_GlobalInvocationID.x * CARBTF_COLOUR_SPAN + k;
+    if (x >= cols) break;
+    ivec3 texel = ivec3(int(x), int(y), layer);
+    precise vec4 acc = begin == 0u ? start : imageLoad(images, texel);
+    CARBTF_COLOUR_TERM(0u)
+    CARBTF_COLOUR_TERM(1u)
+    CARBTF_COLOUR_TERM(2u)
+    CARBTF_COLOUR_TERM(3u)
+    imageStore(images, texel, acc);
   }
-  CARBTF_COLOUR_TERM(0u)
-  CARBTF_COLOUR_TERM(1u)
-  CARBTF_COLOUR_TERM(2u)
-  CARBTF_COLOUR_TERM(3u)
-  imageStore(images, texel, acc);
 }

@@ -1,23 +1,27 @@
-// One pixel of a CAR recursion, shared by car_serial.comp and car_wavefront.comp. The pixel's noise
-// sample is already in place; it becomes y = sum_k gamma[k] y(neighbour k) + sigma e, summed from 0 in
-// neighbour order with no fused multiply-add, as the CPU reference does
-// (analysis/src/reference/car_synthesis.cpp). The taps are unrolled because lavapipe caps loop
-// iterations per invocation (DESIGN.md 6), and the frame makes every neighbour read in bounds.
+// One pixel of a CAR recursion, shared by car_serial.comp and car_wavefront.comp: region pixel (r, c)
+// becomes y = sum_k gamma[k] y(neighbour k) + sigma e, summed from 0 in neighbour order with no fused
+// multiply-add, as the CPU reference does (analysis/src/reference/car_synthesis.cpp). The noise e is
+// drawn here rather than read from memory: one pass less over every field. The taps are unrolled
+// because lavapipe caps loop iterations per invocation (DESIGN.md 6), and the frame makes every
+// neighbour read in bounds. Needs `params` (SynthPassParams, for the seed) and `arena`.
 #ifndef CARBTF_CAR_GLSL
 #define CARBTF_CAR_GLSL
+
+#include "noise.glsl"
 
 #define CARBTF_CAR_TAP(k)                                                         \
   if (k < field.neighbour_count) {                                                \
     acc = acc + field.gamma[k] * arena[uint(int(base) + field.tap[k])];           \
   }
 
-void carbtf_car_pixel(in CarFieldGpu field, uint base) {
+void carbtf_car_pixel(in CarFieldGpu field, uint base, uint r, uint c) {
   precise float acc = 0.0;
   CARBTF_CAR_TAP(0u) CARBTF_CAR_TAP(1u) CARBTF_CAR_TAP(2u) CARBTF_CAR_TAP(3u)
   CARBTF_CAR_TAP(4u) CARBTF_CAR_TAP(5u) CARBTF_CAR_TAP(6u) CARBTF_CAR_TAP(7u)
   CARBTF_CAR_TAP(8u) CARBTF_CAR_TAP(9u) CARBTF_CAR_TAP(10u) CARBTF_CAR_TAP(11u)
   CARBTF_CAR_TAP(12u) CARBTF_CAR_TAP(13u) CARBTF_CAR_TAP(14u) CARBTF_CAR_TAP(15u)
-  precise float value = acc + field.sigma * arena[base];
+  float e = carbtf_gaussian(uvec2(params.seed_lo, params.seed_hi), field.field_id, field.row0 + r, field.col0 + c);
+  precise float value = acc + field.sigma * e;
   arena[base] = value;
 }
 

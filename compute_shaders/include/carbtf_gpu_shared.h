@@ -85,9 +85,14 @@ CARBTF_CONST_UINT(CARBTF_CAR_MAX_NEIGHBOURS, 16u)
 CARBTF_CONST_UINT(CARBTF_SYNTH_MAX_CHANNELS, 4u)
 CARBTF_CONST_UINT(CARBTF_SYNTH_GROUP_X, 16u)
 CARBTF_CONST_UINT(CARBTF_SYNTH_GROUP_Y, 16u)
+CARBTF_CONST_UINT(CARBTF_COLLAPSE_SPAN, 4u)        // pixels of a row per invocation of collapse_level.comp
+CARBTF_CONST_UINT(CARBTF_COLOUR_SPAN, 4u)          // pixels of a row per invocation of colour_transform.comp
 CARBTF_CONST_UINT(CARBTF_CAR_SERIAL_GROUP, 8u)      // fields per workgroup of car_serial.comp
 CARBTF_CONST_UINT(CARBTF_CAR_WAVEFRONT_GROUP, 64u)  // invocations per field in car_wavefront.comp
 CARBTF_CONST_UINT(CARBTF_NO_FRAME, 0xFFFFFFFFu)     // CarFieldGpu.frame_offset: the frame is zero
+// car_prepare writes the frame only (one invocation per frame cell, the recursions draw their noise
+// themselves), or with this flag also the noise of every region pixel, for conformance captures.
+CARBTF_CONST_UINT(CARBTF_PREPARE_NOISE, 1u)
 
 struct CarFieldGpu {
   uint offset;        // arena element of padded (0, 0)
@@ -147,7 +152,7 @@ struct SynthPassParams {
   uint end;
   uint max_rows;
   uint max_cols;
-  uint reserved;
+  uint flags;  // car_prepare: CARBTF_PREPARE_* bits
 };
 
 // interpolate.comp: out = sum_k weight[k] * layer[k], k = 0..8 in order, terms of weight 0 skipped.

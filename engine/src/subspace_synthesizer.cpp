@@ -367,22 +367,35 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
                     VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
                     VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
 
-    // Frames and noise. Without block initialization values no field reads a frame (frame_offset is
+    // Frames (and noise for a capture). Without block initialization values no field reads a frame (frame_offset is
     // CARBTF_NO_FRAME), and the binding only needs a valid buffer: the field table stands in.
     {
       const detail::BindingResource frames = p.frames.handle() != VK_NULL_HANDLE
                                                  ? detail::BindingResource::of(p.frames.handle(), 0, p.frames.size())
                                                  : detail::BindingResource::of(tables, t.fields, field_bytes);
       const detail::BindingResource resources[3] = {detail::BindingResource::of(tables, t.fields, field_bytes), arena, frames};
+      // The frames only, as rows of one workgroup width (lavapipe pays per workgroup, so no more of
+      // them than the cells need); the whole padded fields with their noise when the noise is captured.
+      constexpr std::uint32_t kFrameCellsPerRow = gpu::CARBTF_SYNTH_GROUP_X;
+      const bool with_noise = p.capture_stage == SynthesisStage::noise;
+      params.flags = with_noise ? gpu::CARBTF_PREPARE_NOISE : 0u;
+      params.max_cols = kFrameCellsPerRow;
       for (const detail::LevelGroup& group : batch.levels) {
         params.begin = group.first;
         params.item_count = group.first + group.count;
         pipelines.prepare.bind(*context_, command_buffer, resources, &params, sizeof(params));
-        vk.vkCmdDispatch(command_buffer, ceil_div(group.max_pitch, gpu::CARBTF_SYNTH_GROUP_X),
-                         ceil_div(group.max_padded_rows, gpu::CARBTF_SYNTH_GROUP_Y), group.count);
+        if (with_noise) {
+          vk.vkCmdDispatch(command_buffer, ceil_div(group.max_pitch, gpu::CARBTF_SYNTH_GROUP_X),
+                           ceil_div(group.max_padded_rows, gpu::CARBTF_SYNTH_GROUP_Y), group.count);
+        } else {
+          vk.vkCmdDispatch(command_buffer, kFrameCellsPerRow / gpu::CARBTF_SYNTH_GROUP_X,
+                           ceil_div(ceil_div(group.max_frame_cells, kFrameCellsPerRow), gpu::CARBTF_SYNTH_GROUP_Y), group.count);
+        }
         ++p.dispatches;
       }
       params.begin = 0;
+      params.flags = 0;
+      params.max_cols = 0;
     }
     const std::uint32_t stamp = 1 + kTimestampsPerBatch * static_cast<std::uint32_t>(b);
     if (timed) p.timer.record_timestamp(command_buffer, stamp, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
@@ -425,7 +438,8 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
           detail::BindingResource::of(tables, t.collapse[level], items.size() * sizeof(gpu::CollapseItemGpu)), arena};
       params.item_count = static_cast<std::uint32_t>(items.size());
       pipelines.collapse.bind(*context_, command_buffer, resources, &params, sizeof(params));
-      vk.vkCmdDispatch(command_buffer, ceil_div(batch.levels[level].max_window_cols, gpu::CARBTF_SYNTH_GROUP_X),
+      vk.vkCmdDispatch(command_buffer,
+                       ceil_div(batch.levels[level].max_window_cols, gpu::CARBTF_SYNTH_GROUP_X * gpu::CARBTF_COLLAPSE_SPAN),
                        ceil_div(batch.levels[level].max_window_rows, gpu::CARBTF_SYNTH_GROUP_Y), params.item_count);
       ++p.dispatches;
     }
@@ -440,7 +454,7 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
           detail::BindingResource::of(p.image.view())};
       params.item_count = static_cast<std::uint32_t>(batch.colour.size());
       pipelines.colour.bind(*context_, command_buffer, resources, &params, sizeof(params));
-      vk.vkCmdDispatch(command_buffer, ceil_div(plan.width, gpu::CARBTF_SYNTH_GROUP_X),
+      vk.vkCmdDispatch(command_buffer, ceil_div(plan.width, gpu::CARBTF_SYNTH_GROUP_X * gpu::CARBTF_COLOUR_SPAN),
                        ceil_div(plan.height, gpu::CARBTF_SYNTH_GROUP_Y), params.item_count);
       ++p.dispatches;
     }

@@ -96,6 +96,7 @@ void finish_batch(const Material& material, std::vector<Stack>& stacks, const Sy
       group.max_pitch = std::max(group.max_pitch, field.gpu.pitch);
       group.max_window_rows = std::max(group.max_window_rows, static_cast<std::uint32_t>(field.window.rows));
       group.max_window_cols = std::max(group.max_window_cols, static_cast<std::uint32_t>(field.window.cols));
+      group.max_frame_cells = std::max(group.max_frame_cells, field.gpu.pad * field.gpu.pitch + field.gpu.rows * 2 * field.gpu.pad);
       batch.max_region_pixels = std::max(batch.max_region_pixels, std::uint64_t{field.gpu.rows} * field.gpu.cols);
       batch.max_region_rows = std::max(batch.max_region_rows, field.gpu.rows);
       batch.max_steps = std::max(batch.max_steps, field.steps());

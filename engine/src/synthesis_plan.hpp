@@ -35,6 +35,7 @@ struct LevelGroup {
   std::uint32_t max_pitch = 0;
   std::uint32_t max_window_rows = 0;
   std::uint32_t max_window_cols = 0;
+  std::uint32_t max_frame_cells = 0;  // car_frame_floats() of the largest field
 };
 
 struct PlannedBatch {

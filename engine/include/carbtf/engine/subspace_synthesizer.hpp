@@ -62,7 +62,7 @@ struct SynthesisRequest : SynthesisBlock {
 
 // GPU time per stage, summed over batches, in milliseconds (0 where the queue has no timestamps).
 struct SynthesisTiming {
-  double prepare_ms = 0.0;  // frames and noise
+  double prepare_ms = 0.0;  // frames (and the noise of a noise capture)
   double car_ms = 0.0;
   double collapse_ms = 0.0;
   double colour_ms = 0.0;
