@@ -30,10 +30,13 @@ constexpr float kPoison = std::numeric_limits<float>::quiet_NaN();
 // Timestamps per batch: after prepare, after CAR, after collapse, after colour; plus one at the start.
 constexpr std::uint32_t kTimestampsPerBatch = 4;
 
-std::uint32_t ceil_div(std::uint64_t a, std::uint64_t b) { return static_cast<std::uint32_t>((a + b - 1) / b); }
+std::uint32_t ceil_div(std::uint64_t a, std::uint64_t b) {
+  return static_cast<std::uint32_t>((a + b - 1) / b);
+}
 
 void compute_barrier(const VulkanFunctions& vk, VkCommandBuffer command_buffer, VkPipelineStageFlags source,
-                     VkAccessFlags source_access, VkPipelineStageFlags destination, VkAccessFlags destination_access) {
+                     VkAccessFlags source_access, VkPipelineStageFlags destination,
+                     VkAccessFlags destination_access) {
   auto barrier = vk_struct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
   barrier.srcAccessMask = source_access;
   barrier.dstAccessMask = destination_access;
@@ -41,9 +44,10 @@ void compute_barrier(const VulkanFunctions& vk, VkCommandBuffer command_buffer, 
 }
 
 // One layout transition of layers [0, layers) of a colour image, with its execution and memory dependency.
-void transition_image(const VulkanFunctions& vk, VkCommandBuffer command_buffer, VkImage image, std::uint32_t layers,
-                      VkImageLayout from, VkImageLayout to, VkPipelineStageFlags source, VkAccessFlags source_access,
-                      VkPipelineStageFlags destination, VkAccessFlags destination_access) {
+void transition_image(const VulkanFunctions& vk, VkCommandBuffer command_buffer, VkImage image,
+                      std::uint32_t layers, VkImageLayout from, VkImageLayout to, VkPipelineStageFlags source,
+                      VkAccessFlags source_access, VkPipelineStageFlags destination,
+                      VkAccessFlags destination_access) {
   auto barrier = vk_struct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
   barrier.srcAccessMask = source_access;
   barrier.dstAccessMask = destination_access;
@@ -57,14 +61,16 @@ void transition_image(const VulkanFunctions& vk, VkCommandBuffer command_buffer,
 }
 
 void shader_to_shader(const VulkanFunctions& vk, VkCommandBuffer command_buffer) {
-  compute_barrier(vk, command_buffer, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT,
-                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+  compute_barrier(vk, command_buffer, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                  VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
 }
 
 // Copies `bytes` of the work buffer to the host-visible `destination` at `offset`, between the stage
 // that wrote them and the next one (which waits for the copy before overwriting).
-void record_capture(const VulkanFunctions& vk, VkCommandBuffer command_buffer, VkBuffer source, VkBuffer destination,
-                    VkDeviceSize offset, VkDeviceSize bytes) {
+void record_capture(const VulkanFunctions& vk, VkCommandBuffer command_buffer, VkBuffer source,
+                    VkBuffer destination, VkDeviceSize offset, VkDeviceSize bytes) {
   compute_barrier(vk, command_buffer, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
   const VkBufferCopy region{0, offset, bytes};
@@ -74,15 +80,20 @@ void record_capture(const VulkanFunctions& vk, VkCommandBuffer command_buffer, V
                   VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_HOST_READ_BIT);
 }
 
-VkDeviceSize align_up(VkDeviceSize value, VkDeviceSize alignment) { return (value + alignment - 1) / alignment * alignment; }
+VkDeviceSize align_up(VkDeviceSize value, VkDeviceSize alignment) {
+  return (value + alignment - 1) / alignment * alignment;
+}
 
 }  // namespace
 
 const char* car_scheme_name(CarScheme scheme) noexcept {
   switch (scheme) {
-    case CarScheme::automatic: return "automatic";
-    case CarScheme::serial: return "serial";
-    case CarScheme::wavefront: return "wavefront";
+    case CarScheme::automatic:
+      return "automatic";
+    case CarScheme::serial:
+      return "serial";
+    case CarScheme::wavefront:
+      return "wavefront";
   }
   return "unknown";
 }
@@ -130,8 +141,8 @@ Status SubspaceSynthesizer::create(Context& context, std::unique_ptr<SubspaceSyn
     synthesizer->pipelines_ = std::make_unique<Pipelines>();
     Pipelines& p = *synthesizer->pipelines_;
     using detail::BindingKind;
-    auto build = [&](const std::uint32_t* spirv, std::size_t bytes, std::uint32_t bindings, std::uint32_t push_bytes,
-                     const char* name, detail::ComputePipeline& pipeline,
+    auto build = [&](const std::uint32_t* spirv, std::size_t bytes, std::uint32_t bindings,
+                     std::uint32_t push_bytes, const char* name, detail::ComputePipeline& pipeline,
                      std::initializer_list<std::pair<std::uint32_t, BindingKind>> kinds = {}) -> Status {
       detail::ComputePipelineInfo info;
       info.spirv = spirv;
@@ -143,16 +154,18 @@ Status SubspaceSynthesizer::create(Context& context, std::unique_ptr<SubspaceSyn
       return detail::ComputePipeline::create(context, info, pipeline);
     };
     constexpr std::uint32_t pass_bytes = sizeof(gpu::SynthPassParams);
-    CARBTF_TRY(build(carbtf_spirv_car_prepare, sizeof(carbtf_spirv_car_prepare), 3, pass_bytes, "carbtf car_prepare", p.prepare));
-    CARBTF_TRY(build(carbtf_spirv_car_serial, sizeof(carbtf_spirv_car_serial), 2, pass_bytes, "carbtf car_serial", p.serial));
-    CARBTF_TRY(build(carbtf_spirv_car_wavefront, sizeof(carbtf_spirv_car_wavefront), 2, pass_bytes, "carbtf car_wavefront",
-                     p.wavefront));
-    CARBTF_TRY(build(carbtf_spirv_collapse_level, sizeof(carbtf_spirv_collapse_level), 2, pass_bytes, "carbtf collapse_level",
-                     p.collapse));
+    CARBTF_TRY(build(carbtf_spirv_car_prepare, sizeof(carbtf_spirv_car_prepare), 3, pass_bytes,
+                     "carbtf car_prepare", p.prepare));
+    CARBTF_TRY(build(carbtf_spirv_car_serial, sizeof(carbtf_spirv_car_serial), 2, pass_bytes,
+                     "carbtf car_serial", p.serial));
+    CARBTF_TRY(build(carbtf_spirv_car_wavefront, sizeof(carbtf_spirv_car_wavefront), 2, pass_bytes,
+                     "carbtf car_wavefront", p.wavefront));
+    CARBTF_TRY(build(carbtf_spirv_collapse_level, sizeof(carbtf_spirv_collapse_level), 2, pass_bytes,
+                     "carbtf collapse_level", p.collapse));
     CARBTF_TRY(build(carbtf_spirv_colour_transform, sizeof(carbtf_spirv_colour_transform), 3, pass_bytes,
                      "carbtf colour_transform", p.colour, {{2, BindingKind::storage_image}}));
-    CARBTF_TRY(build(carbtf_spirv_interpolate, sizeof(carbtf_spirv_interpolate), 2, sizeof(gpu::InterpolateParams),
-                     "carbtf interpolate", p.interpolate,
+    CARBTF_TRY(build(carbtf_spirv_interpolate, sizeof(carbtf_spirv_interpolate), 2,
+                     sizeof(gpu::InterpolateParams), "carbtf interpolate", p.interpolate,
                      {{0, BindingKind::storage_image}, {1, BindingKind::storage_image}}));
     out = std::move(synthesizer);
     return {};
@@ -174,19 +187,23 @@ Status SubspaceSynthesizer::prepare(const Material& material, const SynthesisReq
     const detail::SynthesisPlan& plan = prepared->plan;
     if (plan.width > device.max_image_dimension_2d || plan.height > device.max_image_dimension_2d ||
         plan.subspaces.size() > device.max_image_array_layers) {
-      return {ErrorCode::invalid_argument, std::to_string(plan.width) + "x" + std::to_string(plan.height) + " with " +
-                                               std::to_string(plan.subspaces.size()) + " layers exceeds " + device.name +
-                                               "'s image limits (" + std::to_string(device.max_image_dimension_2d) +
-                                               " texels, " + std::to_string(device.max_image_array_layers) + " layers)"};
+      return {ErrorCode::invalid_argument, std::to_string(plan.width) + "x" + std::to_string(plan.height) +
+                                               " with " + std::to_string(plan.subspaces.size()) +
+                                               " layers exceeds " + device.name + "'s image limits (" +
+                                               std::to_string(device.max_image_dimension_2d) + " texels, " +
+                                               std::to_string(device.max_image_array_layers) + " layers)"};
     }
     for (const detail::PlannedBatch& batch : plan.batches) {
-      const std::uint32_t groups_y = std::max(ceil_div(batch.levels[0].max_padded_rows, gpu::CARBTF_SYNTH_GROUP_Y),
-                                              ceil_div(plan.height, gpu::CARBTF_SYNTH_GROUP_Y));
+      const std::uint32_t groups_y =
+          std::max(ceil_div(batch.levels[0].max_padded_rows, gpu::CARBTF_SYNTH_GROUP_Y),
+                   ceil_div(plan.height, gpu::CARBTF_SYNTH_GROUP_Y));
       const std::uint32_t groups_x = std::max(ceil_div(batch.levels[0].max_pitch, gpu::CARBTF_SYNTH_GROUP_X),
                                               ceil_div(plan.width, gpu::CARBTF_SYNTH_GROUP_X));
       if (groups_x > device.max_compute_group_count[0] || groups_y > device.max_compute_group_count[1] ||
-          batch.fields.size() > device.max_compute_group_count[2] || batch.fields.size() > device.max_compute_group_count[0]) {
-        return {ErrorCode::invalid_argument, "the synthesis needs more workgroups than " + device.name + " dispatches"};
+          batch.fields.size() > device.max_compute_group_count[2] ||
+          batch.fields.size() > device.max_compute_group_count[0]) {
+        return {ErrorCode::invalid_argument,
+                "the synthesis needs more workgroups than " + device.name + " dispatches"};
       }
     }
     prepared->seed = request.seed;
@@ -205,7 +222,8 @@ Status SubspaceSynthesizer::prepare(const Material& material, const SynthesisReq
     prepared->poison = request.poison;
     prepared->scheme = request.scheme;
     if (prepared->scheme == CarScheme::automatic) {
-      prepared->scheme = device.type == VK_PHYSICAL_DEVICE_TYPE_CPU ? CarScheme::serial : CarScheme::wavefront;
+      prepared->scheme =
+          device.type == VK_PHYSICAL_DEVICE_TYPE_CPU ? CarScheme::serial : CarScheme::wavefront;
     }
 
     // Tables: per batch the fields, each level's collapse items and the colour items, each aligned.
@@ -218,7 +236,8 @@ Status SubspaceSynthesizer::prepare(const Material& material, const SynthesisReq
     for (const detail::PlannedBatch& batch : plan.batches) {
       BatchTables tables;
       tables.fields = reserve(batch.fields.size() * sizeof(gpu::CarFieldGpu));
-      for (const auto& items : batch.collapse) tables.collapse.push_back(reserve(items.size() * sizeof(gpu::CollapseItemGpu)));
+      for (const auto& items : batch.collapse)
+        tables.collapse.push_back(reserve(items.size() * sizeof(gpu::CollapseItemGpu)));
       tables.colour = reserve(batch.colour.size() * sizeof(gpu::ColourItemGpu));
       prepared->tables.push_back(std::move(tables));
     }
@@ -231,13 +250,15 @@ Status SubspaceSynthesizer::prepare(const Material& material, const SynthesisReq
       const detail::PlannedBatch& batch = plan.batches[b];
       const BatchTables& tables = prepared->tables[b];
       for (std::size_t f = 0; f < batch.fields.size(); ++f) {
-        std::memcpy(bytes + tables.fields + f * sizeof(gpu::CarFieldGpu), &batch.fields[f].gpu, sizeof(gpu::CarFieldGpu));
+        std::memcpy(bytes + tables.fields + f * sizeof(gpu::CarFieldGpu), &batch.fields[f].gpu,
+                    sizeof(gpu::CarFieldGpu));
       }
       for (std::size_t level = 0; level < batch.collapse.size(); ++level) {
         std::memcpy(bytes + tables.collapse[level], batch.collapse[level].data(),
                     batch.collapse[level].size() * sizeof(gpu::CollapseItemGpu));
       }
-      std::memcpy(bytes + tables.colour, batch.colour.data(), batch.colour.size() * sizeof(gpu::ColourItemGpu));
+      std::memcpy(bytes + tables.colour, batch.colour.data(),
+                  batch.colour.size() * sizeof(gpu::ColourItemGpu));
     }
 
     if (!request.initial_values.empty()) {
@@ -263,12 +284,13 @@ Status SubspaceSynthesizer::prepare(const Material& material, const SynthesisReq
     image_info.height = plan.height;
     image_info.array_layers = static_cast<std::uint32_t>(plan.subspaces.size());
     image_info.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-    image_info.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
-                       VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    image_info.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                       VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     image_info.debug_name = "carbtf subspace images";
     CARBTF_TRY(Image::create(*context_, image_info, prepared->image));
     if (device.timestamp_valid_bits > 0) {
-      CARBTF_TRY(GpuTimer::create(*context_, 1 + kTimestampsPerBatch * static_cast<std::uint32_t>(plan.batches.size()),
+      CARBTF_TRY(GpuTimer::create(*context_,
+                                  1 + kTimestampsPerBatch * static_cast<std::uint32_t>(plan.batches.size()),
                                   prepared->timer));
       prepared->timer_ready = true;
     }
@@ -279,8 +301,9 @@ Status SubspaceSynthesizer::prepare(const Material& material, const SynthesisReq
   }
 }
 
-Status SubspaceSynthesizer::read_band(std::uint32_t subspace, std::uint32_t level, std::uint32_t channel, std::vector<float>& out,
-                                      std::uint32_t& rows, std::uint32_t& cols) const noexcept {
+Status SubspaceSynthesizer::read_band(std::uint32_t subspace, std::uint32_t level, std::uint32_t channel,
+                                      std::vector<float>& out, std::uint32_t& rows,
+                                      std::uint32_t& cols) const noexcept {
   if (!prepared_ || prepared_->capture_stage == SynthesisStage::none) {
     return {ErrorCode::invalid_argument, "read_band() needs a synthesize() whose request captured a stage"};
   }
@@ -292,9 +315,11 @@ Status SubspaceSynthesizer::read_band(std::uint32_t subspace, std::uint32_t leve
         rows = static_cast<std::uint32_t>(field.window.rows);
         cols = static_cast<std::uint32_t>(field.window.cols);
         out.resize(std::size_t{rows} * cols);
-        const float* base = static_cast<const float*>(p.capture.mapped()) + p.capture_offsets[b] / sizeof(float);
+        const float* base =
+            static_cast<const float*>(p.capture.mapped()) + p.capture_offsets[b] / sizeof(float);
         for (std::uint32_t r = 0; r < rows; ++r) {
-          std::memcpy(&out[std::size_t{r} * cols], base + field.window_element() + std::size_t{r} * field.gpu.pitch, cols * sizeof(float));
+          std::memcpy(&out[std::size_t{r} * cols],
+                      base + field.window_element() + std::size_t{r} * field.gpu.pitch, cols * sizeof(float));
         }
         return {};
       } catch (const std::bad_alloc&) {
@@ -302,8 +327,9 @@ Status SubspaceSynthesizer::read_band(std::uint32_t subspace, std::uint32_t leve
       }
     }
   }
-  return {ErrorCode::invalid_argument, "band (subspace " + std::to_string(subspace) + ", level " + std::to_string(level) +
-                                           ", channel " + std::to_string(channel) + ") was not synthesized"};
+  return {ErrorCode::invalid_argument, "band (subspace " + std::to_string(subspace) + ", level " +
+                                           std::to_string(level) + ", channel " + std::to_string(channel) +
+                                           ") was not synthesized"};
 }
 
 Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) const noexcept {
@@ -324,14 +350,16 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
   const auto layers = static_cast<std::uint32_t>(plan.subspaces.size());
   const VkImage image = p.image.handle();
   if (p.poison) {
-    transition_image(vk, command_buffer, image, layers, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                     VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+    transition_image(vk, command_buffer, image, layers, VK_IMAGE_LAYOUT_UNDEFINED,
+                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0,
+                     VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
     VkClearColorValue nan{};
     nan.float32[0] = nan.float32[1] = nan.float32[2] = nan.float32[3] = kPoison;
     const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers};
     vk.vkCmdClearColorImage(command_buffer, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &nan, 1, &all);
-    transition_image(vk, command_buffer, image, layers, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
-                     VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+    transition_image(vk, command_buffer, image, layers, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                     VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                     VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                      VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT);
   } else {
     transition_image(vk, command_buffer, image, layers, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
@@ -350,13 +378,15 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
     const auto arena = detail::BindingResource::of(p.arena.handle(), 0, window_bytes);
     const auto field_count = static_cast<std::uint32_t>(batch.fields.size());
     const auto capture = [&] {
-      record_capture(vk, command_buffer, p.arena.handle(), p.capture.handle(), p.capture_offsets[b], window_bytes);
+      record_capture(vk, command_buffer, p.arena.handle(), p.capture.handle(), p.capture_offsets[b],
+                     window_bytes);
     };
     const VkDeviceSize field_bytes = field_count * sizeof(gpu::CarFieldGpu);
 
     // The previous batch's colour pass (or the clear) must be done before its work memory is reused.
     if (p.poison) {
-      compute_barrier(vk, command_buffer, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+      compute_barrier(vk, command_buffer,
+                      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                       VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
                       VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
       std::uint32_t nan_bits = 0;
@@ -365,15 +395,19 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
     }
     compute_barrier(vk, command_buffer, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                     VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
-                    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+                    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                    VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
 
-    // Frames (and noise for a capture). Without block initialization values no field reads a frame (frame_offset is
-    // CARBTF_NO_FRAME), and the binding only needs a valid buffer: the field table stands in.
+    // Frames (and noise for a capture). Without block initialization values no field reads a frame
+    // (frame_offset is CARBTF_NO_FRAME), and the binding only needs a valid buffer: the field table stands
+    // in.
     {
-      const detail::BindingResource frames = p.frames.handle() != VK_NULL_HANDLE
-                                                 ? detail::BindingResource::of(p.frames.handle(), 0, p.frames.size())
-                                                 : detail::BindingResource::of(tables, t.fields, field_bytes);
-      const detail::BindingResource resources[3] = {detail::BindingResource::of(tables, t.fields, field_bytes), arena, frames};
+      const detail::BindingResource frames =
+          p.frames.handle() != VK_NULL_HANDLE
+              ? detail::BindingResource::of(p.frames.handle(), 0, p.frames.size())
+              : detail::BindingResource::of(tables, t.fields, field_bytes);
+      const detail::BindingResource resources[3] = {
+          detail::BindingResource::of(tables, t.fields, field_bytes), arena, frames};
       // The frames only, as rows of one workgroup width (lavapipe pays per workgroup, so no more of
       // them than the cells need); the whole padded fields with their noise when the noise is captured.
       constexpr std::uint32_t kFrameCellsPerRow = gpu::CARBTF_SYNTH_GROUP_X;
@@ -388,8 +422,10 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
           vk.vkCmdDispatch(command_buffer, ceil_div(group.max_pitch, gpu::CARBTF_SYNTH_GROUP_X),
                            ceil_div(group.max_padded_rows, gpu::CARBTF_SYNTH_GROUP_Y), group.count);
         } else {
-          vk.vkCmdDispatch(command_buffer, kFrameCellsPerRow / gpu::CARBTF_SYNTH_GROUP_X,
-                           ceil_div(ceil_div(group.max_frame_cells, kFrameCellsPerRow), gpu::CARBTF_SYNTH_GROUP_Y), group.count);
+          vk.vkCmdDispatch(
+              command_buffer, kFrameCellsPerRow / gpu::CARBTF_SYNTH_GROUP_X,
+              ceil_div(ceil_div(group.max_frame_cells, kFrameCellsPerRow), gpu::CARBTF_SYNTH_GROUP_Y),
+              group.count);
         }
         ++p.dispatches;
       }
@@ -403,7 +439,8 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
 
     // The recursions, split so that no invocation loops past the cap.
     {
-      const detail::BindingResource resources[2] = {detail::BindingResource::of(tables, t.fields, field_bytes), arena};
+      const detail::BindingResource resources[2] = {
+          detail::BindingResource::of(tables, t.fields, field_bytes), arena};
       const bool serial = p.scheme == CarScheme::serial;
       const detail::ComputePipeline& pipeline = serial ? pipelines.serial : pipelines.wavefront;
       std::uint64_t total = 0;
@@ -414,7 +451,8 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
       } else {
         // Each step loops over at most ceil(rows / group) rows, plus the step loop itself.
         total = batch.max_steps;
-        chunk = std::max<std::uint64_t>(1, loop_cap / (ceil_div(batch.max_region_rows, gpu::CARBTF_CAR_WAVEFRONT_GROUP) + 1));
+        chunk = std::max<std::uint64_t>(
+            1, loop_cap / (ceil_div(batch.max_region_rows, gpu::CARBTF_CAR_WAVEFRONT_GROUP) + 1));
       }
       params.item_count = field_count;
       for (std::uint64_t begin = 0; begin < total; begin += chunk) {
@@ -422,7 +460,8 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
         params.begin = static_cast<std::uint32_t>(begin);
         params.end = static_cast<std::uint32_t>(std::min(total, begin + chunk));
         pipeline.bind(*context_, command_buffer, resources, &params, sizeof(params));
-        vk.vkCmdDispatch(command_buffer, serial ? ceil_div(field_count, gpu::CARBTF_CAR_SERIAL_GROUP) : field_count, 1, 1);
+        vk.vkCmdDispatch(command_buffer,
+                         serial ? ceil_div(field_count, gpu::CARBTF_CAR_SERIAL_GROUP) : field_count, 1, 1);
         ++p.dispatches;
       }
       params.begin = params.end = 0;
@@ -435,12 +474,15 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
       const auto& items = batch.collapse[level];
       shader_to_shader(vk, command_buffer);
       const detail::BindingResource resources[2] = {
-          detail::BindingResource::of(tables, t.collapse[level], items.size() * sizeof(gpu::CollapseItemGpu)), arena};
+          detail::BindingResource::of(tables, t.collapse[level], items.size() * sizeof(gpu::CollapseItemGpu)),
+          arena};
       params.item_count = static_cast<std::uint32_t>(items.size());
       pipelines.collapse.bind(*context_, command_buffer, resources, &params, sizeof(params));
       vk.vkCmdDispatch(command_buffer,
-                       ceil_div(batch.levels[level].max_window_cols, gpu::CARBTF_SYNTH_GROUP_X * gpu::CARBTF_COLLAPSE_SPAN),
-                       ceil_div(batch.levels[level].max_window_rows, gpu::CARBTF_SYNTH_GROUP_Y), params.item_count);
+                       ceil_div(batch.levels[level].max_window_cols,
+                                gpu::CARBTF_SYNTH_GROUP_X * gpu::CARBTF_COLLAPSE_SPAN),
+                       ceil_div(batch.levels[level].max_window_rows, gpu::CARBTF_SYNTH_GROUP_Y),
+                       params.item_count);
       ++p.dispatches;
     }
     if (timed) p.timer.record_timestamp(command_buffer, stamp + 2, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
@@ -450,27 +492,39 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
     {
       shader_to_shader(vk, command_buffer);
       const detail::BindingResource resources[3] = {
-          detail::BindingResource::of(tables, t.colour, batch.colour.size() * sizeof(gpu::ColourItemGpu)), arena,
-          detail::BindingResource::of(p.image.view())};
+          detail::BindingResource::of(tables, t.colour, batch.colour.size() * sizeof(gpu::ColourItemGpu)),
+          arena, detail::BindingResource::of(p.image.view())};
       params.item_count = static_cast<std::uint32_t>(batch.colour.size());
       pipelines.colour.bind(*context_, command_buffer, resources, &params, sizeof(params));
-      vk.vkCmdDispatch(command_buffer, ceil_div(plan.width, gpu::CARBTF_SYNTH_GROUP_X * gpu::CARBTF_COLOUR_SPAN),
+      vk.vkCmdDispatch(command_buffer,
+                       ceil_div(plan.width, gpu::CARBTF_SYNTH_GROUP_X * gpu::CARBTF_COLOUR_SPAN),
                        ceil_div(plan.height, gpu::CARBTF_SYNTH_GROUP_Y), params.item_count);
       ++p.dispatches;
     }
     if (timed) p.timer.record_timestamp(command_buffer, stamp + 3, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
   }
   compute_barrier(vk, command_buffer, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT |
+                      VK_PIPELINE_STAGE_TRANSFER_BIT,
                   VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
   return {};
 }
 
-VkImage SubspaceSynthesizer::image() const noexcept { return prepared_ ? prepared_->image.handle() : VK_NULL_HANDLE; }
-VkImageView SubspaceSynthesizer::image_view() const noexcept { return prepared_ ? prepared_->image.view() : VK_NULL_HANDLE; }
-std::uint32_t SubspaceSynthesizer::width() const noexcept { return prepared_ ? prepared_->plan.width : 0; }
-std::uint32_t SubspaceSynthesizer::height() const noexcept { return prepared_ ? prepared_->plan.height : 0; }
-CarScheme SubspaceSynthesizer::scheme() const noexcept { return prepared_ ? prepared_->scheme : CarScheme::automatic; }
+VkImage SubspaceSynthesizer::image() const noexcept {
+  return prepared_ ? prepared_->image.handle() : VK_NULL_HANDLE;
+}
+VkImageView SubspaceSynthesizer::image_view() const noexcept {
+  return prepared_ ? prepared_->image.view() : VK_NULL_HANDLE;
+}
+std::uint32_t SubspaceSynthesizer::width() const noexcept {
+  return prepared_ ? prepared_->plan.width : 0;
+}
+std::uint32_t SubspaceSynthesizer::height() const noexcept {
+  return prepared_ ? prepared_->plan.height : 0;
+}
+CarScheme SubspaceSynthesizer::scheme() const noexcept {
+  return prepared_ ? prepared_->scheme : CarScheme::automatic;
+}
 std::uint32_t SubspaceSynthesizer::batch_count() const noexcept {
   return prepared_ ? static_cast<std::uint32_t>(prepared_->plan.batches.size()) : 0;
 }
@@ -484,8 +538,10 @@ std::uint32_t SubspaceSynthesizer::layer_of(std::uint32_t subspace) const noexce
 }
 
 Status SubspaceSynthesizer::record_interpolation(VkCommandBuffer command_buffer, const Material& material,
-                                                 const PairWeights& weights, VkImageView target) const noexcept {
-  if (!prepared_) return {ErrorCode::invalid_argument, "record_interpolation() before a successful prepare()"};
+                                                 const PairWeights& weights,
+                                                 VkImageView target) const noexcept {
+  if (!prepared_)
+    return {ErrorCode::invalid_argument, "record_interpolation() before a successful prepare()"};
   gpu::InterpolateParams params{};
   params.width = prepared_->plan.width;
   params.height = prepared_->plan.height;
@@ -498,8 +554,8 @@ Status SubspaceSynthesizer::record_interpolation(VkCommandBuffer command_buffer,
     const std::uint32_t subspace = subspace_of(material, weights.light[k], weights.view[k]);
     const std::uint32_t layer = layer_of(subspace);
     if (layer == std::numeric_limits<std::uint32_t>::max()) {
-      return {ErrorCode::invalid_argument,
-              "interpolation needs subspace image " + std::to_string(subspace) + ", which was not synthesized"};
+      return {ErrorCode::invalid_argument, "interpolation needs subspace image " + std::to_string(subspace) +
+                                               ", which was not synthesized"};
     }
     params.layer[k] = layer;
   }
@@ -540,18 +596,21 @@ namespace {
 
 // Copies layers [0, layers) of an RGBA32F image (in GENERAL, last written by compute shaders) into a
 // host buffer, tightly packed; the image is back in GENERAL afterwards.
-void record_image_readback(const VulkanFunctions& vk, VkCommandBuffer command_buffer, VkImage image, std::uint32_t width,
-                           std::uint32_t height, std::uint32_t layers, VkBuffer destination) {
-  transition_image(vk, command_buffer, image, layers, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                   VK_ACCESS_TRANSFER_READ_BIT);
+void record_image_readback(const VulkanFunctions& vk, VkCommandBuffer command_buffer, VkImage image,
+                           std::uint32_t width, std::uint32_t height, std::uint32_t layers,
+                           VkBuffer destination) {
+  transition_image(vk, command_buffer, image, layers, VK_IMAGE_LAYOUT_GENERAL,
+                   VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                   VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
   VkBufferImageCopy copy{};
   copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, layers};
   copy.imageExtent = {width, height, 1};
-  vk.vkCmdCopyImageToBuffer(command_buffer, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, destination, 1, &copy);
+  vk.vkCmdCopyImageToBuffer(command_buffer, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, destination, 1,
+                            &copy);
   // A read needs no availability, only ordering before later writes.
-  transition_image(vk, command_buffer, image, layers, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
-                   VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+  transition_image(vk, command_buffer, image, layers, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                   VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
+                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                    VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
   compute_barrier(vk, command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                   VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
@@ -566,8 +625,8 @@ void unpack_rgba(const float* rgba, std::size_t pixels, std::uint32_t channels, 
 
 }  // namespace
 
-Status SubspaceSynthesizer::synthesize(const Material& material, const SynthesisRequest& request, SynthesizedImages& out,
-                                       SynthesisTiming* timing_out) noexcept {
+Status SubspaceSynthesizer::synthesize(const Material& material, const SynthesisRequest& request,
+                                       SynthesizedImages& out, SynthesisTiming* timing_out) noexcept {
   CARBTF_TRY(prepare(material, request));
   try {
     const detail::SynthesisPlan& plan = prepared_->plan;
@@ -579,13 +638,15 @@ Status SubspaceSynthesizer::synthesize(const Material& material, const Synthesis
                               readback));
     const auto record_work = [&](VkCommandBuffer command_buffer) -> Status {
       CARBTF_TRY(record(command_buffer, timing_out != nullptr));
-      record_image_readback(context_->vk(), command_buffer, prepared_->image.handle(), plan.width, plan.height,
-                            static_cast<std::uint32_t>(plan.subspaces.size()), readback.handle());
+      record_image_readback(context_->vk(), command_buffer, prepared_->image.handle(), plan.width,
+                            plan.height, static_cast<std::uint32_t>(plan.subspaces.size()),
+                            readback.handle());
       return {};
     };
     CARBTF_TRY(context_->submit_and_wait(record_work));
     CARBTF_TRY(readback.invalidate_for_host_read());
-    if (prepared_->capture_stage != SynthesisStage::none) CARBTF_TRY(prepared_->capture.invalidate_for_host_read());
+    if (prepared_->capture_stage != SynthesisStage::none)
+      CARBTF_TRY(prepared_->capture.invalidate_for_host_read());
     if (timing_out) CARBTF_TRY(timing(*timing_out));
     out = {};
     out.width = plan.width;
@@ -620,15 +681,18 @@ Status SubspaceSynthesizer::interpolate(const Material& material, const PairWeig
     CARBTF_TRY(Image::create(*context_, info, target));
     Buffer readback;
     const VkDeviceSize bytes = VkDeviceSize{plan.width} * plan.height * 4 * sizeof(float);
-    CARBTF_TRY(Buffer::create(*context_,
-                              {bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::host_readback, "carbtf interpolated readback"},
-                              readback));
+    CARBTF_TRY(Buffer::create(
+        *context_,
+        {bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::host_readback, "carbtf interpolated readback"},
+        readback));
     const VulkanFunctions& vk = context_->vk();
     const auto record_work = [&](VkCommandBuffer command_buffer) -> Status {
-      transition_image(vk, command_buffer, target.handle(), 1, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                       VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
+      transition_image(vk, command_buffer, target.handle(), 1, VK_IMAGE_LAYOUT_UNDEFINED,
+                       VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
+                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
       CARBTF_TRY(record_interpolation(command_buffer, material, weights, target.view()));
-      record_image_readback(vk, command_buffer, target.handle(), plan.width, plan.height, 1, readback.handle());
+      record_image_readback(vk, command_buffer, target.handle(), plan.width, plan.height, 1,
+                            readback.handle());
       return {};
     };
     CARBTF_TRY(context_->submit_and_wait(record_work));

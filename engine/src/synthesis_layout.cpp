@@ -40,7 +40,8 @@ TextureRegion car_region(const TextureRegion& level_region, std::uint32_t margin
 }
 
 std::uint64_t car_frame_floats(const TextureRegion& car, std::uint32_t pad) {
-  return static_cast<std::uint64_t>(pad * (car.cols + 2 * std::int64_t{pad}) + car.rows * 2 * std::int64_t{pad});
+  return static_cast<std::uint64_t>(pad * (car.cols + 2 * std::int64_t{pad}) +
+                                    car.rows * 2 * std::int64_t{pad});
 }
 
 BlockFrameLayout block_frame_layout(const Material& material, const SynthesisBlock& block,
@@ -70,13 +71,15 @@ bool extract_car_frame(const TextureRegion& car, std::uint32_t pad, std::span<co
                        const TextureRegion& source_region, std::span<float> out) {
   const std::int64_t top = car.row0 - pad, left = car.col0 - pad;
   const std::int64_t right = car.col0 + car.cols + pad, bottom = car.row0 + car.rows;
-  if (top < source_region.row0 || left < source_region.col0 || bottom > source_region.row0 + source_region.rows ||
-      right > source_region.col0 + source_region.cols || out.size() < car_frame_floats(car, pad) ||
+  if (top < source_region.row0 || left < source_region.col0 ||
+      bottom > source_region.row0 + source_region.rows || right > source_region.col0 + source_region.cols ||
+      out.size() < car_frame_floats(car, pad) ||
       source.size() < static_cast<std::uint64_t>(source_region.rows * source_region.cols)) {
     return false;
   }
   auto at = [&](std::int64_t row, std::int64_t col) {
-    return source[static_cast<std::size_t>((row - source_region.row0) * source_region.cols + (col - source_region.col0))];
+    return source[static_cast<std::size_t>((row - source_region.row0) * source_region.cols +
+                                           (col - source_region.col0))];
   };
   std::size_t i = 0;
   for (std::int64_t row = top; row < car.row0; ++row) {

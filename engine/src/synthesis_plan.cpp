@@ -36,19 +36,19 @@ std::uint32_t frame_offset_of(const BlockFrameLayout* frames, std::uint32_t subs
 }
 
 Status make_stack(const Material& material, std::uint32_t subspace, std::uint32_t channel,
-                  const std::vector<TextureRegion>& regions, std::uint32_t margin, const BlockFrameLayout* frames,
-                  Stack& out) {
+                  const std::vector<TextureRegion>& regions, std::uint32_t margin,
+                  const BlockFrameLayout* frames, Stack& out) {
   const SubspaceModel& model = material.subspaces[subspace];
   out.subspace = subspace;
   out.channel = channel;
   for (std::uint32_t level = 0; level < model.levels; ++level) {
     const CarBandModel& band = model.bands[std::size_t{level} * model.channels + channel];
     if (band.neighbourhood.size() > kMaxGpuNeighbours) {
-      return {ErrorCode::invalid_argument, "subspace " + std::to_string(subspace) + " level " + std::to_string(level) +
-                                               " channel " + std::to_string(channel) + " has " +
-                                               std::to_string(band.neighbourhood.size()) +
-                                               " CAR neighbours; the GPU synthesis supports at most " +
-                                               std::to_string(kMaxGpuNeighbours) + " (use the CPU reference)"};
+      return {ErrorCode::invalid_argument,
+              "subspace " + std::to_string(subspace) + " level " + std::to_string(level) + " channel " +
+                  std::to_string(channel) + " has " + std::to_string(band.neighbourhood.size()) +
+                  " CAR neighbours; the GPU synthesis supports at most " + std::to_string(kMaxGpuNeighbours) +
+                  " (use the CPU reference)"};
     }
     PlannedField field;
     field.subspace = subspace;
@@ -78,10 +78,12 @@ Status make_stack(const Material& material, std::uint32_t subspace, std::uint32_
   return {};
 }
 
-void finish_batch(const Material& material, std::vector<Stack>& stacks, const SynthesisPlan& plan, PlannedBatch& batch) {
+void finish_batch(const Material& material, std::vector<Stack>& stacks, const SynthesisPlan& plan,
+                  PlannedBatch& batch) {
   // Level-major order: lockstep groups of the serial kernel then hold fields of one size.
   std::uint32_t max_levels = 0;
-  for (const Stack& stack : stacks) max_levels = std::max<std::uint32_t>(max_levels, static_cast<std::uint32_t>(stack.levels.size()));
+  for (const Stack& stack : stacks)
+    max_levels = std::max<std::uint32_t>(max_levels, static_cast<std::uint32_t>(stack.levels.size()));
   std::vector<std::vector<std::size_t>> field_index(stacks.size());
   for (std::uint32_t level = 0; level < max_levels; ++level) {
     LevelGroup group;
@@ -96,8 +98,10 @@ void finish_batch(const Material& material, std::vector<Stack>& stacks, const Sy
       group.max_pitch = std::max(group.max_pitch, field.gpu.pitch);
       group.max_window_rows = std::max(group.max_window_rows, static_cast<std::uint32_t>(field.window.rows));
       group.max_window_cols = std::max(group.max_window_cols, static_cast<std::uint32_t>(field.window.cols));
-      group.max_frame_cells = std::max(group.max_frame_cells, field.gpu.pad * field.gpu.pitch + field.gpu.rows * 2 * field.gpu.pad);
-      batch.max_region_pixels = std::max(batch.max_region_pixels, std::uint64_t{field.gpu.rows} * field.gpu.cols);
+      group.max_frame_cells = std::max(group.max_frame_cells,
+                                       field.gpu.pad * field.gpu.pitch + field.gpu.rows * 2 * field.gpu.pad);
+      batch.max_region_pixels =
+          std::max(batch.max_region_pixels, std::uint64_t{field.gpu.rows} * field.gpu.cols);
       batch.max_region_rows = std::max(batch.max_region_rows, field.gpu.rows);
       batch.max_steps = std::max(batch.max_steps, field.steps());
       field_index[s].push_back(batch.fields.size());
@@ -164,10 +168,12 @@ std::uint32_t PlannedField::window_element() const noexcept {
   return gpu.offset + (margin + gpu.pad) * gpu.pitch + margin + gpu.pad;
 }
 
-std::uint32_t PlannedField::steps() const noexcept { return gpu.skew * (gpu.rows - 1) + gpu.cols; }
+std::uint32_t PlannedField::steps() const noexcept {
+  return gpu.skew * (gpu.rows - 1) + gpu.cols;
+}
 
-Status plan_synthesis(const Material& material, const SynthesisRequest& request, std::uint64_t max_window_bytes,
-                      SynthesisPlan& out) {
+Status plan_synthesis(const Material& material, const SynthesisRequest& request,
+                      std::uint64_t max_window_bytes, SynthesisPlan& out) {
   out = {};
   if (request.width == 0 || request.height == 0) {
     return {ErrorCode::invalid_argument, "synthesis size must be at least 1x1"};
@@ -181,7 +187,8 @@ Status plan_synthesis(const Material& material, const SynthesisRequest& request,
   } else {
     for (std::uint32_t s : request.subspaces) {
       if (s >= material.subspaces.size()) {
-        return {ErrorCode::invalid_argument, "subspace " + std::to_string(s) + " does not exist (the material has " +
+        return {ErrorCode::invalid_argument, "subspace " + std::to_string(s) +
+                                                 " does not exist (the material has " +
                                                  std::to_string(material.subspaces.size()) + ")"};
       }
       if (std::find(out.subspaces.begin(), out.subspaces.end(), s) != out.subspaces.end()) {
@@ -197,12 +204,14 @@ Status plan_synthesis(const Material& material, const SynthesisRequest& request,
   if (!request.initial_values.empty()) {
     frames = block_frame_layout(material, request, out.subspaces);
     if (request.initial_values.size() != frames.floats) {
-      return {ErrorCode::invalid_argument, "the request has " + std::to_string(request.initial_values.size()) +
+      return {ErrorCode::invalid_argument, "the request has " +
+                                               std::to_string(request.initial_values.size()) +
                                                " block initialization values; its block and subspaces need " +
                                                std::to_string(frames.floats)};
     }
     if (frames.floats >= gpu::CARBTF_NO_FRAME) {
-      return {ErrorCode::invalid_argument, "block initialization values beyond 32-bit offsets; synthesize smaller blocks"};
+      return {ErrorCode::invalid_argument,
+              "block initialization values beyond 32-bit offsets; synthesize smaller blocks"};
     }
   }
 
@@ -210,20 +219,24 @@ Status plan_synthesis(const Material& material, const SynthesisRequest& request,
   for (std::uint32_t s : out.subspaces) {
     const SubspaceModel& model = material.subspaces[s];
     if (model.channels == 0 || model.channels > kMaxGpuChannels) {
-      return {ErrorCode::invalid_argument, "subspace " + std::to_string(s) + " has " + std::to_string(model.channels) +
+      return {ErrorCode::invalid_argument, "subspace " + std::to_string(s) + " has " +
+                                               std::to_string(model.channels) +
                                                " channels; the GPU synthesis supports 1 to " +
                                                std::to_string(kMaxGpuChannels) + " (use the CPU reference)"};
     }
     out.channels.push_back(model.channels);
-    const auto regions = level_regions({request.row0, request.col0, request.height, request.width}, model.levels);
+    const auto regions =
+        level_regions({request.row0, request.col0, request.height, request.width}, model.levels);
     for (std::uint32_t c = 0; c < model.channels; ++c) {
       Stack stack;
-      CARBTF_TRY(make_stack(material, s, c, regions, request.margin, request.initial_values.empty() ? nullptr : &frames, stack));
+      CARBTF_TRY(make_stack(material, s, c, regions, request.margin,
+                            request.initial_values.empty() ? nullptr : &frames, stack));
       if (stack.floats * sizeof(float) > max_window_bytes) {
         return {ErrorCode::invalid_argument,
-                "a " + std::to_string(request.width) + "x" + std::to_string(request.height) + " subspace image with margin " +
-                    std::to_string(request.margin) + " needs " + std::to_string(stack.floats * 4 >> 20) +
-                    " MiB of work per band, beyond this device's " + std::to_string(max_window_bytes >> 20) +
+                "a " + std::to_string(request.width) + "x" + std::to_string(request.height) +
+                    " subspace image with margin " + std::to_string(request.margin) + " needs " +
+                    std::to_string(stack.floats * 4 >> 20) + " MiB of work per band, beyond this device's " +
+                    std::to_string(max_window_bytes >> 20) +
                     " MiB storage window; synthesize it in smaller blocks"};
       }
       all.push_back(std::move(stack));

@@ -39,8 +39,8 @@ struct LevelGroup {
 };
 
 struct PlannedBatch {
-  std::vector<LevelGroup> levels;                        // [level]
-  std::vector<PlannedField> fields;                      // level 0 of every stack first, then level 1, ...
+  std::vector<LevelGroup> levels;                           // [level]
+  std::vector<PlannedField> fields;                         // level 0 of every stack first, then level 1, ...
   std::vector<std::vector<gpu::CollapseItemGpu>> collapse;  // [level]: the items collapsing that level
   std::vector<gpu::ColourItemGpu> colour;
   std::uint64_t window_floats = 0;
@@ -61,7 +61,7 @@ struct SynthesisPlan {
 // Plans `request` over `material` with batch windows of at most `max_window_bytes`. invalid_argument
 // (naming the cause) for a request the GPU path cannot serve. With request.initial_values, every field's
 // frame_offset points into them (block_frame_layout()).
-Status plan_synthesis(const Material& material, const SynthesisRequest& request, std::uint64_t max_window_bytes,
-                      SynthesisPlan& out);
+Status plan_synthesis(const Material& material, const SynthesisRequest& request,
+                      std::uint64_t max_window_bytes, SynthesisPlan& out);
 
 }  // namespace carbtf::detail

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -58,14 +58,14 @@ struct BenchCase {
 struct BenchRow {
   BenchCase config;
   std::string scheme;
-  double gpu_ms = 0.0;       // median GPU timestamps, whole synthesis
+  double gpu_ms = 0.0;           // median GPU timestamps, whole synthesis
   double gpu_prepare_ms = 0.0;   // of which frames and noise,
   double gpu_car_ms = 0.0;       // the recursions,
   double gpu_collapse_ms = 0.0;  // the pyramid collapse
   double gpu_colour_ms = 0.0;    // and the colour transform
-  double gpu_wall_ms = 0.0;  // median wall time including submit, wait and readback
-  double cpu_ms = 0.0;       // CPU float32 reference on cpu_threads threads
-  double cpu64_ms = 0.0;     // CPU float64 reference (the accuracy reference)
+  double gpu_wall_ms = 0.0;      // median wall time including submit, wait and readback
+  double cpu_ms = 0.0;           // CPU float32 reference on cpu_threads threads
+  double cpu64_ms = 0.0;         // CPU float64 reference (the accuracy reference)
   reference::ConformanceError gpu_error;
   reference::ConformanceError cpu_error;
   FidelitySummary fidelity;  // of the GPU images against the measured pairs they represent (pairs 0: none)
@@ -95,9 +95,11 @@ MeasuredStatistics measure_dataset(const std::string& path, const Material& mate
     return true;
   };
   if (!same(dataset.lights(), material.lights) || !same(dataset.views(), material.views)) {
-    throw CommandError(path + ": its light and view directions are not the material's (" + std::to_string(dataset.lights().size()) +
-                       " x " + std::to_string(dataset.views().size()) + " against " + std::to_string(material.lights.size()) +
-                       " x " + std::to_string(material.views.size()) + "); give the BTF the material was analysed from");
+    throw CommandError(
+        path + ": its light and view directions are not the material's (" +
+        std::to_string(dataset.lights().size()) + " x " + std::to_string(dataset.views().size()) +
+        " against " + std::to_string(material.lights.size()) + " x " + std::to_string(material.views.size()) +
+        "); give the BTF the material was analysed from");
   }
   MeasuredStatistics measured;
   measured.pairs = dataset.present_pairs();
@@ -121,15 +123,18 @@ MeasuredStatistics measure_dataset(const std::string& path, const Material& mate
 
 // Fidelity of synthesized subspace images against every measured pair whose subspace was synthesized:
 // a pair's model image is its subspace image (DESIGN.md 4.1).
-FidelitySummary fidelity_of(const Material& material, const SynthesizedImages& images, const MeasuredStatistics& measured) {
+FidelitySummary fidelity_of(const Material& material, const SynthesizedImages& images,
+                            const MeasuredStatistics& measured) {
   std::vector<FidelityStatistics> model(material.subspaces.size());
   for (std::size_t s = 0; s < material.subspaces.size(); ++s) {
-    if (!images.images[s].empty()) model[s] = fidelity_statistics(images.images[s], images.width, images.height);
+    if (!images.images[s].empty())
+      model[s] = fidelity_statistics(images.images[s], images.width, images.height);
   }
   FidelitySummary summary;
   for (std::size_t i = 0; i < measured.pairs.size(); ++i) {
     const std::uint32_t s = subspace_of(material, measured.pairs[i].light, measured.pairs[i].view);
-    if (s < model.size() && !model[s].log_spectrum.empty()) summary.add(fidelity_error(model[s], measured.statistics[i]));
+    if (s < model.size() && !model[s].log_spectrum.empty())
+      summary.add(fidelity_error(model[s], measured.statistics[i]));
   }
   return summary;
 }
@@ -144,8 +149,8 @@ Material material_for(const BenchCase& c, const Material* loaded, std::vector<st
   return *loaded;
 }
 
-BenchRow run_case(const SynthBenchOptions& options, const BenchCase& c, SubspaceSynthesizer& synthesizer, const Material* loaded,
-                  const MeasuredStatistics* measured) {
+BenchRow run_case(const SynthBenchOptions& options, const BenchCase& c, SubspaceSynthesizer& synthesizer,
+                  const Material* loaded, const MeasuredStatistics* measured) {
   std::vector<std::uint32_t> subspaces;
   const Material material = material_for(c, loaded, subspaces);
   SynthesisRequest request;
@@ -156,7 +161,8 @@ BenchRow run_case(const SynthBenchOptions& options, const BenchCase& c, Subspace
   request.subspaces = subspaces;
   BenchRow row;
   row.config = c;
-  row.config.subspaces = static_cast<std::uint32_t>(subspaces.empty() ? material.subspaces.size() : subspaces.size());
+  row.config.subspaces =
+      static_cast<std::uint32_t>(subspaces.empty() ? material.subspaces.size() : subspaces.size());
 
   SynthesizedImages images;
   check(synthesizer.synthesize(material, request, images), "synthesis failed");  // warm-up
@@ -195,58 +201,76 @@ BenchRow run_case(const SynthBenchOptions& options, const BenchCase& c, Subspace
   for (std::size_t s = 0; s < material.subspaces.size(); ++s) {
     if (images.images[s].empty()) continue;
     const std::uint32_t channels = material.subspaces[s].channels;
-    row.gpu_error = reference::worst_of(row.gpu_error, reference::conformance_error(images.images[s], f64[s], channels));
+    row.gpu_error =
+        reference::worst_of(row.gpu_error, reference::conformance_error(images.images[s], f64[s], channels));
     if (!f32.empty()) {
-      row.cpu_error = reference::worst_of(row.cpu_error, reference::conformance_error(f32[s], f64[s], channels));
+      row.cpu_error =
+          reference::worst_of(row.cpu_error, reference::conformance_error(f32[s], f64[s], channels));
     }
   }
   if (measured) row.fidelity = fidelity_of(material, images, *measured);
   return row;
 }
 
-std::string neighbours_text(std::uint32_t n) { return n == 0 ? "mixed" : std::to_string(n); }
+std::string neighbours_text(std::uint32_t n) {
+  return n == 0 ? "mixed" : std::to_string(n);
+}
 
-void write_tables(const std::filesystem::path& out, const std::vector<BenchRow>& rows, const std::string& device, unsigned threads) {
+void write_tables(const std::filesystem::path& out, const std::vector<BenchRow>& rows,
+                  const std::string& device, unsigned threads) {
   std::ofstream csv(out / "bench_synth.csv");
-  csv << "sweep,size,levels,neighbours,subspaces,scheme,batches,dispatches,gpu_ms,gpu_prepare_ms,gpu_car_ms,gpu_collapse_ms,gpu_colour_ms,gpu_wall_ms,cpu_f32_ms,cpu_f64_ms,"
-         "gpu_max_err_over_std,gpu_rms_err_over_std,cpu_f32_max_err_over_std,cpu_f32_rms_err_over_std,fidelity_pairs,"
-         "delta_e_mean,delta_e_worst,std_rel_mean,std_rel_worst,spectrum_l1_mean,spectrum_l1_worst,histogram_w1_mean,"
+  csv << "sweep,size,levels,neighbours,subspaces,scheme,batches,dispatches,gpu_ms,gpu_prepare_ms,gpu_car_ms,"
+         "gpu_collapse_ms,gpu_colour_ms,gpu_wall_ms,cpu_f32_ms,cpu_f64_ms,"
+         "gpu_max_err_over_std,gpu_rms_err_over_std,cpu_f32_max_err_over_std,cpu_f32_rms_err_over_std,"
+         "fidelity_pairs,"
+         "delta_e_mean,delta_e_worst,std_rel_mean,std_rel_worst,spectrum_l1_mean,spectrum_l1_worst,histogram_"
+         "w1_mean,"
          "histogram_w1_worst\n";
   std::ofstream md(out / "bench_synth.md");
   md << "# carbtf bench synth\n\nDevice: " << device << ". CPU reference on " << threads
-     << " threads. Errors are against the float64 CPU reference, relative to each channel's standard deviation"
-     << ". Fidelity (DESIGN.md 5) is of the GPU images against the measured images of every pair they represent, "
-        "mean (worst): CIE76 delta E of the mean Lab colour, relative error of the Lab std, L1 distance of the normalised "
+     << " threads. Errors are against the float64 CPU reference, relative to each channel's standard "
+        "deviation"
+     << ". Fidelity (DESIGN.md 5) is of the GPU images against the measured images of every pair they "
+        "represent, "
+        "mean (worst): CIE76 delta E of the mean Lab colour, relative error of the Lab std, L1 distance of "
+        "the normalised "
         "log10 radial power spectra of L*, Wasserstein-1 distance of the Lab histograms in Lab units.\n\n"
-     << "| sweep | size | levels | neighbours | subspaces | scheme | GPU ms | noise | CAR | collapse | colour | GPU wall ms | "
-        "CPU f32 ms | CPU f64 ms | GPU max err/std | GPU RMS err/std | CPU f32 max err/std | delta E | std rel. | spectrum L1 | "
+     << "| sweep | size | levels | neighbours | subspaces | scheme | GPU ms | noise | CAR | collapse | "
+        "colour | GPU wall ms | "
+        "CPU f32 ms | CPU f64 ms | GPU max err/std | GPU RMS err/std | CPU f32 max err/std | delta E | std "
+        "rel. | spectrum L1 | "
         "histogram W1 |\n"
      << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const BenchRow& r : rows) {
     char line[512];
-    std::snprintf(line, sizeof line, "%s,%u,%u,%s,%u,%s,%u,%u,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3e,%.3e,%.3e,%.3e\n",
-                  r.config.sweep.c_str(), r.config.size, r.config.levels, neighbours_text(r.config.neighbours).c_str(),
-                  r.config.subspaces, r.scheme.c_str(), r.batches, r.dispatches, r.gpu_ms, r.gpu_prepare_ms, r.gpu_car_ms,
-                  r.gpu_collapse_ms, r.gpu_colour_ms, r.gpu_wall_ms, r.cpu_ms, r.cpu64_ms, r.gpu_error.max_relative,
+    std::snprintf(line, sizeof line,
+                  "%s,%u,%u,%s,%u,%s,%u,%u,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3f,%.3e,%.3e,%.3e,%.3e\n",
+                  r.config.sweep.c_str(), r.config.size, r.config.levels,
+                  neighbours_text(r.config.neighbours).c_str(), r.config.subspaces, r.scheme.c_str(),
+                  r.batches, r.dispatches, r.gpu_ms, r.gpu_prepare_ms, r.gpu_car_ms, r.gpu_collapse_ms,
+                  r.gpu_colour_ms, r.gpu_wall_ms, r.cpu_ms, r.cpu64_ms, r.gpu_error.max_relative,
                   r.gpu_error.rms_relative, r.cpu_error.max_relative, r.cpu_error.rms_relative);
     csv << std::string(line, std::strlen(line) - 1);  // the fidelity columns follow
     const FidelitySummary& f = r.fidelity;
-    std::snprintf(line, sizeof line, ",%u,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n", f.pairs, f.mean.delta_e, f.worst.delta_e,
-                  f.mean.std_relative, f.worst.std_relative, f.mean.spectrum_l1, f.worst.spectrum_l1, f.mean.histogram_w1,
-                  f.worst.histogram_w1);
+    std::snprintf(line, sizeof line, ",%u,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f,%.4f\n", f.pairs, f.mean.delta_e,
+                  f.worst.delta_e, f.mean.std_relative, f.worst.std_relative, f.mean.spectrum_l1,
+                  f.worst.spectrum_l1, f.mean.histogram_w1, f.worst.histogram_w1);
     csv << line;
-    std::snprintf(line, sizeof line, "| %s | %u | %u | %s | %u | %s | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.2e | %.2e | %.2e |",
-                  r.config.sweep.c_str(), r.config.size, r.config.levels, neighbours_text(r.config.neighbours).c_str(),
-                  r.config.subspaces, r.scheme.c_str(), r.gpu_ms, r.gpu_prepare_ms, r.gpu_car_ms, r.gpu_collapse_ms, r.gpu_colour_ms,
-                  r.gpu_wall_ms, r.cpu_ms, r.cpu64_ms,
-                  r.gpu_error.max_relative, r.gpu_error.rms_relative, r.cpu_error.max_relative);
+    std::snprintf(line, sizeof line,
+                  "| %s | %u | %u | %s | %u | %s | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | "
+                  "%.2e | %.2e | %.2e |",
+                  r.config.sweep.c_str(), r.config.size, r.config.levels,
+                  neighbours_text(r.config.neighbours).c_str(), r.config.subspaces, r.scheme.c_str(),
+                  r.gpu_ms, r.gpu_prepare_ms, r.gpu_car_ms, r.gpu_collapse_ms, r.gpu_colour_ms, r.gpu_wall_ms,
+                  r.cpu_ms, r.cpu64_ms, r.gpu_error.max_relative, r.gpu_error.rms_relative,
+                  r.cpu_error.max_relative);
     md << line;
     if (f.pairs == 0) {
       md << " - | - | - | - |\n";
     } else {
-      std::snprintf(line, sizeof line, " %.2f (%.2f) | %.3f (%.3f) | %.3f (%.3f) | %.2f (%.2f) |\n", f.mean.delta_e, f.worst.delta_e,
-                    f.mean.std_relative, f.worst.std_relative, f.mean.spectrum_l1, f.worst.spectrum_l1, f.mean.histogram_w1,
-                    f.worst.histogram_w1);
+      std::snprintf(line, sizeof line, " %.2f (%.2f) | %.3f (%.3f) | %.3f (%.3f) | %.2f (%.2f) |\n",
+                    f.mean.delta_e, f.worst.delta_e, f.mean.std_relative, f.worst.std_relative,
+                    f.mean.spectrum_l1, f.worst.spectrum_l1, f.mean.histogram_w1, f.worst.histogram_w1);
       md << line;
     }
   }
@@ -260,32 +284,43 @@ void run_synth_bench(const SynthBenchOptions& options) {
   }
   std::unique_ptr<MeasuredStatistics> measured;
   if (!options.btf.empty()) {
-    if (!loaded) throw CommandError("--btf needs --material: the fidelity error compares a material with its measured BTF");
+    if (!loaded)
+      throw CommandError(
+          "--btf needs --material: the fidelity error compares a material with its measured BTF");
     measured = std::make_unique<MeasuredStatistics>(measure_dataset(options.btf, *loaded));
   }
   std::vector<BenchCase> cases;
-  for (std::uint32_t size : options.sizes) cases.push_back({"size", size, options.base_levels, 0, options.size_sweep_subspaces});
+  for (std::uint32_t size : options.sizes)
+    cases.push_back({"size", size, options.base_levels, 0, options.size_sweep_subspaces});
   if (!loaded) {
-    for (std::uint32_t levels : options.levels) cases.push_back({"levels", options.base_size, levels, 0, options.base_subspaces});
-    for (std::uint32_t n : options.neighbours) cases.push_back({"neighbours", options.base_size, options.base_levels, n, options.base_subspaces});
+    for (std::uint32_t levels : options.levels)
+      cases.push_back({"levels", options.base_size, levels, 0, options.base_subspaces});
+    for (std::uint32_t n : options.neighbours)
+      cases.push_back({"neighbours", options.base_size, options.base_levels, n, options.base_subspaces});
   }
-  for (std::uint32_t count : options.subspace_counts) cases.push_back({"subspaces", options.base_size, options.base_levels, 0, count});
+  for (std::uint32_t count : options.subspace_counts)
+    cases.push_back({"subspaces", options.base_size, options.base_levels, 0, count});
 
   auto context = make_context(options.device);
   std::unique_ptr<SubspaceSynthesizer> synthesizer;
   check(SubspaceSynthesizer::create(*context, synthesizer), "cannot build the synthesis pipelines");
   const std::filesystem::path out = options.out;
   std::filesystem::create_directories(out);
-  std::printf("bench synth on %s (%s scheme), CPU reference on %u threads, median of %u GPU runs after a warm-up\n",
-              context->device_info().name.c_str(), car_scheme_name(options.scheme), options.cpu_threads, options.repeats);
-  std::printf("%-10s %5s %3s %5s %4s %9s %8s %7s %7s %7s %7s %9s %9s %10s %10s\n", "sweep", "size", "lvl", "nbrs", "subs",
-              "scheme", "GPU ms", "noise", "CAR", "collapse", "colour", "wall ms", "CPU f32", "GPU err", "RMS err");
+  std::printf(
+      "bench synth on %s (%s scheme), CPU reference on %u threads, median of %u GPU runs after a warm-up\n",
+      context->device_info().name.c_str(), car_scheme_name(options.scheme), options.cpu_threads,
+      options.repeats);
+  std::printf("%-10s %5s %3s %5s %4s %9s %8s %7s %7s %7s %7s %9s %9s %10s %10s\n", "sweep", "size", "lvl",
+              "nbrs", "subs", "scheme", "GPU ms", "noise", "CAR", "collapse", "colour", "wall ms", "CPU f32",
+              "GPU err", "RMS err");
   std::vector<BenchRow> rows;
   for (const BenchCase& c : cases) {
     const BenchRow row = run_case(options, c, *synthesizer, loaded.get(), measured.get());
-    std::printf("%-10s %5u %3u %5s %4u %9s %8.1f %7.1f %7.1f %7.1f %7.1f %9.1f %9.1f %10.2e %10.2e\n", c.sweep.c_str(),
-                c.size, c.levels, neighbours_text(c.neighbours).c_str(), row.config.subspaces, row.scheme.c_str(), row.gpu_ms,
-                row.gpu_prepare_ms, row.gpu_car_ms, row.gpu_collapse_ms, row.gpu_colour_ms, row.gpu_wall_ms, row.cpu_ms, row.gpu_error.max_relative, row.gpu_error.rms_relative);
+    std::printf("%-10s %5u %3u %5s %4u %9s %8.1f %7.1f %7.1f %7.1f %7.1f %9.1f %9.1f %10.2e %10.2e\n",
+                c.sweep.c_str(), c.size, c.levels, neighbours_text(c.neighbours).c_str(),
+                row.config.subspaces, row.scheme.c_str(), row.gpu_ms, row.gpu_prepare_ms, row.gpu_car_ms,
+                row.gpu_collapse_ms, row.gpu_colour_ms, row.gpu_wall_ms, row.cpu_ms,
+                row.gpu_error.max_relative, row.gpu_error.rms_relative);
     std::fflush(stdout);
     rows.push_back(row);
   }
@@ -308,13 +343,19 @@ void run_synth_bench(const SynthBenchOptions& options) {
       if (r.fidelity.pairs > 0) fidelity.push_back({r.gpu_ms, std::max(r.fidelity.mean.delta_e, 1e-3), 0});
     }
     const std::string_view fidelity_legend[] = {device_entry};
-    const Figure figure = scatter_figure(fidelity, "RUN TIME (MS)", "MEAN DELTA E AGAINST THE MEASURED IMAGES", fidelity_legend);
-    write_rgb_image((out / "bench_synth_fidelity.png").string(), figure.rgb, figure.width, figure.height, false);
-    std::printf("fidelity against the measured images (mean over the pairs each row's subspaces represent):\n");
+    const Figure figure = scatter_figure(fidelity, "RUN TIME (MS)",
+                                         "MEAN DELTA E AGAINST THE MEASURED IMAGES", fidelity_legend);
+    write_rgb_image((out / "bench_synth_fidelity.png").string(), figure.rgb, figure.width, figure.height,
+                    false);
+    std::printf(
+        "fidelity against the measured images (mean over the pairs each row's subspaces represent):\n");
     for (const BenchRow& r : rows) {
-      std::printf("  %-10s %5u %4u subspaces, %4u pairs: delta E %.2f, std rel. %.3f, spectrum L1 %.3f, histogram W1 %.2f\n",
-                  r.config.sweep.c_str(), r.config.size, r.config.subspaces, r.fidelity.pairs, r.fidelity.mean.delta_e,
-                  r.fidelity.mean.std_relative, r.fidelity.mean.spectrum_l1, r.fidelity.mean.histogram_w1);
+      std::printf(
+          "  %-10s %5u %4u subspaces, %4u pairs: delta E %.2f, std rel. %.3f, spectrum L1 %.3f, histogram W1 "
+          "%.2f\n",
+          r.config.sweep.c_str(), r.config.size, r.config.subspaces, r.fidelity.pairs,
+          r.fidelity.mean.delta_e, r.fidelity.mean.std_relative, r.fidelity.mean.spectrum_l1,
+          r.fidelity.mean.histogram_w1);
     }
     std::printf("bench_synth_fidelity.png plots delta E against run time\n");
   }
@@ -326,41 +367,61 @@ void run_synth_bench(const SynthBenchOptions& options) {
 
 void register_bench_synth_command(CLI::App& bench) {
   auto options = std::make_shared<SynthBenchOptions>();
-  auto* command = bench.add_subcommand(
-      "synth", "Error against run time of subspace synthesis: sweeps size, levels, neighbourhood size and subspace count "
-               "on the Vulkan device and the CPU reference; writes CSV, markdown and a PNG plot");
+  auto* command =
+      bench.add_subcommand("synth",
+                           "Error against run time of subspace synthesis: sweeps size, levels, neighbourhood "
+                           "size and subspace count "
+                           "on the Vulkan device and the CPU reference; writes CSV, markdown and a PNG plot");
   command->add_option("--material", options->material,
-                      "A .cbtf material to synthesize (default: synthetic materials with known stable bands, which also allow "
+                      "A .cbtf material to synthesize (default: synthetic materials with known stable bands, "
+                      "which also allow "
                       "the levels and neighbourhood sweeps)");
-  command->add_option("--btf", options->btf,
-                      "The measured BTF the --material was analysed from (folder, .zip or manifest): adds the fidelity error "
-                      "of DESIGN.md 5 against every measured image to each row")
+  command
+      ->add_option("--btf", options->btf,
+                   "The measured BTF the --material was analysed from (folder, .zip or manifest): adds the "
+                   "fidelity error "
+                   "of DESIGN.md 5 against every measured image to each row")
       ->check(CLI::ExistingPath);
-  command->add_option("--out", options->out, "Folder for bench_synth.csv, .md and .png")->capture_default_str();
-  command->add_option("--sizes", options->sizes, "Output sizes of the size sweep")->delimiter(',')->check(CLI::Range(1u, 16384u));
-  command->add_option("--levels", options->levels, "Pyramid levels of the levels sweep")->delimiter(',')->check(CLI::Range(1u, 3u));
-  command->add_option("--neighbours", options->neighbours, "Neighbourhood sizes of the neighbourhood sweep (1, 2, 4, 6, 12)")
+  command->add_option("--out", options->out, "Folder for bench_synth.csv, .md and .png")
+      ->capture_default_str();
+  command->add_option("--sizes", options->sizes, "Output sizes of the size sweep")
+      ->delimiter(',')
+      ->check(CLI::Range(1u, 16384u));
+  command->add_option("--levels", options->levels, "Pyramid levels of the levels sweep")
+      ->delimiter(',')
+      ->check(CLI::Range(1u, 3u));
+  command
+      ->add_option("--neighbours", options->neighbours,
+                   "Neighbourhood sizes of the neighbourhood sweep (1, 2, 4, 6, 12)")
       ->delimiter(',')
       ->check(CLI::IsMember({1u, 2u, 4u, 6u, 12u}));
   command->add_option("--subspace-counts", options->subspace_counts, "Subspace counts of the subspace sweep")
       ->delimiter(',')
       ->check(CLI::Range(1u, 255u));
-  command->add_option("--base-size", options->base_size, "Size of the levels, neighbourhood and subspace sweeps")
+  command
+      ->add_option("--base-size", options->base_size, "Size of the levels, neighbourhood and subspace sweeps")
       ->check(CLI::Range(1u, 16384u))
       ->capture_default_str();
-  command->add_option("--base-subspaces", options->base_subspaces, "Subspaces in the levels and neighbourhood sweeps")
+  command
+      ->add_option("--base-subspaces", options->base_subspaces,
+                   "Subspaces in the levels and neighbourhood sweeps")
       ->check(CLI::Range(1u, 255u))
       ->capture_default_str();
   command->add_option("--size-sweep-subspaces", options->size_sweep_subspaces, "Subspaces in the size sweep")
       ->check(CLI::Range(1u, 255u))
       ->capture_default_str();
-  command->add_option("--margin", options->margin, "CAR burn-in margin per level")->check(CLI::Range(0u, 4096u))->capture_default_str();
+  command->add_option("--margin", options->margin, "CAR burn-in margin per level")
+      ->check(CLI::Range(0u, 4096u))
+      ->capture_default_str();
   command->add_option("--repeats", options->repeats, "Timed GPU runs per case (median reported)")
       ->check(CLI::Range(1u, 1000u))
       ->capture_default_str();
-  command->add_option("--cpu-threads", options->cpu_threads, "Threads of the CPU reference")->check(CLI::Range(1u, 256u))->capture_default_str();
+  command->add_option("--cpu-threads", options->cpu_threads, "Threads of the CPU reference")
+      ->check(CLI::Range(1u, 256u))
+      ->capture_default_str();
   add_car_scheme_option(*command, options->scheme);
-  command->add_flag("--skip-cpu", options->skip_cpu, "Skip the CPU float32 timing (the float64 reference still runs)");
+  command->add_flag("--skip-cpu", options->skip_cpu,
+                    "Skip the CPU float32 timing (the float64 reference still runs)");
   add_device_options(*command, options->device);
   command->callback([options] { run_synth_bench(*options); });
 }

@@ -57,27 +57,31 @@ bool bitwise_equal(std::span<const float> a, std::span<const float> b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
 }
 
-void accumulate(StageResult& stage, std::span<const float> gpu, std::span<const float> cpu, std::uint32_t channels) {
+void accumulate(StageResult& stage, std::span<const float> gpu, std::span<const float> cpu,
+                std::uint32_t channels) {
   stage.error = reference::worst_of(stage.error, reference::conformance_error(gpu, cpu, channels));
   stage.identical = stage.identical && bitwise_equal(gpu, cpu);
   ++stage.items;
 }
 
-std::vector<float> to_float(const std::vector<double>& values) { return {values.begin(), values.end()}; }
+std::vector<float> to_float(const std::vector<double>& values) {
+  return {values.begin(), values.end()};
+}
 
 // Interpolation queries: a measured pair, a point between measured directions, and grazing angles
 // beyond the last measured elevation.
 std::vector<std::array<double, 4>> interpolation_queries(const Material& m) {
   constexpr double d = std::numbers::pi / 180.0;
-  return {{m.lights[0].theta, m.lights[0].phi, m.views[m.views.size() - 1].theta, m.views[m.views.size() - 1].phi},
+  return {{m.lights[0].theta, m.lights[0].phi, m.views[m.views.size() - 1].theta,
+           m.views[m.views.size() - 1].phi},
           {37.0 * d, 101.0 * d, 52.0 * d, 203.0 * d},
           {89.0 * d, 10.0 * d, 87.0 * d, 190.0 * d}};
 }
 
 // Block-wise synthesis: the output as a 2 x 2 grid of blocks, each synthesized on its own (margin 0)
 // from block initialization values of `whole`, against the same region of the whole GPU images.
-StageResult blockwise_stage(const Material& material, const SynthesisRequest& whole, const SynthesizedImages& images,
-                            SubspaceSynthesizer& synthesizer) {
+StageResult blockwise_stage(const Material& material, const SynthesisRequest& whole,
+                            const SynthesizedImages& images, SubspaceSynthesizer& synthesizer) {
   StageResult stage("block-wise");
   std::vector<SynthesisBlock> blocks;
   const std::uint32_t half_rows = std::max(1u, whole.height / 2), half_cols = std::max(1u, whole.width / 2);
@@ -107,9 +111,11 @@ StageResult blockwise_stage(const Material& material, const SynthesisRequest& wh
       for (std::uint32_t r = 0; r < request.height; ++r) {
         const std::size_t first =
             (std::size_t{static_cast<std::uint32_t>(request.row0 - whole.row0) + r} * whole.width +
-             static_cast<std::uint32_t>(request.col0 - whole.col0)) * channels;
+             static_cast<std::uint32_t>(request.col0 - whole.col0)) *
+            channels;
         expected.insert(expected.end(), images.images[s].begin() + static_cast<std::ptrdiff_t>(first),
-                        images.images[s].begin() + static_cast<std::ptrdiff_t>(first + std::size_t{request.width} * channels));
+                        images.images[s].begin() +
+                            static_cast<std::ptrdiff_t>(first + std::size_t{request.width} * channels));
       }
       accumulate(stage, tile.images[s], expected, channels);
     }
@@ -117,8 +123,8 @@ StageResult blockwise_stage(const Material& material, const SynthesisRequest& wh
   return stage;
 }
 
-CaseReport run_case(const std::string& name, const Material& material, std::uint32_t size, const ConformOptions& options,
-                    SubspaceSynthesizer& synthesizer) {
+CaseReport run_case(const std::string& name, const Material& material, std::uint32_t size,
+                    const ConformOptions& options, SubspaceSynthesizer& synthesizer) {
   CaseReport report;
   report.name = name;
   SynthesisRequest request;
@@ -141,7 +147,8 @@ CaseReport run_case(const std::string& name, const Material& material, std::uint
   report.cpu_ms = seconds_since(start) * 1e3;
   const auto f64 = reference::synthesize_subspaces_f64(material, {}, block);
 
-  StageResult noise("noise"), band("band fields"), collapse("collapse"), colour("colour"), interpolation("interpolation");
+  StageResult noise("noise"), band("band fields"), collapse("collapse"), colour("colour"),
+      interpolation("interpolation");
   SynthesizedImages images;
   for (SynthesisStage capture : {SynthesisStage::noise, SynthesisStage::car, SynthesisStage::collapse}) {
     request.capture = capture;
@@ -159,7 +166,8 @@ CaseReport run_case(const std::string& name, const Material& material, std::uint
           if (capture == SynthesisStage::noise) {
             const TextureRegion& region = stages[s].regions[level];
             std::vector<float> expected(gpu.size());
-            reference::fill_noise_block(request.seed, field_id_of(s, level, c), static_cast<std::int32_t>(region.row0),
+            reference::fill_noise_block(request.seed, field_id_of(s, level, c),
+                                        static_cast<std::int32_t>(region.row0),
                                         static_cast<std::int32_t>(region.col0), cols, rows, expected, 1);
             accumulate(noise, gpu, expected, 1);
           } else if (capture == SynthesisStage::car) {
@@ -175,8 +183,9 @@ CaseReport run_case(const std::string& name, const Material& material, std::uint
   }
   for (std::size_t s = 0; s < count; ++s) {
     accumulate(colour, images.images[s], cpu[s], material.subspaces[s].channels);
-    report.float32_vs_float64 = reference::worst_of(report.float32_vs_float64,
-                                                    reference::conformance_error(images.images[s], f64[s], material.subspaces[s].channels));
+    report.float32_vs_float64 = reference::worst_of(
+        report.float32_vs_float64,
+        reference::conformance_error(images.images[s], f64[s], material.subspaces[s].channels));
   }
   DirectionTriangulation lights, views;
   check(build_direction_triangulation(material.lights, lights), name + ": light directions");
@@ -189,7 +198,8 @@ CaseReport run_case(const std::string& name, const Material& material, std::uint
     reference::interpolate_subspaces(material, weights, cpu, expected);
     accumulate(interpolation, gpu, expected, material.subspaces[0].channels);
   }
-  report.stages = {noise, band, collapse, colour, interpolation, blockwise_stage(material, request, images, synthesizer)};
+  report.stages = {noise,  band,          collapse,
+                   colour, interpolation, blockwise_stage(material, request, images, synthesizer)};
   return report;
 }
 
@@ -226,23 +236,28 @@ Material hdr_material() {
 }
 
 void print_case(const CaseReport& r, double tolerance) {
-  std::printf("\n%s: GPU %.1f ms, CPU float32 reference %.1f ms (1 thread)\n", r.name.c_str(), r.gpu_ms, r.cpu_ms);
-  std::printf("  %-14s %6s %14s %14s %10s %8s\n", "stage", "items", "max err/std", "RMS err/std", "identical", "verdict");
+  std::printf("\n%s: GPU %.1f ms, CPU float32 reference %.1f ms (1 thread)\n", r.name.c_str(), r.gpu_ms,
+              r.cpu_ms);
+  std::printf("  %-14s %6s %14s %14s %10s %8s\n", "stage", "items", "max err/std", "RMS err/std", "identical",
+              "verdict");
   for (const StageResult& s : r.stages) {
-    std::printf("  %-14s %6u %14.3e %14.3e %10s %8s\n", s.stage.c_str(), s.items, s.error.max_relative, s.error.rms_relative,
-                s.identical ? "bits" : "no", s.error.within(tolerance) ? "ok" : "FAIL");
+    std::printf("  %-14s %6u %14.3e %14.3e %10s %8s\n", s.stage.c_str(), s.items, s.error.max_relative,
+                s.error.rms_relative, s.identical ? "bits" : "no", s.error.within(tolerance) ? "ok" : "FAIL");
   }
-  std::printf("  float32 (GPU) against the float64 reference: max %.3e, RMS %.3e of the std\n", r.float32_vs_float64.max_relative,
-              r.float32_vs_float64.rms_relative);
+  std::printf("  float32 (GPU) against the float64 reference: max %.3e, RMS %.3e of the std\n",
+              r.float32_vs_float64.max_relative, r.float32_vs_float64.rms_relative);
 }
 
 void run_conform(const ConformOptions& options) {
   auto context = make_context(options.device);
   std::unique_ptr<SubspaceSynthesizer> synthesizer;
   check(SubspaceSynthesizer::create(*context, synthesizer), "cannot build the synthesis pipelines");
-  std::printf("conformance on %s: GPU against the CPU float32 reference, seed %llu, margin %u; tolerance %.1e of each "
-              "band's std (max abs error)\n",
-              context->device_info().name.c_str(), static_cast<unsigned long long>(options.seed), options.margin, options.tolerance);
+  std::printf(
+      "conformance on %s: GPU against the CPU float32 reference, seed %llu, margin %u; tolerance %.1e of "
+      "each "
+      "band's std (max abs error)\n",
+      context->device_info().name.c_str(), static_cast<unsigned long long>(options.seed), options.margin,
+      options.tolerance);
   std::vector<CaseReport> reports;
   auto run_and_print = [&](const std::string& name, const Material& m, std::uint32_t size) {
     std::printf("running %s...\n", name.c_str());
@@ -254,18 +269,25 @@ void run_conform(const ConformOptions& options) {
   if (!options.material.empty()) {
     Material material;
     check(read_material_file(options.material, material), "cannot read the material");
-    run_and_print(options.material + " at " + std::to_string(options.size) + "x" + std::to_string(options.size), material, options.size);
+    run_and_print(
+        options.material + " at " + std::to_string(options.size) + "x" + std::to_string(options.size),
+        material, options.size);
   }
   if (options.extremes) {
-    run_and_print("near-unit-root bands (spectral radius 0.99) at 1024x1024", near_unit_root_material(), 1024);
-    run_and_print("largest neighbourhoods (12 and 16 neighbours), 3 levels, 512x512", largest_neighbourhood_material(), 512);
+    run_and_print("near-unit-root bands (spectral radius 0.99) at 1024x1024", near_unit_root_material(),
+                  1024);
+    run_and_print("largest neighbourhoods (12 and 16 neighbours), 3 levels, 512x512",
+                  largest_neighbourhood_material(), 512);
     run_and_print("HDR: means and contrasts over 8 decades, 512x512", hdr_material(), 512);
-    run_and_print("large: " + std::to_string(options.large_size) + "x" + std::to_string(options.large_size) + ", 3 levels",
+    run_and_print("large: " + std::to_string(options.large_size) + "x" + std::to_string(options.large_size) +
+                      ", 3 levels",
                   synthetic_material(1, 3), options.large_size);
 
-    std::printf("\nfloat32 error growth with field size, near-unit-root band, against float64 (GPU = CPU float32 where "
-                "the stages above say bits):\n  %8s %14s %14s %10s\n",
-                "size", "max err/std", "RMS err/std", "GPU bits");
+    std::printf(
+        "\nfloat32 error growth with field size, near-unit-root band, against float64 (GPU = CPU float32 "
+        "where "
+        "the stages above say bits):\n  %8s %14s %14s %10s\n",
+        "size", "max err/std", "RMS err/std", "GPU bits");
     const Material stiff = near_unit_root_material();
     for (std::uint32_t size : options.growth_sizes) {
       SynthesisRequest request;
@@ -280,7 +302,8 @@ void run_conform(const ConformOptions& options) {
       reference::synthesize_subspace(stiff, 0, block, f32);
       reference::synthesize_subspace(stiff, 0, block, f64);
       const ConformanceError e = reference::conformance_error(f32, f64, 3);
-      std::printf("  %8u %14.3e %14.3e %10s\n", size, e.max_relative, e.rms_relative, bitwise_equal(gpu.images[0], f32) ? "yes" : "NO");
+      std::printf("  %8u %14.3e %14.3e %10s\n", size, e.max_relative, e.rms_relative,
+                  bitwise_equal(gpu.images[0], f32) ? "yes" : "NO");
       std::fflush(stdout);
     }
   }
@@ -289,8 +312,8 @@ void run_conform(const ConformOptions& options) {
   for (const CaseReport& r : reports)
     for (const StageResult& s : r.stages) failures += s.error.within(options.tolerance) ? 0 : 1;
   if (failures > 0) {
-    throw CommandError(std::to_string(failures) + " stage comparison(s) beyond the tolerance of " + std::to_string(options.tolerance) +
-                       " of the std");
+    throw CommandError(std::to_string(failures) + " stage comparison(s) beyond the tolerance of " +
+                       std::to_string(options.tolerance) + " of the std");
   }
   std::printf("\nall stages within %.1e of the std\n", options.tolerance);
 }
@@ -300,16 +323,25 @@ void run_conform(const ConformOptions& options) {
 void register_conform_command(CLI::App& app) {
   auto options = std::make_shared<ConformOptions>();
   auto* command = app.add_subcommand(
-      "conform", "Headless GPU-vs-CPU conformance of synthesis: every stage (noise, band fields, collapse, colour, "
-                 "interpolation) compared pixel by pixel, 2x2 blocks from stored initialization values against the whole, stiff and extreme cases, float32 error growth against float64; "
-                 "exits non-zero beyond the tolerance");
-  command->add_option("material", options->material, "Material file (.cbtf); without one only the built-in extreme cases run");
-  command->add_option("--size", options->size, "Output size for the material")->check(CLI::Range(1u, 16384u))->capture_default_str();
+      "conform",
+      "Headless GPU-vs-CPU conformance of synthesis: every stage (noise, band fields, collapse, colour, "
+      "interpolation) compared pixel by pixel, 2x2 blocks from stored initialization values against the "
+      "whole, stiff and extreme cases, float32 error growth against float64; "
+      "exits non-zero beyond the tolerance");
+  command->add_option("material", options->material,
+                      "Material file (.cbtf); without one only the built-in extreme cases run");
+  command->add_option("--size", options->size, "Output size for the material")
+      ->check(CLI::Range(1u, 16384u))
+      ->capture_default_str();
   command->add_option("--seed", options->seed, "Seed")->check(non_negative())->capture_default_str();
-  command->add_option("--margin", options->margin, "CAR burn-in per level")->check(CLI::Range(0u, 4096u))->capture_default_str();
-  command->add_option("--tolerance", options->tolerance,
-                      "Largest accepted max abs error, relative to each band's or channel's std (both sides follow one "
-                      "operation order, so the expected error is 0)")
+  command->add_option("--margin", options->margin, "CAR burn-in per level")
+      ->check(CLI::Range(0u, 4096u))
+      ->capture_default_str();
+  command
+      ->add_option(
+          "--tolerance", options->tolerance,
+          "Largest accepted max abs error, relative to each band's or channel's std (both sides follow one "
+          "operation order, so the expected error is 0)")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
   command->add_flag("!--no-extremes", options->extremes, "Skip the built-in stiff and extreme cases");

@@ -49,7 +49,9 @@ AnalysisResult analysed_leather() {
   RenderOptions render;
   render.progress = false;
   render_btf(surface, dataset.lights(), dataset.views(), render,
-             [&](std::uint32_t l, std::uint32_t v, std::span<const float> image) { dataset.set_linear({l, v}, image); });
+             [&](std::uint32_t l, std::uint32_t v, std::span<const float> image) {
+               dataset.set_linear({l, v}, image);
+             });
   AnalysisOptions options;
   options.progress = false;
   options.segmentation.clusters = 4;
@@ -76,7 +78,8 @@ TEST_CASE("constant bands collapse to the sum of their means through the colour 
 }
 
 TEST_CASE("subspace synthesis is deterministic, and float32 follows float64", "[synthesis]") {
-  const Material m = tiny_material({band(0.0f, 0.05f, {0.5f, 0.4f}), band(0.0f, 0.1f, {0.45f, 0.45f}), band(0.1f, 0.2f, {0.6f, 0.35f})});
+  const Material m = tiny_material(
+      {band(0.0f, 0.05f, {0.5f, 0.4f}), band(0.0f, 0.1f, {0.45f, 0.45f}), band(0.1f, 0.2f, {0.6f, 0.35f})});
   reference::SubspaceBlock block;
   block.seed = 77;
   block.width = block.height = 256;
@@ -132,9 +135,10 @@ TEST_CASE("a synthesized subspace image keeps the analysed image's colour statis
       const double expected = model.colour_mean[c];
       double band_means = 0.0;
       for (std::uint32_t level = 0; level < model.levels; ++level)
-        for (std::uint32_t j = 0; j < 3; ++j) band_means += model.colour_transform[c * 3 + j] * model.bands[level * 3 + j].mean;
-      INFO("subspace " << s << " channel " << c << ": synthesized mean " << mean << ", model " << expected + band_means << ", standard error "
-                       << std::sqrt(variance));
+        for (std::uint32_t j = 0; j < 3; ++j)
+          band_means += model.colour_transform[c * 3 + j] * model.bands[level * 3 + j].mean;
+      INFO("subspace " << s << " channel " << c << ": synthesized mean " << mean << ", model "
+                       << expected + band_means << ", standard error " << std::sqrt(variance));
       CHECK(std::abs(mean - (expected + band_means)) < 5.0 * std::sqrt(variance) + 1e-6);
     }
   }
@@ -149,19 +153,19 @@ TEST_CASE("a synthesized subspace image keeps the analysed image's colour statis
     DirectionTriangulation lights, views;
     REQUIRE(build_direction_triangulation(m.lights, lights).ok());
     REQUIRE(build_direction_triangulation(m.views, views).ok());
-    const PairWeights w = pair_weights(lights, views, m.lights[30].theta, m.lights[30].phi, m.views[70].theta, m.views[70].phi);
+    const PairWeights w =
+        pair_weights(lights, views, m.lights[30].theta, m.lights[30].phi, m.views[70].theta, m.views[70].phi);
     std::vector<float> out(16 * 16 * 3);
     reference::interpolate_subspaces(m, w, images, out);
     CHECK(out == images[subspace_of(m, 30, 70)]);
   }
 }
 
-
 namespace {
 
 // Rows [row, row + rows) and columns [col, col + cols) of an image `width` pixels wide.
-std::vector<float> crop(const std::vector<float>& image, std::uint32_t width, std::uint32_t channels, std::int64_t row,
-                        std::int64_t col, std::uint32_t rows, std::uint32_t cols) {
+std::vector<float> crop(const std::vector<float>& image, std::uint32_t width, std::uint32_t channels,
+                        std::int64_t row, std::int64_t col, std::uint32_t rows, std::uint32_t cols) {
   std::vector<float> out;
   for (std::int64_t r = row; r < row + rows; ++r) {
     const auto begin = image.begin() + static_cast<std::ptrdiff_t>((r * width + col) * channels);
@@ -172,7 +176,8 @@ std::vector<float> crop(const std::vector<float>& image, std::uint32_t width, st
 
 }  // namespace
 
-TEST_CASE("block-wise synthesis from stored initialization values equals the whole synthesis", "[synthesis][blockwise]") {
+TEST_CASE("block-wise synthesis from stored initialization values equals the whole synthesis",
+          "[synthesis][blockwise]") {
   // 3 subspaces x 3 levels x 3 channels with 1 to 12 neighbours: frames of every pad width.
   const Material m = synthetic_material(3, 3);
   reference::SubspaceBlock whole;
@@ -212,22 +217,22 @@ TEST_CASE("block-wise synthesis from stored initialization values equals the who
     const auto images = reference::synthesize_subspaces(m, subspaces, block, 0, initial[b]);
     for (std::uint32_t s : subspaces) {
       INFO("subspace " << s);
-      const auto expected =
-          crop(reference_images[s], whole.width, 3, block.row0 - whole.row0, block.col0 - whole.col0, block.height, block.width);
+      const auto expected = crop(reference_images[s], whole.width, 3, block.row0 - whole.row0,
+                                 block.col0 - whole.col0, block.height, block.width);
       test::require_bitwise_equal(images[s], expected, std::size_t{block.width} * 3);
     }
   }
   // Without the stored values the same block starts from zeros and differs: the values carry the state.
   const auto cold = reference::synthesize_subspaces(m, subspaces, blocks[3]);
-  CHECK(cold[0] != crop(reference_images[0], whole.width, 3, blocks[3].row0 - whole.row0, blocks[3].col0 - whole.col0,
-                        blocks[3].height, blocks[3].width));
+  CHECK(cold[0] != crop(reference_images[0], whole.width, 3, blocks[3].row0 - whole.row0,
+                        blocks[3].col0 - whole.col0, blocks[3].height, blocks[3].width));
   // A single subspace takes its own slice of the layout.
   std::vector<float> single(std::size_t{odd.width} * odd.height * 3);
   const std::uint32_t only0[1] = {0};
   const auto initial0 = reference::block_initial_values(m, only0, whole, std::span(&odd, 1));
   reference::synthesize_subspace(m, 0, odd, std::span<float>(single), nullptr, initial0[0]);
-  test::require_bitwise_equal(single, crop(reference_images[0], whole.width, 3, odd.row0 - whole.row0, odd.col0 - whole.col0,
-                                           odd.height, odd.width));
+  test::require_bitwise_equal(single, crop(reference_images[0], whole.width, 3, odd.row0 - whole.row0,
+                                           odd.col0 - whole.col0, odd.height, odd.width));
 }
 
 TEST_CASE("block initialization values are refused where they cannot hold", "[synthesis][blockwise]") {
@@ -249,7 +254,8 @@ TEST_CASE("block initialization values are refused where they cannot hold", "[sy
   CHECK_THROWS_WITH(reference::synthesize_subspace(m, 0, inside, std::span<float>(out), nullptr, initial[0]),
                     Catch::Contains("block initialization values"));
   inside.seed = 1;
-  CHECK_THROWS_WITH(reference::block_initial_values(m, {}, whole, std::span(&inside, 1)), Catch::Contains("seed"));
+  CHECK_THROWS_WITH(reference::block_initial_values(m, {}, whole, std::span(&inside, 1)),
+                    Catch::Contains("seed"));
 }
 
 }  // namespace carbtf

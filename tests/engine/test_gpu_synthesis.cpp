@@ -29,7 +29,8 @@ std::unique_ptr<SubspaceSynthesizer> make_synthesizer(Context& context) {
   return synthesizer;
 }
 
-SynthesizedImages gpu_synthesize(SubspaceSynthesizer& synthesizer, const Material& m, const SynthesisRequest& r) {
+SynthesizedImages gpu_synthesize(SubspaceSynthesizer& synthesizer, const Material& m,
+                                 const SynthesisRequest& r) {
   SynthesizedImages images;
   const Status status = synthesizer.synthesize(m, r, images);
   INFO(status.message());
@@ -39,7 +40,8 @@ SynthesizedImages gpu_synthesize(SubspaceSynthesizer& synthesizer, const Materia
 
 }  // namespace
 
-TEST_CASE("GPU subspace images equal the CPU float32 reference bit for bit, in both CAR schemes", "[gpu_synthesis][gpu]") {
+TEST_CASE("GPU subspace images equal the CPU float32 reference bit for bit, in both CAR schemes",
+          "[gpu_synthesis][gpu]") {
   test::ValidatedContext context;
   auto synthesizer = make_synthesizer(*context);
   // 5 subspaces x 3 channels x 3 levels: 45 fields with 1 to 12 neighbours each.
@@ -66,7 +68,8 @@ TEST_CASE("GPU subspace images equal the CPU float32 reference bit for bit, in b
   context.require_clean();
 }
 
-TEST_CASE("blocks at negative and odd offsets, split dispatches and small batches give the same bits", "[gpu_synthesis][gpu]") {
+TEST_CASE("blocks at negative and odd offsets, split dispatches and small batches give the same bits",
+          "[gpu_synthesis][gpu]") {
   test::ValidatedContext context;
   auto synthesizer = make_synthesizer(*context);
   const Material m = synthetic_material(3, 3);
@@ -105,7 +108,8 @@ TEST_CASE("blocks at negative and odd offsets, split dispatches and small batche
   context.require_clean();
 }
 
-TEST_CASE("a 4096x4096 subspace image leaves no texel unwritten and matches the CPU", "[gpu_synthesis][gpu][large]") {
+TEST_CASE("a 4096x4096 subspace image leaves no texel unwritten and matches the CPU",
+          "[gpu_synthesis][gpu][large]") {
   test::ValidatedContext context;
   auto synthesizer = make_synthesizer(*context);
   const Material m = synthetic_material(1, 3);
@@ -150,7 +154,8 @@ TEST_CASE("a near-unit-root band stays bounded and equal to the CPU", "[gpu_synt
   context.require_clean();
 }
 
-TEST_CASE("GPU interpolation equals the CPU blend of the same subspace images", "[gpu_synthesis][gpu][interpolation]") {
+TEST_CASE("GPU interpolation equals the CPU blend of the same subspace images",
+          "[gpu_synthesis][gpu][interpolation]") {
   test::ValidatedContext context;
   auto synthesizer = make_synthesizer(*context);
   const Material m = synthetic_material(4, 2);
@@ -163,8 +168,9 @@ TEST_CASE("GPU interpolation equals the CPU blend of the same subspace images", 
   DirectionTriangulation lights, views;
   REQUIRE(build_direction_triangulation(m.lights, lights).ok());
   REQUIRE(build_direction_triangulation(m.views, views).ok());
-  for (const auto& [lt, lp, vt, vp] : {std::array<double, 4>{0.3, 0.4, 0.9, 2.0}, std::array<double, 4>{1.5, 5.0, 0.0, 0.0},
-                                       std::array<double, 4>{0.6, 0.0, 0.6, 2.1}}) {
+  for (const auto& [lt, lp, vt, vp] :
+       {std::array<double, 4>{0.3, 0.4, 0.9, 2.0}, std::array<double, 4>{1.5, 5.0, 0.0, 0.0},
+        std::array<double, 4>{0.6, 0.0, 0.6, 2.1}}) {
     const PairWeights weights = pair_weights(lights, views, lt, lp, vt, vp);
     std::vector<float> gpu;
     const Status status = synthesizer->interpolate(m, weights, gpu);
@@ -220,7 +226,8 @@ TEST_CASE("requests the GPU path cannot serve fail with a message naming the cau
   context.require_clean();
 }
 
-TEST_CASE("GPU block-wise synthesis from stored initialization values equals the whole synthesis", "[gpu_synthesis][gpu][blockwise]") {
+TEST_CASE("GPU block-wise synthesis from stored initialization values equals the whole synthesis",
+          "[gpu_synthesis][gpu][blockwise]") {
   test::ValidatedContext context;
   auto synthesizer = make_synthesizer(*context);
   const Material m = synthetic_material(3, 3);
@@ -266,10 +273,11 @@ TEST_CASE("GPU block-wise synthesis from stored initialization values equals the
         INFO("subspace " << s);
         std::vector<float> expected;
         for (std::int64_t r = 0; r < request.height; ++r) {
-          const std::size_t first = static_cast<std::size_t>(((request.row0 - whole.row0 + r) * std::int64_t{whole.width} +
-                                                              request.col0 - whole.col0) * 3);
-          expected.insert(expected.end(), big.images[s].begin() + static_cast<std::ptrdiff_t>(first),
-                          big.images[s].begin() + static_cast<std::ptrdiff_t>(first + std::size_t{request.width} * 3));
+          const std::size_t first = static_cast<std::size_t>(
+              ((request.row0 - whole.row0 + r) * std::int64_t{whole.width} + request.col0 - whole.col0) * 3);
+          expected.insert(
+              expected.end(), big.images[s].begin() + static_cast<std::ptrdiff_t>(first),
+              big.images[s].begin() + static_cast<std::ptrdiff_t>(first + std::size_t{request.width} * 3));
         }
         test::require_bitwise_equal(tile.images[s], expected, std::size_t{request.width} * 3);
       }

@@ -28,16 +28,20 @@ PaddedField<Real> run_recursion(const CarBandModel& band, const CarFieldBlock& b
   if (!block.frame.empty()) {
     const std::uint64_t expected = car_frame_floats(f.car, static_cast<std::uint32_t>(f.pad));
     if (block.frame.size() != expected) {
-      throw std::invalid_argument("CAR field " + std::to_string(block.field_id) + ": block initialization frame has " +
-                                  std::to_string(block.frame.size()) + " values, expected " + std::to_string(expected));
+      throw std::invalid_argument("CAR field " + std::to_string(block.field_id) +
+                                  ": block initialization frame has " + std::to_string(block.frame.size()) +
+                                  " values, expected " + std::to_string(expected));
     }
     std::size_t i = 0;
     for (std::int64_t r = 0; r < f.pad; ++r) {
-      for (std::int64_t c = 0; c < f.pitch; ++c) f.values[static_cast<std::size_t>(r * f.pitch + c)] = block.frame[i++];
+      for (std::int64_t c = 0; c < f.pitch; ++c)
+        f.values[static_cast<std::size_t>(r * f.pitch + c)] = block.frame[i++];
     }
     for (std::int64_t r = f.pad; r < f.pad + f.car.rows; ++r) {
-      for (std::int64_t c = 0; c < f.pad; ++c) f.values[static_cast<std::size_t>(r * f.pitch + c)] = block.frame[i++];
-      for (std::int64_t c = f.pad + f.car.cols; c < f.pitch; ++c) f.values[static_cast<std::size_t>(r * f.pitch + c)] = block.frame[i++];
+      for (std::int64_t c = 0; c < f.pad; ++c)
+        f.values[static_cast<std::size_t>(r * f.pitch + c)] = block.frame[i++];
+      for (std::int64_t c = f.pad + f.car.cols; c < f.pitch; ++c)
+        f.values[static_cast<std::size_t>(r * f.pitch + c)] = block.frame[i++];
     }
   }
   const std::size_t gammas = band.gamma.size();
@@ -63,21 +67,27 @@ PaddedField<Real> run_recursion(const CarBandModel& band, const CarFieldBlock& b
 
 template <typename Real>
 void synthesize(const CarBandModel& band, const CarFieldBlock& block, std::span<Real> out) {
-  if (out.size() < std::size_t{block.width} * block.height) throw std::invalid_argument("CAR block output is too small");
+  if (out.size() < std::size_t{block.width} * block.height)
+    throw std::invalid_argument("CAR block output is too small");
   const PaddedField<Real> f = run_recursion<Real>(band, block);
   const Real mean = static_cast<Real>(band.mean);
   const std::int64_t first = (f.pad + block.margin) * f.pitch + f.pad + block.margin;
   for (std::uint32_t r = 0; r < block.height; ++r) {
     for (std::uint32_t c = 0; c < block.width; ++c) {
-      out[std::size_t{r} * block.width + c] = mean + f.values[static_cast<std::size_t>(first + r * f.pitch + c)];
+      out[std::size_t{r} * block.width + c] =
+          mean + f.values[static_cast<std::size_t>(first + r * f.pitch + c)];
     }
   }
 }
 
 }  // namespace
 
-void synthesize_car_block(const CarBandModel& band, const CarFieldBlock& block, std::span<float> out) { synthesize(band, block, out); }
-void synthesize_car_block(const CarBandModel& band, const CarFieldBlock& block, std::span<double> out) { synthesize(band, block, out); }
+void synthesize_car_block(const CarBandModel& band, const CarFieldBlock& block, std::span<float> out) {
+  synthesize(band, block, out);
+}
+void synthesize_car_block(const CarBandModel& band, const CarFieldBlock& block, std::span<double> out) {
+  synthesize(band, block, out);
+}
 
 CarFieldValues synthesize_car_field(const CarBandModel& band, const CarFieldBlock& block) {
   PaddedField<float> f = run_recursion<float>(band, block);

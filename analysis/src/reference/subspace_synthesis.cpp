@@ -12,12 +12,14 @@ namespace carbtf::reference {
 namespace {
 
 template <typename Real>
-constexpr Real kExpandWeight[5] = {Real(2) * Real(1) / Real(16), Real(2) * Real(4) / Real(16), Real(2) * Real(6) / Real(16),
-                                   Real(2) * Real(4) / Real(16), Real(2) * Real(1) / Real(16)};
+constexpr Real kExpandWeight[5] = {Real(2) * Real(1) / Real(16), Real(2) * Real(4) / Real(16),
+                                   Real(2) * Real(6) / Real(16), Real(2) * Real(4) / Real(16),
+                                   Real(2) * Real(1) / Real(16)};
 
 // Expands `coarse` (over region `from`) to region `to`, rows first, then columns.
 template <typename Real>
-std::vector<Real> expand(const std::vector<Real>& coarse, const TextureRegion& from, const TextureRegion& to) {
+std::vector<Real> expand(const std::vector<Real>& coarse, const TextureRegion& from,
+                         const TextureRegion& to) {
   // Along rows: every coarse row, fine columns.
   std::vector<Real> horizontal(static_cast<std::size_t>(from.rows * to.cols));
   for (std::int64_t r = 0; r < from.rows; ++r) {
@@ -49,23 +51,28 @@ std::vector<Real> expand(const std::vector<Real>& coarse, const TextureRegion& f
 }
 
 void check_subspace(const Material& material, std::uint32_t subspace) {
-  if (subspace >= material.subspaces.size()) throw std::invalid_argument("subspace " + std::to_string(subspace) + " does not exist");
+  if (subspace >= material.subspaces.size())
+    throw std::invalid_argument("subspace " + std::to_string(subspace) + " does not exist");
 }
 
 template <typename Real>
-void synthesize(const Material& material, std::uint32_t subspace, const SubspaceBlock& block, std::span<Real> out,
-                SubspaceStages* stages, std::span<const float> initial_values) {
+void synthesize(const Material& material, std::uint32_t subspace, const SubspaceBlock& block,
+                std::span<Real> out, SubspaceStages* stages, std::span<const float> initial_values) {
   check_subspace(material, subspace);
   const SubspaceModel& model = material.subspaces[subspace];
   const std::uint32_t single[1] = {subspace};
-  const BlockFrameLayout frames = initial_values.empty() ? BlockFrameLayout{} : block_frame_layout(material, block, single);
+  const BlockFrameLayout frames =
+      initial_values.empty() ? BlockFrameLayout{} : block_frame_layout(material, block, single);
   if (!initial_values.empty() && initial_values.size() != frames.floats) {
-    throw std::invalid_argument("subspace " + std::to_string(subspace) + ": " + std::to_string(initial_values.size()) +
-                                " block initialization values, the block needs " + std::to_string(frames.floats));
+    throw std::invalid_argument(
+        "subspace " + std::to_string(subspace) + ": " + std::to_string(initial_values.size()) +
+        " block initialization values, the block needs " + std::to_string(frames.floats));
   }
   const std::size_t pixels = std::size_t{block.width} * block.height;
-  if (out.size() < pixels * model.channels) throw std::invalid_argument("subspace synthesis: output span too small");
-  const std::vector<TextureRegion> regions = level_regions({block.row0, block.col0, block.height, block.width}, model.levels);
+  if (out.size() < pixels * model.channels)
+    throw std::invalid_argument("subspace synthesis: output span too small");
+  const std::vector<TextureRegion> regions =
+      level_regions({block.row0, block.col0, block.height, block.width}, model.levels);
 
   std::vector<std::vector<Real>> collapsed(model.channels);
   if (stages) {
@@ -106,7 +113,8 @@ void synthesize(const Material& material, std::uint32_t subspace, const Subspace
     for (std::uint32_t i = 0; i < model.channels; ++i) {
       Real acc = static_cast<Real>(model.colour_mean[i]);
       for (std::uint32_t j = 0; j < model.channels; ++j) {
-        acc = acc + static_cast<Real>(model.colour_transform[std::size_t{i} * model.channels + j]) * collapsed[j][p];
+        acc = acc + static_cast<Real>(model.colour_transform[std::size_t{i} * model.channels + j]) *
+                        collapsed[j][p];
       }
       out[p * model.channels + i] = acc;
     }
@@ -123,7 +131,8 @@ std::vector<std::uint32_t> resolve_list(const Material& material, std::span<cons
 }
 
 template <typename Real>
-std::vector<std::vector<Real>> synthesize_many(const Material& material, std::span<const std::uint32_t> subspaces,
+std::vector<std::vector<Real>> synthesize_many(const Material& material,
+                                               std::span<const std::uint32_t> subspaces,
                                                const SubspaceBlock& block, unsigned threads,
                                                std::span<const float> initial_values) {
   const std::vector<std::uint32_t> list = resolve_list(material, subspaces);
@@ -132,7 +141,8 @@ std::vector<std::vector<Real>> synthesize_many(const Material& material, std::sp
   if (!initial_values.empty()) {
     const BlockFrameLayout layout = block_frame_layout(material, block, list);
     if (initial_values.size() != layout.floats) {
-      throw std::invalid_argument(std::to_string(initial_values.size()) + " block initialization values, the block needs " +
+      throw std::invalid_argument(std::to_string(initial_values.size()) +
+                                  " block initialization values, the block needs " +
                                   std::to_string(layout.floats));
     }
     std::size_t field = 0;
@@ -140,13 +150,15 @@ std::vector<std::vector<Real>> synthesize_many(const Material& material, std::sp
       const SubspaceModel& model = material.subspaces[list[i]];
       const std::size_t count = std::size_t{model.levels} * model.channels;
       const std::uint64_t begin = layout.fields[field].offset;
-      const std::uint64_t end = field + count < layout.fields.size() ? layout.fields[field + count].offset : layout.floats;
+      const std::uint64_t end =
+          field + count < layout.fields.size() ? layout.fields[field + count].offset : layout.floats;
       slices[i] = initial_values.subspan(begin, end - begin);
       field += count;
     }
   }
   std::vector<std::vector<Real>> images(material.subspaces.size());
-  for (std::uint32_t s : list) images[s].resize(std::size_t{block.width} * block.height * material.subspaces[s].channels);
+  for (std::uint32_t s : list)
+    images[s].resize(std::size_t{block.width} * block.height * material.subspaces[s].channels);
   detail::parallel_for(list.size(), threads, [&](std::size_t i) {
     synthesize(material, list[i], block, std::span<Real>(images[list[i]]), nullptr, slices[i]);
   });
@@ -155,35 +167,43 @@ std::vector<std::vector<Real>> synthesize_many(const Material& material, std::sp
 
 }  // namespace
 
-std::vector<std::vector<float>> synthesize_subspaces(const Material& material, std::span<const std::uint32_t> subspaces,
+std::vector<std::vector<float>> synthesize_subspaces(const Material& material,
+                                                     std::span<const std::uint32_t> subspaces,
                                                      const SubspaceBlock& block, unsigned threads,
                                                      std::span<const float> initial_values) {
   return synthesize_many<float>(material, subspaces, block, threads, initial_values);
 }
 
-std::vector<std::vector<double>> synthesize_subspaces_f64(const Material& material, std::span<const std::uint32_t> subspaces,
+std::vector<std::vector<double>> synthesize_subspaces_f64(const Material& material,
+                                                          std::span<const std::uint32_t> subspaces,
                                                           const SubspaceBlock& block, unsigned threads,
                                                           std::span<const float> initial_values) {
   return synthesize_many<double>(material, subspaces, block, threads, initial_values);
 }
 
-void synthesize_subspace(const Material& material, std::uint32_t subspace, const SubspaceBlock& block, std::span<float> out,
-                         SubspaceStages* stages, std::span<const float> initial_values) {
+void synthesize_subspace(const Material& material, std::uint32_t subspace, const SubspaceBlock& block,
+                         std::span<float> out, SubspaceStages* stages,
+                         std::span<const float> initial_values) {
   synthesize(material, subspace, block, out, stages, initial_values);
 }
-void synthesize_subspace(const Material& material, std::uint32_t subspace, const SubspaceBlock& block, std::span<double> out,
-                         SubspaceStages* stages, std::span<const float> initial_values) {
+void synthesize_subspace(const Material& material, std::uint32_t subspace, const SubspaceBlock& block,
+                         std::span<double> out, SubspaceStages* stages,
+                         std::span<const float> initial_values) {
   synthesize(material, subspace, block, out, stages, initial_values);
 }
 
-std::vector<std::vector<float>> block_initial_values(const Material& material, std::span<const std::uint32_t> subspaces,
-                                                     const SubspaceBlock& whole, std::span<const SubspaceBlock> blocks,
+std::vector<std::vector<float>> block_initial_values(const Material& material,
+                                                     std::span<const std::uint32_t> subspaces,
+                                                     const SubspaceBlock& whole,
+                                                     std::span<const SubspaceBlock> blocks,
                                                      unsigned threads) {
   const std::vector<std::uint32_t> list = resolve_list(material, subspaces);
   std::vector<BlockFrameLayout> layouts;
   std::vector<std::vector<float>> values;
   for (const SubspaceBlock& block : blocks) {
-    if (block.seed != whole.seed) throw std::invalid_argument("block initialization values: a block's seed differs from the whole synthesis's");
+    if (block.seed != whole.seed)
+      throw std::invalid_argument(
+          "block initialization values: a block's seed differs from the whole synthesis's");
     layouts.push_back(block_frame_layout(material, block, list));
     values.emplace_back(layouts.back().floats);
   }
@@ -192,7 +212,8 @@ std::vector<std::vector<float>> block_initial_values(const Material& material, s
   detail::parallel_for(bands.size(), threads, [&](std::size_t i) {
     const BlockFrameField& band = bands[i];
     const SubspaceModel& model = material.subspaces[band.subspace];
-    const TextureRegion level = level_regions({whole.row0, whole.col0, whole.height, whole.width}, model.levels)[band.level];
+    const TextureRegion level =
+        level_regions({whole.row0, whole.col0, whole.height, whole.width}, model.levels)[band.level];
     CarFieldBlock field;
     field.seed = whole.seed;
     field.field_id = field_id_of(band.subspace, band.level, band.channel);
@@ -201,31 +222,33 @@ std::vector<std::vector<float>> block_initial_values(const Material& material, s
     field.width = static_cast<std::uint32_t>(level.cols);
     field.height = static_cast<std::uint32_t>(level.rows);
     field.margin = whole.margin;
-    const CarFieldValues source = synthesize_car_field(model.bands[std::size_t{band.level} * model.channels + band.channel], field);
+    const CarFieldValues source =
+        synthesize_car_field(model.bands[std::size_t{band.level} * model.channels + band.channel], field);
     for (std::size_t b = 0; b < blocks.size(); ++b) {
       const BlockFrameField& target = layouts[b].fields[i];
       const std::size_t count = car_frame_floats(target.car, target.pad);
       if (!extract_car_frame(target.car, target.pad, source.values, source.region,
                              std::span<float>(values[b]).subspan(target.offset, count))) {
-        throw std::invalid_argument("block " + std::to_string(b) + " (" + std::to_string(blocks[b].width) + "x" +
-                                    std::to_string(blocks[b].height) + " at row " + std::to_string(blocks[b].row0) +
-                                    ", col " + std::to_string(blocks[b].col0) + ", margin " +
-                                    std::to_string(blocks[b].margin) +
-                                    ") does not lie inside the whole synthesis with its burn-in margin and frame");
+        throw std::invalid_argument(
+            "block " + std::to_string(b) + " (" + std::to_string(blocks[b].width) + "x" +
+            std::to_string(blocks[b].height) + " at row " + std::to_string(blocks[b].row0) + ", col " +
+            std::to_string(blocks[b].col0) + ", margin " + std::to_string(blocks[b].margin) +
+            ") does not lie inside the whole synthesis with its burn-in margin and frame");
       }
     }
   });
   return values;
 }
 
-void interpolate_subspaces(const Material& material, const PairWeights& weights, const std::vector<std::vector<float>>& images,
-                           std::span<float> out) {
+void interpolate_subspaces(const Material& material, const PairWeights& weights,
+                           const std::vector<std::vector<float>>& images, std::span<float> out) {
   std::fill(out.begin(), out.end(), 0.0f);
   for (int k = 0; k < 9; ++k) {
     if (weights.weight[k] == 0.0f) continue;
     const std::uint32_t s = subspace_of(material, weights.light[k], weights.view[k]);
     if (s >= images.size() || images[s].size() < out.size()) {
-      throw std::invalid_argument("interpolation needs subspace image " + std::to_string(s) + ", which was not synthesized");
+      throw std::invalid_argument("interpolation needs subspace image " + std::to_string(s) +
+                                  ", which was not synthesized");
     }
     for (std::size_t i = 0; i < out.size(); ++i) out[i] = out[i] + weights.weight[k] * images[s][i];
   }

@@ -111,8 +111,8 @@ class SubspaceSynthesizer {
   // Records the 9-weight interpolation of the prepared images into layer 0 of `target` (an RGBA32F
   // storage image of at least width() x height(), in VK_IMAGE_LAYOUT_GENERAL). Must follow record()
   // in execution order. Fails when a pair with a non-zero weight falls in a subspace not synthesized.
-  Status record_interpolation(VkCommandBuffer command_buffer, const Material& material, const PairWeights& weights,
-                              VkImageView target) const noexcept;
+  Status record_interpolation(VkCommandBuffer command_buffer, const Material& material,
+                              const PairWeights& weights, VkImageView target) const noexcept;
 
   // After a timed record() has executed: the GPU time per stage.
   Status timing(SynthesisTiming& out) const noexcept;
@@ -123,8 +123,8 @@ class SubspaceSynthesizer {
   // After a synthesize() with request.capture set: band (level, channel) of `subspace` over its level
   // window (row-major; rows x cols of that level's region): the noise, the CAR field y (its mean not
   // yet added) or the collapsed level G, as captured.
-  Status read_band(std::uint32_t subspace, std::uint32_t level, std::uint32_t channel, std::vector<float>& out,
-                   std::uint32_t& rows, std::uint32_t& cols) const noexcept;
+  Status read_band(std::uint32_t subspace, std::uint32_t level, std::uint32_t channel,
+                   std::vector<float>& out, std::uint32_t& rows, std::uint32_t& cols) const noexcept;
 
   // Convenience after synthesize(): the interpolated image as width * height * channels floats.
   Status interpolate(const Material& material, const PairWeights& weights, std::vector<float>& out) noexcept;

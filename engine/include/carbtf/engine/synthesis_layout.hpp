@@ -42,7 +42,9 @@ constexpr std::uint32_t field_id_of(std::uint32_t subspace, std::uint32_t level,
 }
 
 // floor(a / 2) for any sign.
-constexpr std::int64_t floor_half(std::int64_t a) { return a >= 0 ? a / 2 : -((-a + 1) / 2); }
+constexpr std::int64_t floor_half(std::int64_t a) {
+  return a >= 0 ? a / 2 : -((-a + 1) / 2);
+}
 
 TextureRegion coarse_support(const TextureRegion& fine);
 

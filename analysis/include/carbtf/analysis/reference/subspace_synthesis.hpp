@@ -18,8 +18,8 @@
 #include <span>
 #include <vector>
 
-#include "carbtf/engine/material.hpp"
 #include "carbtf/engine/direction_interpolation.hpp"
+#include "carbtf/engine/material.hpp"
 #include "carbtf/engine/synthesis_layout.hpp"
 
 namespace carbtf::reference {
@@ -41,18 +41,22 @@ struct SubspaceStages {
 // Block-wise synthesis: `initial_values` (empty: every recursion starts from zeros) are the block
 // initialization values laid out by block_frame_layout(material, block, {subspace}), as
 // block_initial_values() computes them.
-void synthesize_subspace(const Material& material, std::uint32_t subspace, const SubspaceBlock& block, std::span<float> out,
-                         SubspaceStages* stages = nullptr, std::span<const float> initial_values = {});
-void synthesize_subspace(const Material& material, std::uint32_t subspace, const SubspaceBlock& block, std::span<double> out,
-                         SubspaceStages* stages = nullptr, std::span<const float> initial_values = {});
+void synthesize_subspace(const Material& material, std::uint32_t subspace, const SubspaceBlock& block,
+                         std::span<float> out, SubspaceStages* stages = nullptr,
+                         std::span<const float> initial_values = {});
+void synthesize_subspace(const Material& material, std::uint32_t subspace, const SubspaceBlock& block,
+                         std::span<double> out, SubspaceStages* stages = nullptr,
+                         std::span<const float> initial_values = {});
 
 // Synthesizes the listed subspace images (empty: all) with one task per image on `threads` threads (0:
 // all hardware threads). Result indexed by subspace id, empty where not listed. `initial_values` as
 // above, laid out by block_frame_layout(material, block, list). Throws like synthesize_subspace.
-std::vector<std::vector<float>> synthesize_subspaces(const Material& material, std::span<const std::uint32_t> subspaces,
+std::vector<std::vector<float>> synthesize_subspaces(const Material& material,
+                                                     std::span<const std::uint32_t> subspaces,
                                                      const SubspaceBlock& block, unsigned threads = 0,
                                                      std::span<const float> initial_values = {});
-std::vector<std::vector<double>> synthesize_subspaces_f64(const Material& material, std::span<const std::uint32_t> subspaces,
+std::vector<std::vector<double>> synthesize_subspaces_f64(const Material& material,
+                                                          std::span<const std::uint32_t> subspaces,
                                                           const SubspaceBlock& block, unsigned threads = 0,
                                                           std::span<const float> initial_values = {});
 
@@ -62,14 +66,16 @@ std::vector<std::vector<double>> synthesize_subspaces_f64(const Material& materi
 // band (block_frame_layout()). Runs each band of `whole` once, on `threads` threads. Throws
 // std::invalid_argument when a block (with its burn-in margin and frame) does not lie inside `whole`
 // or the seeds differ.
-std::vector<std::vector<float>> block_initial_values(const Material& material, std::span<const std::uint32_t> subspaces,
-                                                     const SubspaceBlock& whole, std::span<const SubspaceBlock> blocks,
+std::vector<std::vector<float>> block_initial_values(const Material& material,
+                                                     std::span<const std::uint32_t> subspaces,
+                                                     const SubspaceBlock& whole,
+                                                     std::span<const SubspaceBlock> blocks,
                                                      unsigned threads = 0);
 
 // The 9-weight interpolation of synthesized subspace images: out = sum_k w_k * images[subspace of
 // pair k]; `images[s]` holds subspace s (pixel_count * channels values) or is empty when not needed.
 // Throws std::invalid_argument when a needed subspace image is missing.
-void interpolate_subspaces(const Material& material, const PairWeights& weights, const std::vector<std::vector<float>>& images,
-                           std::span<float> out);
+void interpolate_subspaces(const Material& material, const PairWeights& weights,
+                           const std::vector<std::vector<float>>& images, std::span<float> out);
 
 }  // namespace carbtf::reference

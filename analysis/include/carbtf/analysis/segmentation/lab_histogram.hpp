@@ -1,5 +1,6 @@
 // The segmentation feature of one BTF image (DESIGN.md 4.1): cumulative histograms of CIE L*, a*, b*
-// (D65 white, linear sRGB primaries), concatenated; quality/fidelity.hpp uses it too. L* bins span [0, 100], a* and b* span
+// (D65 white, linear sRGB primaries), concatenated; quality/fidelity.hpp uses it too. L* bins span [0, 100],
+// a* and b* span
 // [-110, 110]; values outside fall in the end bins. Each cumulative histogram rises to 1, so the
 // Euclidean distance between features compares whole distributions (a Cramer-von Mises-like distance).
 #pragma once
@@ -16,7 +17,8 @@ std::array<float, 3> linear_srgb_to_lab(float r, float g, float b);
 
 // Feature of a width x height linear RGB image, from every `stride`-th pixel in each direction;
 // 3 * bins values: L*, then a*, then b*.
-std::vector<float> lab_cumulative_histogram(std::span<const float> rgb, std::uint32_t width, std::uint32_t height, std::uint32_t bins,
+std::vector<float> lab_cumulative_histogram(std::span<const float> rgb, std::uint32_t width,
+                                            std::uint32_t height, std::uint32_t bins,
                                             std::uint32_t stride = 1);
 
 }  // namespace carbtf
