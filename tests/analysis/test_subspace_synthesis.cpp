@@ -161,21 +161,6 @@ TEST_CASE("a synthesized subspace image keeps the analysed image's colour statis
   }
 }
 
-namespace {
-
-// Rows [row, row + rows) and columns [col, col + cols) of an image `width` pixels wide.
-std::vector<float> crop(const std::vector<float>& image, std::uint32_t width, std::uint32_t channels,
-                        std::int64_t row, std::int64_t col, std::uint32_t rows, std::uint32_t cols) {
-  std::vector<float> out;
-  for (std::int64_t r = row; r < row + rows; ++r) {
-    const auto begin = image.begin() + static_cast<std::ptrdiff_t>((r * width + col) * channels);
-    out.insert(out.end(), begin, begin + static_cast<std::ptrdiff_t>(cols * channels));
-  }
-  return out;
-}
-
-}  // namespace
-
 TEST_CASE("block-wise synthesis from stored initialization values equals the whole synthesis",
           "[synthesis][blockwise]") {
   // 3 subspaces x 3 levels x 3 channels with 1 to 12 neighbours: frames of every pad width.
@@ -190,18 +175,7 @@ TEST_CASE("block-wise synthesis from stored initialization values equals the who
   const std::vector<std::uint32_t> subspaces = {2, 0};
   const auto reference_images = reference::synthesize_subspaces(m, subspaces, whole);
   // A 2 x 2 tiling with uneven tiles, and a block at odd offsets inside.
-  std::vector<reference::SubspaceBlock> blocks;
-  for (const auto& [row, height] : {std::pair{-40, 37}, std::pair{-3, 53}}) {
-    for (const auto& [col, width] : {std::pair{1000, 71}, std::pair{1071, 79}}) {
-      reference::SubspaceBlock block = whole;
-      block.row0 = row;
-      block.col0 = col;
-      block.width = static_cast<std::uint32_t>(width);
-      block.height = static_cast<std::uint32_t>(height);
-      block.margin = 0;
-      blocks.push_back(block);
-    }
-  }
+  std::vector<reference::SubspaceBlock> blocks = test::grid_blocks(whole, {37, 53}, {71, 79});
   reference::SubspaceBlock odd = blocks[0];
   odd.row0 = whole.row0 + 17;
   odd.col0 = whole.col0 + 101;
@@ -217,22 +191,19 @@ TEST_CASE("block-wise synthesis from stored initialization values equals the who
     const auto images = reference::synthesize_subspaces(m, subspaces, block, 0, initial[b]);
     for (std::uint32_t s : subspaces) {
       INFO("subspace " << s);
-      const auto expected = crop(reference_images[s], whole.width, 3, block.row0 - whole.row0,
-                                 block.col0 - whole.col0, block.height, block.width);
-      test::require_bitwise_equal(images[s], expected, std::size_t{block.width} * 3);
+      test::require_bitwise_equal(images[s], test::crop_block(reference_images[s], whole, block, 3),
+                                  std::size_t{block.width} * 3);
     }
   }
   // Without the stored values the same block starts from zeros and differs: the values carry the state.
   const auto cold = reference::synthesize_subspaces(m, subspaces, blocks[3]);
-  CHECK(cold[0] != crop(reference_images[0], whole.width, 3, blocks[3].row0 - whole.row0,
-                        blocks[3].col0 - whole.col0, blocks[3].height, blocks[3].width));
+  CHECK(cold[0] != test::crop_block(reference_images[0], whole, blocks[3], 3));
   // A single subspace takes its own slice of the layout.
   std::vector<float> single(std::size_t{odd.width} * odd.height * 3);
   const std::uint32_t only0[1] = {0};
   const auto initial0 = reference::block_initial_values(m, only0, whole, std::span(&odd, 1));
   reference::synthesize_subspace(m, 0, odd, std::span<float>(single), nullptr, initial0[0]);
-  test::require_bitwise_equal(single, crop(reference_images[0], whole.width, 3, odd.row0 - whole.row0,
-                                           odd.col0 - whole.col0, odd.height, odd.width));
+  test::require_bitwise_equal(single, test::crop_block(reference_images[0], whole, odd, 3));
 }
 
 TEST_CASE("block initialization values are refused where they cannot hold", "[synthesis][blockwise]") {

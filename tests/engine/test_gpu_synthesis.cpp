@@ -241,18 +241,7 @@ TEST_CASE("GPU block-wise synthesis from stored initialization values equals the
   whole.subspaces = {1, 2};
   const SynthesizedImages big = gpu_synthesize(*synthesizer, m, whole);
   // Tiles of a 2 x 2 grid with uneven sizes, each synthesized on its own with margin 0.
-  std::vector<SynthesisBlock> blocks;
-  for (const auto& [row, height] : {std::pair{300, 57}, std::pair{357, 63}}) {
-    for (const auto& [col, width] : {std::pair{-250, 85}, std::pair{-165, 75}}) {
-      SynthesisBlock block = whole;
-      block.row0 = row;
-      block.col0 = col;
-      block.width = static_cast<std::uint32_t>(width);
-      block.height = static_cast<std::uint32_t>(height);
-      block.margin = 0;
-      blocks.push_back(block);
-    }
-  }
+  const std::vector<SynthesisBlock> blocks = test::grid_blocks(whole, {57, 63}, {85, 75});
   const auto initial = reference::block_initial_values(m, whole.subspaces, whole, blocks);
   for (CarScheme scheme : {CarScheme::serial, CarScheme::wavefront}) {
     for (std::size_t b = 0; b < blocks.size(); ++b) {
@@ -271,15 +260,8 @@ TEST_CASE("GPU block-wise synthesis from stored initialization values equals the
       if (split) CHECK(synthesizer->batch_count() > 2);
       for (std::uint32_t s : whole.subspaces) {
         INFO("subspace " << s);
-        std::vector<float> expected;
-        for (std::int64_t r = 0; r < request.height; ++r) {
-          const std::size_t first = static_cast<std::size_t>(
-              ((request.row0 - whole.row0 + r) * std::int64_t{whole.width} + request.col0 - whole.col0) * 3);
-          expected.insert(
-              expected.end(), big.images[s].begin() + static_cast<std::ptrdiff_t>(first),
-              big.images[s].begin() + static_cast<std::ptrdiff_t>(first + std::size_t{request.width} * 3));
-        }
-        test::require_bitwise_equal(tile.images[s], expected, std::size_t{request.width} * 3);
+        test::require_bitwise_equal(tile.images[s], test::crop_block(big.images[s], whole, blocks[b], 3),
+                                    std::size_t{request.width} * 3);
       }
     }
   }

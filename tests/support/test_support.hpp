@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "carbtf/engine/context.hpp"
+#include "carbtf/engine/synthesis_layout.hpp"
 
 namespace carbtf::test {
 
@@ -66,6 +67,42 @@ inline void require_bitwise_equal(const std::vector<float>& actual, const std::v
     where << ": " << actual[first] << " != " << expected[first] << "; " << differing << " elements differ";
     FAIL(where.str());
   }
+}
+
+// The blocks of a grid over `whole` (margin 0): rows of the given heights from whole.row0, columns of the
+// given widths from whole.col0.
+inline std::vector<SynthesisBlock> grid_blocks(const SynthesisBlock& whole,
+                                               std::initializer_list<std::uint32_t> heights,
+                                               std::initializer_list<std::uint32_t> widths) {
+  std::vector<SynthesisBlock> blocks;
+  std::int32_t row = whole.row0;
+  for (const std::uint32_t height : heights) {
+    std::int32_t col = whole.col0;
+    for (const std::uint32_t width : widths) {
+      SynthesisBlock block = whole;
+      block.row0 = row;
+      block.col0 = col;
+      block.height = height;
+      block.width = width;
+      block.margin = 0;
+      blocks.push_back(block);
+      col += static_cast<std::int32_t>(width);
+    }
+    row += static_cast<std::int32_t>(height);
+  }
+  return blocks;
+}
+
+// The pixels of `block` within an image synthesized for `whole` (channels interleaved).
+inline std::vector<float> crop_block(const std::vector<float>& image, const SynthesisBlock& whole,
+                                     const SynthesisBlock& block, std::uint32_t channels) {
+  std::vector<float> out;
+  for (std::int64_t r = block.row0 - whole.row0; r < block.row0 - whole.row0 + block.height; ++r) {
+    const auto first =
+        image.begin() + static_cast<std::ptrdiff_t>((r * whole.width + block.col0 - whole.col0) * channels);
+    out.insert(out.end(), first, first + static_cast<std::ptrdiff_t>(std::size_t{block.width} * channels));
+  }
+  return out;
 }
 
 }  // namespace carbtf::test
