@@ -59,8 +59,8 @@ struct BenchRow {
   BenchCase config;
   std::string scheme;
   double gpu_ms = 0.0;           // median GPU timestamps, whole synthesis
-  double gpu_prepare_ms = 0.0;   // of which frames and noise,
-  double gpu_car_ms = 0.0;       // the recursions,
+  double gpu_prepare_ms = 0.0;   // of which the frames (car_prepare),
+  double gpu_car_ms = 0.0;       // the recursions with their noise,
   double gpu_collapse_ms = 0.0;  // the pyramid collapse
   double gpu_colour_ms = 0.0;    // and the colour transform
   double gpu_wall_ms = 0.0;      // median wall time including submit, wait and readback
@@ -235,7 +235,7 @@ void write_tables(const std::filesystem::path& out, const std::vector<BenchRow>&
         "mean (worst): CIE76 delta E of the mean Lab colour, relative error of the Lab std, L1 distance of "
         "the normalised "
         "log10 radial power spectra of L*, Wasserstein-1 distance of the Lab histograms in Lab units.\n\n"
-     << "| sweep | size | levels | neighbours | subspaces | scheme | GPU ms | noise | CAR | collapse | "
+     << "| sweep | size | levels | neighbours | subspaces | scheme | GPU ms | frames | CAR with noise | collapse | "
         "colour | GPU wall ms | "
         "CPU f32 ms | CPU f64 ms | GPU max err/std | GPU RMS err/std | CPU f32 max err/std | delta E | std "
         "rel. | spectrum L1 | "
@@ -311,7 +311,7 @@ void run_synth_bench(const SynthBenchOptions& options) {
       context->device_info().name.c_str(), car_scheme_name(options.scheme), options.cpu_threads,
       options.repeats);
   std::printf("%-10s %5s %3s %5s %4s %9s %8s %7s %7s %7s %7s %9s %9s %10s %10s\n", "sweep", "size", "lvl",
-              "nbrs", "subs", "scheme", "GPU ms", "noise", "CAR", "collapse", "colour", "wall ms", "CPU f32",
+              "nbrs", "subs", "scheme", "GPU ms", "frames", "CAR", "collapse", "colour", "wall ms", "CPU f32",
               "GPU err", "RMS err");
   std::vector<BenchRow> rows;
   for (const BenchCase& c : cases) {
