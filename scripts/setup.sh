@@ -21,12 +21,14 @@ build_dir="${1:-$repo_root/build}"
 #   libzip-dev                                      BTF archives (.zip) read and written by analysis/
 #   nlohmann-json3-dev                              sample-material recipes (assets/materials/*.json)
 #   libcli11-dev                                    command-line parsing
+#   libglm-dev                                      vector/matrix maths of the render pass (engine/)
+#   libtinyobjloader-dev                            OBJ meshes for `carbtf render --mesh file.obj` (host/)
 #   catch2                                          tests
 packages=(
   build-essential cmake pkg-config ninja-build
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
   libeigen3-dev libopenimageio-dev libimath-dev libzip-dev nlohmann-json3-dev
-  libcli11-dev
+  libcli11-dev libglm-dev libtinyobjloader-dev
   catch2
 )
 

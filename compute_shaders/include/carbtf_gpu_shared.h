@@ -184,6 +184,72 @@ CARBTF_FUNCTION uint carbtf_tile_edge_colour(uint seed_lo, uint seed_hi, uint ki
   return h % colours;
 }
 
+
+// ---- Material render pass (carbtf_material.glsl, engine/include/carbtf/engine/material_binding.hpp) --
+// The material descriptor set: binding 0 the subspace images (sampler2DArray, one layer per
+// synthesized subspace image), binding 1 the enlarged range map (sampler2DArray, layer 0, heights in
+// texels), binding 2 the lookup tables (readonly storage buffer: MaterialTablesHeader, then uints).
+CARBTF_CONST_UINT(CARBTF_MATERIAL_BINDING_SUBSPACES, 0u)
+CARBTF_CONST_UINT(CARBTF_MATERIAL_BINDING_RANGE, 1u)
+CARBTF_CONST_UINT(CARBTF_MATERIAL_BINDING_TABLES, 2u)
+// A (light, view) pair whose subspace image was not synthesized.
+CARBTF_CONST_UINT(CARBTF_NO_LAYER, 0xFFFFFFFFu)
+// A lookup-cell entry with this bit is a boundary edge, else a triangle.
+CARBTF_CONST_UINT(CARBTF_LOOKUP_EDGE_BIT, 0x80000000u)
+// A fragment inside a triangle up to this barycentric slack uses it; further out, the nearest edge.
+CARBTF_CONST_FLOAT(CARBTF_LOOKUP_INSIDE_SLACK, 1.0e-5f)
+// Lights one draw of carbtf's own mesh pipeline shades with.
+CARBTF_CONST_UINT(CARBTF_RENDER_MAX_LIGHTS, 4u)
+
+// One direction set's lookup (engine/include/carbtf/engine/direction_lookup.hpp): a grid of
+// grid_size^2 cells over the projected disk [-1, 1]^2, row y, column x; cell c lists entries
+// [cells[c], cells[c + 1]). Offsets count uints from the start of the data after the header.
+struct DirectionLookupGpu {
+  uint count;      // directions
+  uint grid_size;  // cells per side
+  uint cells;      // grid_size^2 + 1 entry starts
+  uint entries;    // triangle index, or CARBTF_LOOKUP_EDGE_BIT | boundary edge index
+  uint points;     // 2 floats (as uint bits) per direction: its projection
+  uint triangles;  // 3 direction indices per triangle
+  uint edges;      // 2 direction indices per boundary edge
+  uint reserved;
+};
+
+struct MaterialTablesHeader {
+  DirectionLookupGpu lights;
+  DirectionLookupGpu views;
+  uint layer_table;  // lights * views uints, [light * views + view]: the texture layer, or CARBTF_NO_LAYER
+  uint width;        // texels of the subspace images and of the range map
+  uint height;
+  uint reserved0;
+  float parallax_scale;  // parallax offset in texels = parallax_scale * (height - range_mean) * view.xy
+  float range_mean;
+  float light_z_floor;  // cos of the largest measured light elevation: the relit factor's denominator floor
+  float reserved1;
+};
+
+// carbtf's own mesh pipeline (material_vertex.vert / material_fragment.frag): per-draw uniforms, std140.
+#ifdef __cplusplus
+struct RenderFrameUniforms {
+  float view_projection[16];  // column-major, world -> clip
+  float model[16];            // column-major, object -> world (rotation, translation, uniform scale)
+  float camera[4];            // w = 1: camera position; w = 0: direction towards an orthographic camera
+  float light_position[4 * CARBTF_RENDER_MAX_LIGHTS];  // w = 1: point light; w = 0: direction to the light
+  float light_colour[4 * CARBTF_RENDER_MAX_LIGHTS];    // linear RGB scale (point lights: at distance 1)
+  uint light_count;
+  uint reserved[3];
+};
+#else
+struct RenderFrameUniforms {
+  mat4 view_projection;
+  mat4 model;
+  vec4 camera;
+  vec4 light_position[CARBTF_RENDER_MAX_LIGHTS];
+  vec4 light_colour[CARBTF_RENDER_MAX_LIGHTS];
+  uvec4 counts;  // x: light count
+};
+#endif
+
 #ifdef __cplusplus
 static_assert(sizeof(NoiseFieldParams) == 36, "NoiseFieldParams must match the GLSL push-constant layout");
 static_assert(offsetof(NoiseFieldParams, row0) == 12);
@@ -193,6 +259,10 @@ static_assert(offsetof(CarFieldGpu, tap) == 48 && offsetof(CarFieldGpu, gamma) =
 static_assert(sizeof(CollapseItemGpu) == 48, "CollapseItemGpu must match std430");
 static_assert(sizeof(ColourItemGpu) == 32 + 12 * CARBTF_SYNTH_MAX_CHANNELS + 4 * CARBTF_SYNTH_MAX_CHANNELS * CARBTF_SYNTH_MAX_CHANNELS);
 static_assert(sizeof(SynthPassParams) == 32 && sizeof(InterpolateParams) == 112);
+static_assert(sizeof(DirectionLookupGpu) == 32 && sizeof(MaterialTablesHeader) == 96);
+static_assert(offsetof(MaterialTablesHeader, layer_table) == 64 && offsetof(MaterialTablesHeader, parallax_scale) == 80);
+static_assert(sizeof(RenderFrameUniforms) == 160 + 32 * CARBTF_RENDER_MAX_LIGHTS, "RenderFrameUniforms must match std140");
+static_assert(offsetof(RenderFrameUniforms, light_count) == 144 + 32 * CARBTF_RENDER_MAX_LIGHTS);
 }  // namespace carbtf::gpu
 #endif
 

@@ -116,7 +116,9 @@ Status Image::create(const Context& context, const ImageCreateInfo& info, Image&
   view_info.image = handle;
   view_info.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
   view_info.format = info.format;
-  view_info.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, info.array_layers};
+  const bool depth = info.format == VK_FORMAT_D32_SFLOAT || info.format == VK_FORMAT_D16_UNORM;
+  view_info.subresourceRange = {depth ? VkImageAspectFlags{VK_IMAGE_ASPECT_DEPTH_BIT} : VkImageAspectFlags{VK_IMAGE_ASPECT_COLOR_BIT}, 0, 1,
+                                0, info.array_layers};
   VkImageView view = VK_NULL_HANDLE;
   CARBTF_VK_TRY(vk.vkCreateImageView(context.device(), &view_info, nullptr, &view));
   image.view_ = UniqueHandle<VkImageView>(&vk, context.device(), view);

@@ -16,6 +16,19 @@ VkDescriptorType descriptor_type(BindingKind kind) {
 
 }  // namespace
 
+Status create_shader_module(const Context& context, const std::uint32_t* spirv, std::size_t bytes,
+                            const char* debug_name, UniqueHandle<VkShaderModule>& out) {
+  const VulkanFunctions& vk = context.vk();
+  auto module_info = vk_struct<VkShaderModuleCreateInfo>(VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO);
+  module_info.codeSize = bytes;
+  module_info.pCode = spirv;
+  VkShaderModule module_handle = VK_NULL_HANDLE;
+  CARBTF_VK_TRY(vk.vkCreateShaderModule(context.device(), &module_info, nullptr, &module_handle));
+  out = UniqueHandle<VkShaderModule>(&vk, context.device(), module_handle);
+  context.set_debug_name(out, debug_name);
+  return {};
+}
+
 Status ComputePipeline::create(const Context& context, const ComputePipelineInfo& info, ComputePipeline& out) {
   const VulkanFunctions& vk = context.vk();
   const VkDevice device = context.device();
@@ -52,18 +65,13 @@ Status ComputePipeline::create(const Context& context, const ComputePipelineInfo
   out.layout = UniqueHandle<VkPipelineLayout>(&vk, device, layout);
   context.set_debug_name(out.layout, info.debug_name);
 
-  auto module_info = vk_struct<VkShaderModuleCreateInfo>(VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO);
-  module_info.codeSize = info.spirv_bytes;
-  module_info.pCode = info.spirv;
-  VkShaderModule module_handle = VK_NULL_HANDLE;
-  CARBTF_VK_TRY(vk.vkCreateShaderModule(device, &module_info, nullptr, &module_handle));
-  // Only needed while the pipeline is created.
-  UniqueHandle<VkShaderModule> shader_module(&vk, device, module_handle);
+  UniqueHandle<VkShaderModule> shader_module;
+  CARBTF_TRY(create_shader_module(context, info.spirv, info.spirv_bytes, info.debug_name, shader_module));
 
   auto pipeline_info = vk_struct<VkComputePipelineCreateInfo>(VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO);
   pipeline_info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
   pipeline_info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-  pipeline_info.stage.module = module_handle;
+  pipeline_info.stage.module = shader_module.get();
   pipeline_info.stage.pName = "main";
   pipeline_info.layout = layout;
   VkPipeline pipeline = VK_NULL_HANDLE;

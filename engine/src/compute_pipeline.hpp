@@ -32,6 +32,11 @@ struct BindingResource {
   }
 };
 
+// A shader module from embedded SPIR-V (compute and graphics pipelines alike); only needed while the
+// pipelines that use it are created.
+Status create_shader_module(const Context& context, const std::uint32_t* spirv, std::size_t bytes,
+                            const char* debug_name, UniqueHandle<VkShaderModule>& out);
+
 struct ComputePipelineInfo {
   const std::uint32_t* spirv = nullptr;
   std::size_t spirv_bytes = 0;

@@ -54,7 +54,8 @@ struct ImageCreateInfo {
 };
 
 // A 2D (array) image in device-local memory, optimal tiling, created in VK_IMAGE_LAYOUT_UNDEFINED,
-// with a view of all its layers (VK_IMAGE_VIEW_TYPE_2D_ARRAY).
+// with a view of all its layers (VK_IMAGE_VIEW_TYPE_2D_ARRAY); the depth aspect for D32_SFLOAT and
+// D16_UNORM, else the colour aspect.
 class Image {
  public:
   Image() = default;

@@ -84,7 +84,27 @@ namespace carbtf {
   X(vkCmdCopyImageToBuffer)            \
   X(vkCmdClearColorImage)              \
   X(vkCmdResetQueryPool)               \
-  X(vkCmdWriteTimestamp)
+  X(vkCmdWriteTimestamp)               \
+  X(vkCreateSampler)                   \
+  X(vkDestroySampler)                  \
+  X(vkCreateDescriptorPool)            \
+  X(vkDestroyDescriptorPool)           \
+  X(vkAllocateDescriptorSets)          \
+  X(vkUpdateDescriptorSets)            \
+  X(vkCmdBindDescriptorSets)           \
+  X(vkCmdCopyBufferToImage)            \
+  X(vkCreateRenderPass)                \
+  X(vkDestroyRenderPass)               \
+  X(vkCreateFramebuffer)               \
+  X(vkDestroyFramebuffer)              \
+  X(vkCreateGraphicsPipelines)         \
+  X(vkCmdBeginRenderPass)              \
+  X(vkCmdEndRenderPass)                \
+  X(vkCmdBindVertexBuffers)            \
+  X(vkCmdBindIndexBuffer)              \
+  X(vkCmdDrawIndexed)                  \
+  X(vkCmdSetViewport)                  \
+  X(vkCmdSetScissor)
 
 struct VulkanFunctions {
   PFN_vkGetInstanceProcAddr vkGetInstanceProcAddr = nullptr;

@@ -1,0 +1,30 @@
+// The render pass's fragment stage (compute_shaders/include/carbtf_material.glsl) on the CPU, for the
+// built-in plane (make_plane(), z = 0, identity model): each pixel centre's ray meets the plane
+// analytically, then parallax, range-map normal, 9-weight interpolation and relighting follow the
+// shader's order. Its direction weights come from the triangulation search (pair_weights), not from
+// the GPU's lookup grids, so a test against it checks those grids too.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "carbtf/engine/material.hpp"
+#include "carbtf/engine/mesh_renderer.hpp"
+#include "carbtf/engine/subspace_synthesizer.hpp"
+
+namespace carbtf::reference {
+
+struct ReferenceRenderInput {
+  const Material* material = nullptr;
+  const SynthesizedImages* images = nullptr;  // the subspace images (host copies); unsynthesized ones empty
+  std::span<const float> range_map;           // images->width * images->height heights in texels
+  float parallax_scale = 1.0f;
+};
+
+// width * height RGBA floats, row 0 at the top: linear colour and alpha 1 where the plane covers the
+// pixel centre, `clear` elsewhere. Throws std::invalid_argument for inconsistent inputs.
+std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderScene& scene, std::uint32_t width,
+                                std::uint32_t height, std::array<float, 4> clear);
+
+}  // namespace carbtf::reference

@@ -1,0 +1,193 @@
+// carbtf's material for any fragment shader: a host engine includes this file (with carbtf_gpu_shared.h
+// on its include path), binds MaterialBinding's descriptor set at CARBTF_MATERIAL_SET, and calls
+// carbtf_material_shade() per light. Its own pipeline layout puts MaterialBinding::set_layout() there.
+//
+// Directions are in the surface's tangent frame: x along +u (texture right), y towards texture row 0
+// (texture up, i.e. minus the v direction), z along the normal. Texture coordinates (u, v) in [0, 1]^2
+// cover the synthesized block once, v = 0 at row 0; outside that the edge texels repeat (the
+// synthesized texture is a block of an unbounded one, not periodic, so it is never wrapped).
+//
+// Per fragment: parallax mapping with offset limiting (Welsh 2004) from the enlarged range map, the
+// 9-weight interpolation of the subspace images (DESIGN.md 4.5) through precomputed lookup grids
+// (a fixed, short list of candidates per grid cell: no search over the direction set), times the range
+// map relit for the light. The CPU twin is analysis/src/reference/render_reference.cpp.
+#ifndef CARBTF_MATERIAL_GLSL
+#define CARBTF_MATERIAL_GLSL
+
+#include "carbtf_gpu_shared.h"
+
+#ifndef CARBTF_MATERIAL_SET
+#define CARBTF_MATERIAL_SET 0
+#endif
+
+layout(set = CARBTF_MATERIAL_SET, binding = CARBTF_MATERIAL_BINDING_SUBSPACES) uniform sampler2DArray carbtf_subspaces;
+layout(set = CARBTF_MATERIAL_SET, binding = CARBTF_MATERIAL_BINDING_RANGE) uniform sampler2DArray carbtf_range;
+layout(std430, set = CARBTF_MATERIAL_SET, binding = CARBTF_MATERIAL_BINDING_TABLES) readonly buffer CarbtfTables {
+  MaterialTablesHeader carbtf_header;
+  uint carbtf_data[];
+};
+
+const float CARBTF_PI = 3.14159265358979;
+
+// Bilinear filtering by hand (texelFetch), edge texels repeated: the same arithmetic as the CPU
+// reference, and it works for RGBA32F on devices without linear filtering of 32-bit floats.
+struct CarbtfBilinear {
+  ivec2 i0;
+  ivec2 i1;
+  vec2 f;
+};
+
+CarbtfBilinear carbtf_bilinear(vec2 uv) {
+  ivec2 size = ivec2(int(carbtf_header.width), int(carbtf_header.height));
+  vec2 t = uv * vec2(size) - 0.5;
+  vec2 base = floor(t);
+  CarbtfBilinear b;
+  b.f = t - base;
+  ivec2 i = ivec2(clamp(base, vec2(-1.0), vec2(size)));
+  b.i0 = clamp(i, ivec2(0), size - 1);
+  b.i1 = clamp(i + 1, ivec2(0), size - 1);
+  return b;
+}
+
+vec3 carbtf_subspace_texel(CarbtfBilinear b, uint layer) {
+  int l = int(layer);
+  vec3 top = mix(texelFetch(carbtf_subspaces, ivec3(b.i0.x, b.i0.y, l), 0).rgb,
+                 texelFetch(carbtf_subspaces, ivec3(b.i1.x, b.i0.y, l), 0).rgb, b.f.x);
+  vec3 bottom = mix(texelFetch(carbtf_subspaces, ivec3(b.i0.x, b.i1.y, l), 0).rgb,
+                    texelFetch(carbtf_subspaces, ivec3(b.i1.x, b.i1.y, l), 0).rgb, b.f.x);
+  return mix(top, bottom, b.f.y);
+}
+
+// The range map's height at uv, in texels, its mean removed.
+float carbtf_height(vec2 uv) {
+  CarbtfBilinear b = carbtf_bilinear(uv);
+  float top = mix(texelFetch(carbtf_range, ivec3(b.i0.x, b.i0.y, 0), 0).r,
+                  texelFetch(carbtf_range, ivec3(b.i1.x, b.i0.y, 0), 0).r, b.f.x);
+  float bottom = mix(texelFetch(carbtf_range, ivec3(b.i0.x, b.i1.y, 0), 0).r,
+                     texelFetch(carbtf_range, ivec3(b.i1.x, b.i1.y, 0), 0).r, b.f.x);
+  return mix(top, bottom, b.f.y) - carbtf_header.range_mean;
+}
+
+// Parallax mapping with offset limiting: the texture point seen along `view` (tangent frame, unit,
+// towards the eye) is shifted by height * view.xy texels, never divided by view.z, so grazing views
+// stay bounded.
+vec2 carbtf_parallax_uv(vec2 uv, vec3 view) {
+  float shift = carbtf_header.parallax_scale * carbtf_height(uv);
+  vec2 texels = shift * vec2(view.x, -view.y);  // texture up is -v
+  return uv + texels / vec2(float(carbtf_header.width), float(carbtf_header.height));
+}
+
+// The range map's normal at uv (tangent frame), from central differences one texel apart.
+vec3 carbtf_normal(vec2 uv) {
+  vec2 texel = 1.0 / vec2(float(carbtf_header.width), float(carbtf_header.height));
+  float dx = 0.5 * (carbtf_height(uv + vec2(texel.x, 0.0)) - carbtf_height(uv - vec2(texel.x, 0.0)));
+  float dy = 0.5 * (carbtf_height(uv - vec2(0.0, texel.y)) - carbtf_height(uv + vec2(0.0, texel.y)));
+  return normalize(vec3(-dx, -dy, 1.0));
+}
+
+// The azimuthal equidistant projection of a unit direction into the unit disk (direction_interpolation.hpp).
+// theta = atan(|xy|, z) rather than acos(z): acos is ill-conditioned near the normal, where a rounding
+// of z by 6e-8 moves theta by 1e-4.
+vec2 carbtf_project_direction(vec3 d) {
+  float r = length(d.xy);
+  float theta = atan(r, d.z);
+  vec2 azimuth = r > 0.0 ? d.xy / r : vec2(1.0, 0.0);
+  return (theta / (0.5 * CARBTF_PI)) * azimuth;
+}
+
+vec2 carbtf_lookup_point(DirectionLookupGpu set, uint index) {
+  return vec2(uintBitsToFloat(carbtf_data[set.points + 2u * index]),
+              uintBitsToFloat(carbtf_data[set.points + 2u * index + 1u]));
+}
+
+// Barycentric weights of the measured directions around projected point p: the triangle of p's grid
+// cell that holds p, or (outside every triangle) the nearest point of the cell's boundary edges.
+void carbtf_direction_weights(DirectionLookupGpu set, vec2 p, out uvec3 index, out vec3 weight) {
+  index = uvec3(0u);
+  weight = vec3(1.0, 0.0, 0.0);
+  int g = int(set.grid_size);
+  ivec2 cell = clamp(ivec2(floor((p * 0.5 + 0.5) * float(g))), ivec2(0), ivec2(g - 1));
+  uint c = uint(cell.y * g + cell.x);
+  uint begin = carbtf_data[set.cells + c];
+  uint end = carbtf_data[set.cells + c + 1u];
+  float best_inside = -1.0e30;
+  float best_distance = 1.0e30;
+  uvec3 edge_index = uvec3(0u);
+  vec3 edge_weight = vec3(1.0, 0.0, 0.0);
+  for (uint e = begin; e < end; ++e) {
+    uint entry = carbtf_data[set.entries + e];
+    if ((entry & CARBTF_LOOKUP_EDGE_BIT) == 0u) {
+      uvec3 t = uvec3(carbtf_data[set.triangles + 3u * entry], carbtf_data[set.triangles + 3u * entry + 1u],
+                      carbtf_data[set.triangles + 3u * entry + 2u]);
+      vec2 a = carbtf_lookup_point(set, t.x), b = carbtf_lookup_point(set, t.y), q = carbtf_lookup_point(set, t.z);
+      vec2 ab = b - a, aq = q - a;
+      float area = ab.x * aq.y - ab.y * aq.x;
+      vec2 pb = b - p, pq = q - p;
+      float la = (pb.x * pq.y - pb.y * pq.x) / area;
+      vec2 ap = p - a;
+      float lb = (ap.x * aq.y - ap.y * aq.x) / area;
+      vec3 l = vec3(la, lb, 1.0 - la - lb);
+      float inside = min(l.x, min(l.y, l.z));
+      if (inside > best_inside) {
+        best_inside = inside;
+        index = t;
+        l = max(l, vec3(0.0));
+        weight = l / (l.x + l.y + l.z);
+      }
+    } else {
+      uint edge = entry & ~CARBTF_LOOKUP_EDGE_BIT;
+      uint i0 = carbtf_data[set.edges + 2u * edge], i1 = carbtf_data[set.edges + 2u * edge + 1u];
+      vec2 a = carbtf_lookup_point(set, i0), b = carbtf_lookup_point(set, i1);
+      vec2 ab = b - a;
+      float s = clamp(dot(p - a, ab) / dot(ab, ab), 0.0, 1.0);
+      vec2 d = a + s * ab - p;
+      float distance = dot(d, d);
+      if (distance < best_distance) {
+        best_distance = distance;
+        edge_index = uvec3(i0, i1, i1);
+        edge_weight = vec3(1.0 - s, s, 0.0);
+      }
+    }
+  }
+  if (best_inside < -CARBTF_LOOKUP_INSIDE_SLACK && best_distance < 1.0e30) {
+    index = edge_index;
+    weight = edge_weight;
+  }
+}
+
+// The smooth BTF colour at (already parallax-shifted) uv for tangent-frame light and view directions:
+// sum over the 3 x 3 nearest measured (light, view) pairs of weight * subspace image of the pair.
+vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, vec3 view) {
+  uvec3 li, vi;
+  vec3 lw, vw;
+  carbtf_direction_weights(carbtf_header.lights, carbtf_project_direction(light), li, lw);
+  carbtf_direction_weights(carbtf_header.views, carbtf_project_direction(view), vi, vw);
+  CarbtfBilinear b = carbtf_bilinear(uv);
+  vec3 colour = vec3(0.0);
+  uint views = carbtf_header.views.count;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      float w = lw[i] * vw[j];
+      if (w == 0.0) continue;
+      uint layer = carbtf_data[carbtf_header.layer_table + li[i] * views + vi[j]];
+      if (layer == CARBTF_NO_LAYER) continue;
+      colour += w * carbtf_subspace_texel(b, layer);
+    }
+  }
+  return colour;
+}
+
+// The material under one light: the interpolated smooth BTF times the range map relit for the light,
+// max(N.L, 0) / max(L.z, light_z_floor). The measured images already hold the flat surface's cosine
+// falloff (L.z), so the relit factor swaps it for the local facet's and a flat range map changes
+// nothing. Beyond the last measured elevation the interpolation holds that ring's images, whose
+// falloff is the floor's, so the floor keeps the product bounded at grazing light. Directions are
+// unit vectors in the tangent frame; uv is the parallax-shifted coordinate. Zero below the horizon.
+vec3 carbtf_material_shade(vec2 uv, vec3 light, vec3 view) {
+  if (light.z <= 0.0 || view.z <= 0.0) return vec3(0.0);
+  vec3 n = carbtf_normal(uv);
+  float relit = max(dot(n, light), 0.0) / max(light.z, carbtf_header.light_z_floor);
+  return relit * carbtf_interpolated_btf(uv, light, view);
+}
+
+#endif  // CARBTF_MATERIAL_GLSL

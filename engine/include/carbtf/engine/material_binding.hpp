@@ -1,0 +1,84 @@
+// What a fragment shader needs to draw a synthesized material: one descriptor set (layout in
+// carbtf_gpu_shared.h, "Material render pass") holding the subspace images, the enlarged range map and
+// the lookup tables of compute_shaders/include/carbtf_material.glsl. A host engine puts set_layout()
+// into its own pipeline layout at the set index it compiles the include with (CARBTF_MATERIAL_SET),
+// binds set() and calls carbtf_material_shade() in its own fragment shader.
+//
+// Use: create() after the subspace images exist (SubspaceSynthesizer::prepare()); then record_upload()
+// into a command buffer of yours (or upload_and_wait()) once, before the first draw that binds set().
+//
+// Lifetime: the binding refers to the subspace image view it was given (it does not own it; the
+// synthesizer must stay alive and not be prepared again while the set is in use) and owns everything
+// else. Destroy it after the last command buffer that binds its set has finished, and before the
+// Context. Thread safety: externally synchronized; set() may be bound from any thread once uploaded.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "carbtf/engine/buffer.hpp"
+#include "carbtf/engine/context.hpp"
+#include "carbtf/engine/material.hpp"
+
+namespace carbtf {
+
+class SubspaceSynthesizer;
+
+// The synthesized subspace images a binding reads.
+struct MaterialTextures {
+  VkImageView view = VK_NULL_HANDLE;  // RGBA32F 2D-array view, one layer per synthesized subspace image
+  VkImageLayout layout = VK_IMAGE_LAYOUT_GENERAL;  // the layout the images are in when drawn
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  // Per subspace of the material: its layer, or UINT32_MAX when it was not synthesized (pairs that
+  // fall there then contribute nothing).
+  std::vector<std::uint32_t> layers;
+};
+
+// The textures of a prepared synthesizer.
+MaterialTextures material_textures(const SubspaceSynthesizer& synthesizer, const Material& material);
+
+struct MaterialBindingInfo {
+  // The range map's block of its enlarged map: the synthesized block's seed and position, so that the
+  // range map and the subspace images describe the same surface.
+  std::uint64_t seed = 0;
+  std::int64_t row0 = 0;
+  std::int64_t col0 = 0;
+  // Parallax offset per texel of height (1: the range map's own scale; 0: no parallax).
+  float parallax_scale = 1.0f;
+  // Cells per side of each direction lookup grid (direction_lookup.hpp).
+  std::uint32_t lookup_grid_size = 32;
+};
+
+class MaterialBinding {
+ public:
+  // Builds the lookup tables and the enlarged range map on the host and the GPU objects to hold them.
+  // invalid_argument when the textures do not match the material (layers per subspace, size).
+  static Status create(Context& context, const Material& material, const MaterialTextures& textures,
+                       const MaterialBindingInfo& info, std::unique_ptr<MaterialBinding>& out) noexcept;
+  ~MaterialBinding();
+
+  // Records the range map's upload and its transition for fragment-shader reads.
+  void record_upload(VkCommandBuffer command_buffer) const noexcept;
+  // Convenience: record_upload() through the context's submit-and-wait.
+  Status upload_and_wait() noexcept;
+
+  VkDescriptorSetLayout set_layout() const noexcept;
+  VkDescriptorSet set() const noexcept;
+  std::uint32_t width() const noexcept;
+  std::uint32_t height() const noexcept;
+
+  // The tables exactly as uploaded (MaterialTablesHeader, then the data), for CPU twins and tests.
+  const std::vector<std::uint32_t>& tables() const noexcept;
+  // The enlarged range map as uploaded: width() * height() heights in texels, row-major.
+  const std::vector<float>& range_map() const noexcept;
+
+ private:
+  MaterialBinding() = default;
+  struct Resources;
+  Context* context_ = nullptr;
+  std::unique_ptr<Resources> resources_;
+};
+
+}  // namespace carbtf

@@ -1,0 +1,252 @@
+#include "carbtf/engine/material_binding.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+
+#include <carbtf_gpu_shared.h>
+
+#include "carbtf/engine/direction_lookup.hpp"
+#include "carbtf/engine/range_tiles.hpp"
+#include "carbtf/engine/subspace_synthesizer.hpp"
+#include "vk_check.hpp"
+
+namespace carbtf {
+
+namespace {
+
+constexpr std::uint32_t kHeaderWords = sizeof(gpu::MaterialTablesHeader) / 4;
+
+std::uint32_t float_bits(float value) {
+  std::uint32_t bits;
+  std::memcpy(&bits, &value, sizeof bits);
+  return bits;
+}
+
+// Appends one direction set's lookup after the header; offsets count from the data start.
+Status append_lookup(std::span<const MaterialDirection> directions, std::uint32_t grid_size,
+                     std::vector<std::uint32_t>& data, gpu::DirectionLookupGpu& out) {
+  DirectionTriangulation triangulation;
+  CARBTF_TRY(build_direction_triangulation(directions, triangulation));
+  const DirectionLookupGrid grid = build_direction_lookup(triangulation, grid_size);
+  auto offset = [&] { return static_cast<std::uint32_t>(data.size() - kHeaderWords); };
+  out.count = static_cast<std::uint32_t>(directions.size());
+  out.grid_size = grid.grid_size;
+  out.cells = offset();
+  data.insert(data.end(), grid.cell_starts.begin(), grid.cell_starts.end());
+  out.entries = offset();
+  data.insert(data.end(), grid.entries.begin(), grid.entries.end());
+  out.points = offset();
+  for (const auto& p : triangulation.points) {
+    data.push_back(float_bits(static_cast<float>(p[0])));
+    data.push_back(float_bits(static_cast<float>(p[1])));
+  }
+  out.triangles = offset();
+  for (const auto& t : triangulation.triangles) data.insert(data.end(), t.begin(), t.end());
+  out.edges = offset();
+  for (const auto& e : triangulation.boundary) data.insert(data.end(), e.begin(), e.end());
+  return {};
+}
+
+}  // namespace
+
+struct MaterialBinding::Resources {
+  std::vector<std::uint32_t> tables;
+  std::vector<float> range_map;
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  Buffer table_buffer;
+  Buffer range_staging;
+  Image range_image;
+  UniqueHandle<VkSampler> sampler;
+  UniqueHandle<VkDescriptorSetLayout> set_layout;
+  UniqueHandle<VkDescriptorPool> pool;
+  VkDescriptorSet set = VK_NULL_HANDLE;  // freed with the pool
+};
+
+MaterialTextures material_textures(const SubspaceSynthesizer& synthesizer, const Material& material) {
+  MaterialTextures textures;
+  textures.view = synthesizer.image_view();
+  textures.width = synthesizer.width();
+  textures.height = synthesizer.height();
+  textures.layers.resize(material.subspaces.size());
+  for (std::uint32_t s = 0; s < material.subspaces.size(); ++s) textures.layers[s] = synthesizer.layer_of(s);
+  return textures;
+}
+
+Status MaterialBinding::create(Context& context, const Material& material, const MaterialTextures& textures,
+                               const MaterialBindingInfo& info, std::unique_ptr<MaterialBinding>& out) noexcept {
+  try {
+    if (textures.view == VK_NULL_HANDLE || textures.width == 0 || textures.height == 0) {
+      return {ErrorCode::invalid_argument, "the material textures are empty: synthesize the subspace images first"};
+    }
+    if (textures.layers.size() != material.subspaces.size()) {
+      return {ErrorCode::invalid_argument, "the material textures give layers for " +
+                                               std::to_string(textures.layers.size()) + " subspace images, the material has " +
+                                               std::to_string(material.subspaces.size())};
+    }
+    if (!std::isfinite(info.parallax_scale)) return {ErrorCode::invalid_argument, "the parallax scale is not finite"};
+    std::unique_ptr<MaterialBinding> binding(new MaterialBinding());
+    binding->context_ = &context;
+    binding->resources_ = std::make_unique<Resources>();
+    Resources& r = *binding->resources_;
+    r.width = textures.width;
+    r.height = textures.height;
+
+    // Host side: the tables and the range map.
+    r.tables.assign(kHeaderWords, 0u);
+    gpu::MaterialTablesHeader header{};
+    CARBTF_TRY(append_lookup(material.lights, info.lookup_grid_size, r.tables, header.lights));
+    CARBTF_TRY(append_lookup(material.views, info.lookup_grid_size, r.tables, header.views));
+    header.layer_table = static_cast<std::uint32_t>(r.tables.size() - kHeaderWords);
+    for (std::size_t l = 0; l < material.lights.size(); ++l) {
+      for (std::size_t v = 0; v < material.views.size(); ++v) {
+        const std::uint32_t s = subspace_of(material, static_cast<std::uint32_t>(l), static_cast<std::uint32_t>(v));
+        r.tables.push_back(textures.layers[s] == std::numeric_limits<std::uint32_t>::max() ? gpu::CARBTF_NO_LAYER
+                                                                                             : textures.layers[s]);
+      }
+    }
+    header.width = textures.width;
+    header.height = textures.height;
+    header.parallax_scale = info.parallax_scale;
+    float largest_theta = 0.0f;
+    for (const auto& d : material.lights) largest_theta = std::max(largest_theta, d.theta);
+    header.light_z_floor = std::max(std::cos(largest_theta), 1.0e-3f);
+
+    r.range_map.assign(std::size_t{textures.width} * textures.height, 0.0f);
+    if (material.range.tile_size > 0) {
+      enlarge_range_map(material.range, info.seed, info.row0, info.col0, textures.width, textures.height, r.range_map);
+    }
+    double sum = 0.0;
+    for (float h : r.range_map) sum += h;
+    header.range_mean = static_cast<float>(sum / static_cast<double>(r.range_map.size()));
+    std::memcpy(r.tables.data(), &header, sizeof header);
+
+    // GPU side.
+    CARBTF_TRY(Buffer::create(context,
+                              {r.tables.size() * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::host_upload,
+                               "carbtf material tables"},
+                              r.table_buffer));
+    std::memcpy(r.table_buffer.mapped(), r.tables.data(), r.tables.size() * 4);
+    CARBTF_TRY(Buffer::create(context,
+                              {r.range_map.size() * 4, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::host_upload,
+                               "carbtf range map staging"},
+                              r.range_staging));
+    std::memcpy(r.range_staging.mapped(), r.range_map.data(), r.range_map.size() * 4);
+    ImageCreateInfo image_info;
+    image_info.width = textures.width;
+    image_info.height = textures.height;
+    image_info.format = VK_FORMAT_R32_SFLOAT;
+    image_info.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    image_info.debug_name = "carbtf range map";
+    CARBTF_TRY(Image::create(context, image_info, r.range_image));
+
+    const VulkanFunctions& vk = context.vk();
+    const VkDevice device = context.device();
+    // texelFetch ignores filtering; the sampler only has to exist.
+    auto sampler_info = vk_struct<VkSamplerCreateInfo>(VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO);
+    sampler_info.magFilter = sampler_info.minFilter = VK_FILTER_NEAREST;
+    sampler_info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    sampler_info.addressModeU = sampler_info.addressModeV = sampler_info.addressModeW =
+        VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    VkSampler sampler = VK_NULL_HANDLE;
+    CARBTF_VK_TRY(vk.vkCreateSampler(device, &sampler_info, nullptr, &sampler));
+    r.sampler = UniqueHandle<VkSampler>(&vk, device, sampler);
+    context.set_debug_name(r.sampler, "carbtf material sampler");
+
+    const VkShaderStageFlags stages = VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT;
+    const VkDescriptorSetLayoutBinding bindings[3] = {
+        {gpu::CARBTF_MATERIAL_BINDING_SUBSPACES, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stages, nullptr},
+        {gpu::CARBTF_MATERIAL_BINDING_RANGE, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stages, nullptr},
+        {gpu::CARBTF_MATERIAL_BINDING_TABLES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stages, nullptr}};
+    auto layout_info = vk_struct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
+    layout_info.bindingCount = 3;
+    layout_info.pBindings = bindings;
+    VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
+    CARBTF_VK_TRY(vk.vkCreateDescriptorSetLayout(device, &layout_info, nullptr, &set_layout));
+    r.set_layout = UniqueHandle<VkDescriptorSetLayout>(&vk, device, set_layout);
+    context.set_debug_name(r.set_layout, "carbtf material set layout");
+
+    const VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2},
+                                           {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1}};
+    auto pool_info = vk_struct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
+    pool_info.maxSets = 1;
+    pool_info.poolSizeCount = 2;
+    pool_info.pPoolSizes = sizes;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    CARBTF_VK_TRY(vk.vkCreateDescriptorPool(device, &pool_info, nullptr, &pool));
+    r.pool = UniqueHandle<VkDescriptorPool>(&vk, device, pool);
+    context.set_debug_name(r.pool, "carbtf material descriptor pool");
+    auto allocate = vk_struct<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
+    allocate.descriptorPool = pool;
+    allocate.descriptorSetCount = 1;
+    allocate.pSetLayouts = &set_layout;
+    CARBTF_VK_TRY(vk.vkAllocateDescriptorSets(device, &allocate, &r.set));
+
+    const VkDescriptorImageInfo subspaces{sampler, textures.view, textures.layout};
+    const VkDescriptorImageInfo range{sampler, r.range_image.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    const VkDescriptorBufferInfo tables{r.table_buffer.handle(), 0, VK_WHOLE_SIZE};
+    VkWriteDescriptorSet writes[3];
+    for (int i = 0; i < 3; ++i) {
+      writes[i] = vk_struct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
+      writes[i].dstSet = r.set;
+      writes[i].dstBinding = bindings[i].binding;
+      writes[i].descriptorCount = 1;
+      writes[i].descriptorType = bindings[i].descriptorType;
+    }
+    writes[0].pImageInfo = &subspaces;
+    writes[1].pImageInfo = &range;
+    writes[2].pBufferInfo = &tables;
+    vk.vkUpdateDescriptorSets(device, 3, writes, 0, nullptr);
+    out = std::move(binding);
+    return {};
+  } catch (const std::bad_alloc&) {
+    return {ErrorCode::out_of_host_memory, "out of host memory while building the material binding"};
+  }
+}
+
+MaterialBinding::~MaterialBinding() = default;
+
+void MaterialBinding::record_upload(VkCommandBuffer command_buffer) const noexcept {
+  const VulkanFunctions& vk = context_->vk();
+  const Resources& r = *resources_;
+  auto barrier = vk_struct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
+  barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  barrier.image = r.range_image.handle();
+  barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  barrier.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  barrier.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+  barrier.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  vk.vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0,
+                          nullptr, 0, nullptr, 1, &barrier);
+  VkBufferImageCopy copy{};
+  copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+  copy.imageExtent = {r.width, r.height, 1};
+  vk.vkCmdCopyBufferToImage(command_buffer, r.range_staging.handle(), r.range_image.handle(),
+                            VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+  barrier.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+  barrier.newLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+  barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
+  vk.vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                          VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0,
+                          nullptr, 1, &barrier);
+}
+
+Status MaterialBinding::upload_and_wait() noexcept {
+  return context_->submit_and_wait([this](VkCommandBuffer cb) {
+    record_upload(cb);
+    return Status{};
+  });
+}
+
+VkDescriptorSetLayout MaterialBinding::set_layout() const noexcept { return resources_->set_layout.get(); }
+VkDescriptorSet MaterialBinding::set() const noexcept { return resources_->set; }
+std::uint32_t MaterialBinding::width() const noexcept { return resources_->width; }
+std::uint32_t MaterialBinding::height() const noexcept { return resources_->height; }
+const std::vector<std::uint32_t>& MaterialBinding::tables() const noexcept { return resources_->tables; }
+const std::vector<float>& MaterialBinding::range_map() const noexcept { return resources_->range_map; }
+
+}  // namespace carbtf
