@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   carbtf::cli::register_normals_command(app);
   carbtf::cli::register_synth_command(app);
   carbtf::cli::register_conform_command(app);
+  carbtf::cli::register_render_command(app);
   carbtf::cli::register_bench_command(app);
   try {
     app.parse(argc, argv);

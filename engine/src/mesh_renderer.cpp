@@ -17,6 +17,8 @@
 
 namespace carbtf {
 
+static_assert(kMaxRenderLights == gpu::CARBTF_RENDER_MAX_LIGHTS);
+
 namespace {
 
 glm::vec3 vec3_of(const std::array<float, 3>& a) { return {a[0], a[1], a[2]}; }

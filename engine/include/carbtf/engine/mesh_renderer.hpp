@@ -22,6 +22,9 @@
 
 namespace carbtf {
 
+// Lights one draw shades with (CARBTF_RENDER_MAX_LIGHTS in the shaders); further lights are ignored.
+inline constexpr std::uint32_t kMaxRenderLights = 4;
+
 struct RenderLight {
   bool point = false;                 // false: directional
   std::array<float, 3> position{0, 0, 1};  // point: world position; directional: direction towards the light
@@ -40,7 +43,7 @@ struct RenderCamera {
 
 struct RenderScene {
   RenderCamera camera;
-  std::vector<RenderLight> lights;  // at most CARBTF_RENDER_MAX_LIGHTS are used
+  std::vector<RenderLight> lights;  // at most kMaxRenderLights are used
   // Object -> world, column-major; rotation, translation and uniform scale only.
   std::array<float, 16> model{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
 };

@@ -1,0 +1,197 @@
+// `carbtf render material.cbtf --mesh sphere --out frame.png`: the material synthesized on the GPU and
+// drawn on a mesh by the render pass (parallax, 9-weight interpolation, relit range map), headless.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <numbers>
+
+#include "carbtf/analysis/image_io.hpp"
+#include "carbtf/engine/material_binding.hpp"
+#include "carbtf/engine/material_file.hpp"
+#include "carbtf/engine/mesh_renderer.hpp"
+#include "carbtf/engine/subspace_synthesizer.hpp"
+#include "cli/cli_support.hpp"
+#include "commands/commands.hpp"
+#include "scene/obj_mesh.hpp"
+
+namespace carbtf::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RenderOptions {
+  DeviceOptions device;
+  std::string material;
+  std::string mesh = "sphere";
+  std::vector<double> camera{60.0, 35.0, 3.6};  // theta, phi (degrees), distance
+  float fov = 40.0f;
+  std::vector<std::vector<double>> lights;        // theta, phi[, intensity]
+  std::vector<std::vector<double>> point_lights;  // x, y, z[, intensity]
+  std::string size = "1024x768";
+  std::uint32_t texture_size = 512;
+  std::uint64_t seed = 1;
+  float parallax = 1.0f;
+  std::string out = "frame.png";
+};
+
+std::array<float, 3> direction_of(double theta_degrees, double phi_degrees) {
+  constexpr double kDegree = std::numbers::pi / 180.0;
+  const double t = theta_degrees * kDegree, p = phi_degrees * kDegree;
+  return {static_cast<float>(std::sin(t) * std::cos(p)), static_cast<float>(std::sin(t) * std::sin(p)),
+          static_cast<float>(std::cos(t))};
+}
+
+Mesh load_mesh(const std::string& spec) {
+  if (spec == "plane") return make_plane(8);
+  if (spec == "sphere") return make_sphere();
+  if (spec == "cylinder") return make_cylinder();
+  if (spec == "torus") return make_torus();
+  if (fs::path(spec).extension() == ".obj") return load_obj_mesh(spec);
+  throw CommandError("--mesh " + spec + ": expected plane, sphere, cylinder, torus or a .obj file");
+}
+
+void parse_size(const std::string& text, std::uint32_t& width, std::uint32_t& height) {
+  unsigned w = 0, h = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w == 0 || h == 0 ||
+      w > 16384 || h > 16384) {
+    throw CommandError("--size " + text + ": expected WIDTHxHEIGHT, each 1 to 16384 (e.g. 1920x1080)");
+  }
+  width = w;
+  height = h;
+}
+
+RenderScene make_scene(const RenderOptions& options) {
+  RenderScene scene;
+  const auto towards = direction_of(options.camera[0], options.camera[1]);
+  const float distance = options.camera.size() > 2 ? static_cast<float>(options.camera[2]) : 3.6f;
+  if (!(distance > 0.0f)) throw CommandError("--camera: the distance must be above 0");
+  scene.camera.eye = {distance * towards[0], distance * towards[1], distance * towards[2]};
+  // Looking straight down the z axis, "up" cannot be z.
+  scene.camera.up = std::abs(towards[2]) > 0.999f ? std::array<float, 3>{0, 1, 0} : std::array<float, 3>{0, 0, 1};
+  scene.camera.fov_y_degrees = options.fov;
+  scene.camera.ortho_height = 2.4f;
+  scene.camera.far_plane = distance + 10.0f;
+  for (const auto& light : options.lights) {
+    const float intensity = light.size() > 2 ? static_cast<float>(light[2]) : 1.0f;
+    scene.lights.push_back({false, direction_of(light[0], light[1]), {intensity, intensity, intensity}});
+  }
+  for (const auto& light : options.point_lights) {
+    const float intensity = light.size() > 3 ? static_cast<float>(light[3]) : 1.0f;
+    scene.lights.push_back({true,
+                            {static_cast<float>(light[0]), static_cast<float>(light[1]), static_cast<float>(light[2])},
+                            {intensity, intensity, intensity}});
+  }
+  if (scene.lights.empty()) scene.lights.push_back({false, direction_of(45.0, 120.0), {1, 1, 1}});
+  if (scene.lights.size() > kMaxRenderLights) {
+    throw CommandError("at most " + std::to_string(kMaxRenderLights) + " lights (--light and --point-light together)");
+  }
+  return scene;
+}
+
+void run_render(const RenderOptions& options) {
+  std::uint32_t width = 0, height = 0;
+  parse_size(options.size, width, height);
+  Material material;
+  check(read_material_file(options.material, material), "cannot read the material");
+  Mesh mesh = load_mesh(options.mesh);
+  const RenderScene scene = make_scene(options);
+
+  auto context = make_context(options.device);
+  std::printf("[1/3] synthesizing %zu subspace images of %ux%u on %s\n", material.subspaces.size(), options.texture_size,
+              options.texture_size, context->device_info().name.c_str());
+  std::fflush(stdout);
+  auto start = std::chrono::steady_clock::now();
+  std::unique_ptr<SubspaceSynthesizer> synthesizer;
+  check(SubspaceSynthesizer::create(*context, synthesizer), "cannot build the synthesis pipelines");
+  SynthesisRequest request;
+  request.seed = options.seed;
+  request.width = request.height = options.texture_size;
+  check(synthesizer->prepare(material, request), "cannot plan the synthesis");
+  check(context->submit_and_wait([&](VkCommandBuffer cb) { return synthesizer->record(cb); }), "synthesis failed");
+  const double synthesis_ms = seconds_since(start) * 1e3;
+
+  std::printf("[2/3] range map, lookup tables and render pipeline\n");
+  std::fflush(stdout);
+  MaterialBindingInfo binding_info;
+  binding_info.seed = options.seed;
+  binding_info.parallax_scale = options.parallax;
+  std::unique_ptr<MaterialBinding> binding;
+  check(MaterialBinding::create(*context, material, material_textures(*synthesizer, material), binding_info, binding),
+        "cannot bind the material");
+  check(binding->upload_and_wait(), "cannot upload the range map");
+  RenderTargetInfo target;
+  target.width = width;
+  target.height = height;
+  target.colour_format = VK_FORMAT_R32G32B32A32_SFLOAT;
+  std::unique_ptr<MeshRenderer> renderer;
+  check(MeshRenderer::create(*context, *binding, target, renderer), "cannot build the render pass");
+  check(renderer->set_mesh(mesh), "cannot upload the mesh");
+
+  std::printf("[3/3] rendering %ux%u, %zu triangles, %zu light(s)\n", width, height, mesh.indices.size() / 3,
+              scene.lights.size());
+  std::fflush(stdout);
+  start = std::chrono::steady_clock::now();
+  RenderedImage frame;
+  check(renderer->render(scene, frame), "rendering failed");
+  const double render_ms = seconds_since(start) * 1e3;
+  check_validation(*context);
+
+  // Background pixels (alpha 0) keep the clear colour; the file gets RGB.
+  std::vector<float> rgb(std::size_t{width} * height * 3);
+  const auto* rgba = reinterpret_cast<const float*>(frame.bytes.data());
+  for (std::size_t p = 0; p < std::size_t{width} * height; ++p) {
+    for (int k = 0; k < 3; ++k) rgb[3 * p + k] = rgba[4 * p + k];
+  }
+  const fs::path out = options.out;
+  if (out.has_parent_path()) create_folder(out.parent_path());
+  write_rgb_image(out, rgb, width, height, true);
+  std::printf("synthesis %.1f ms, render %.1f ms (wall, with readback)\nwrote %s\n", synthesis_ms, render_ms,
+              out.string().c_str());
+}
+
+}  // namespace
+
+void register_render_command(CLI::App& app) {
+  auto options = std::make_shared<RenderOptions>();
+  CLI::App* command = app.add_subcommand(
+      "render",
+      "Render a material on a mesh, headless: GPU synthesis, then parallax bump mapping with the 9-weight "
+      "interpolation of the subspace images, relit by the range map");
+  command->add_option("material", options->material, "Material file (.cbtf) from `carbtf analyze`")->required();
+  command->add_option("--mesh", options->mesh, "plane, sphere, cylinder, torus, or an OBJ file with texture coordinates")
+      ->capture_default_str();
+  command->add_option("--camera", options->camera,
+                      "Camera orbit THETA,PHI[,DISTANCE]: elevation from +z and azimuth in degrees, distance from the "
+                      "origin; it looks at the origin")
+      ->delimiter(',')
+      ->expected(2, 3)
+      ->capture_default_str();
+  command->add_option("--fov", options->fov, "Vertical field of view in degrees; 0 gives an orthographic camera")
+      ->check(CLI::Range(0.0f, 170.0f))
+      ->capture_default_str();
+  command->add_option("--light", options->lights,
+                      "Directional light THETA,PHI[,INTENSITY] in degrees, towards the light; repeat for more "
+                      "(default: one at 45,120)")
+      ->delimiter(',')
+      ->expected(2, 3)
+      ->allow_extra_args(false);
+  command->add_option("--point-light", options->point_lights, "Point light X,Y,Z[,INTENSITY] (intensity at distance 1)")
+      ->delimiter(',')
+      ->expected(3, 4)
+      ->allow_extra_args(false);
+  command->add_option("--size", options->size, "Frame size WIDTHxHEIGHT")->capture_default_str();
+  command->add_option("--texture-size", options->texture_size, "Texels per side of the synthesized subspace images")
+      ->check(CLI::Range(16u, 8192u))
+      ->capture_default_str();
+  command->add_option("--seed", options->seed, "Synthesis and range-map layout seed")->check(non_negative())->capture_default_str();
+  command->add_option("--parallax", options->parallax, "Parallax scale (1: the range map's own heights; 0: none)")
+      ->check(CLI::Range(0.0f, 16.0f))
+      ->capture_default_str();
+  command->add_option("--out", options->out, "Output image: .png (sRGB) or .exr (linear)")->capture_default_str();
+  add_device_options(*command, options->device);
+  command->callback([options] { run_render(*options); });
+}
+
+}  // namespace carbtf::cli
