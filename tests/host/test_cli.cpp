@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdio>
+#include <fstream>
 #include <filesystem>
 
 #include "carbtf/analysis/image_io.hpp"
@@ -114,7 +115,7 @@ TEST_CASE("carbtf demo writes a report and says where", "[cli]") {
 
 TEST_CASE("--help answers for every command", "[cli]") {
   for (const std::string command : {"", "noise", "devices", "demo", "sample", "info", "analyze", "normals",
-                                    "synth", "conform", "bench noise", "bench data", "bench analyze", "bench synth"}) {
+                                    "synth", "conform", "render", "bench noise", "bench data", "bench analyze", "bench synth"}) {
     const Run r = run(command + " --help");
     INFO("carbtf " << command << " --help\n" << r.output);
     CHECK(r.status == 0);
@@ -238,6 +239,37 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
     const Run mismatch = run("bench synth --material " + material.string() + " --btf " + (folder / "missing").string());
     CHECK(mismatch.status != 0);
     CHECK(line_count(mismatch.output) == 1);
+  }
+  SECTION("carbtf render draws the material on a mesh and refuses bad meshes with one line") {
+    const fs::path frame = folder / "render" / "sphere.png";
+    const Run r = run("render " + material.string() + " --mesh sphere --size 96x64 --texture-size 32 --light 40,90 "
+                      "--point-light 1,1,2,2 --validation --out " + frame.string());
+    INFO(r.output);
+    REQUIRE(r.status == 0);
+    CHECK_THAT(r.output, Catch::Contains("rendering 96x64") && Catch::Contains("wrote " + frame.string()));
+    const RgbImage image = decode_rgb_image(frame.string(), read_file_bytes(frame));
+    REQUIRE(image.linear_rgb.size() == 96u * 64u * 3u);
+    // The sphere covers the centre, the clear colour the corner, and the two differ.
+    const std::size_t centre = (32u * 96u + 48u) * 3u;
+    CHECK(image.linear_rgb[centre] != image.linear_rgb[0]);
+
+    const fs::path obj = folder / "no_uv.obj";
+    {
+      std::ofstream file(obj);
+      file << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    }
+    for (const auto& [arguments, expected] : std::vector<std::pair<std::string, std::string>>{
+             {"--mesh " + obj.string(), "no texture coordinates"},
+             {"--mesh " + (folder / "missing.obj").string(), "no such mesh file"},
+             {"--mesh cube", "expected plane, sphere"},
+             {"--size 12by5", "WIDTHxHEIGHT"}}) {
+      const Run bad = run("render " + material.string() + " " + arguments + " --out " + (folder / "bad.png").string());
+      INFO("carbtf render " << arguments << "\n" << bad.output);
+      CHECK(bad.status == 1);
+      CHECK(line_count(bad.output) == 1);
+      CHECK_THAT(bad.output, Catch::StartsWith("carbtf: error: ") && Catch::Contains(expected));
+    }
+    CHECK_FALSE(fs::exists(folder / "bad.png"));
   }
   SECTION("bad analysis arguments") {
     for (const auto& [arguments, expected] : std::vector<std::pair<std::string, std::string>>{
