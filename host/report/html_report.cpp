@@ -38,9 +38,23 @@ void HtmlReport::table(const std::vector<std::vector<std::string>>& rows) {
   body_ += "</table>\n";
 }
 
+namespace {
+
+std::string figure_html(const std::string& file, const std::string& caption, int display_width) {
+  return "<figure><img src=\"" + html_escape(file) + "\" width=\"" + std::to_string(display_width) +
+         "\" style=\"image-rendering:pixelated\"><figcaption>" + html_escape(caption) + "</figcaption></figure>\n";
+}
+
+}  // namespace
+
 void HtmlReport::image(const std::string& file, const std::string& caption, int display_width) {
-  body_ += "<figure><img src=\"" + html_escape(file) + "\" width=\"" + std::to_string(display_width) +
-           "\" style=\"image-rendering:pixelated\"><figcaption>" + html_escape(caption) + "</figcaption></figure>\n";
+  body_ += figure_html(file, caption, display_width);
+}
+
+void HtmlReport::image_row(const std::vector<std::pair<std::string, std::string>>& images, int display_width) {
+  body_ += "<div style=\"display:flex;flex-wrap:wrap;gap:12px\">\n";
+  for (const auto& [file, caption] : images) body_ += figure_html(file, caption, display_width);
+  body_ += "</div>\n";
 }
 
 void HtmlReport::histogram_chart(const std::vector<double>& centres, const std::vector<double>& heights,

@@ -19,6 +19,8 @@ class HtmlReport {
   void table(const std::vector<std::vector<std::string>>& rows);
   // `file` is relative to the report folder.
   void image(const std::string& file, const std::string& caption, int display_width = 512);
+  // Pictures side by side (file, caption), each shown display_width pixels wide.
+  void image_row(const std::vector<std::pair<std::string, std::string>>& images, int display_width = 256);
   // Bars of a histogram (bin centres and heights) with a reference curve over them, as inline SVG.
   void histogram_chart(const std::vector<double>& centres, const std::vector<double>& heights,
                        const std::vector<std::pair<double, double>>& curve, const std::string& caption);

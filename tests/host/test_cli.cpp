@@ -102,14 +102,26 @@ TEST_CASE("carbtf devices lists the default device", "[cli]") {
   CHECK_THAT(r.output, Catch::Contains("default"));
 }
 
-TEST_CASE("carbtf demo writes a report and says where", "[cli]") {
+TEST_CASE("carbtf demo runs the whole pipeline and writes a report", "[cli]") {
   const fs::path folder = scratch_folder("demo");
-  const Run r = run("demo --size 128 --validation --out " + (folder / "report").string());
+  const fs::path report = folder / "report";
+  const Run r = run("demo --size 48 --texture-size 64 --validation --out " + report.string());
   INFO(r.output);
   REQUIRE(r.status == 0);
-  CHECK_THAT(r.output, Catch::Contains("report: " + (folder / "report" / "index.html").string()));
-  CHECK(fs::exists(folder / "report" / "index.html"));
-  CHECK(fs::exists(folder / "report" / "noise.png"));
+  for (const char* stage : {"[1/6] sample", "[2/6] analysis", "[3/6] synthesis", "[4/6] render", "[5/6] render", "[6/6] report"}) {
+    CHECK_THAT(r.output, Catch::Contains(stage));
+  }
+  CHECK_THAT(r.output, Catch::Contains("report: " + (report / "index.html").string()));
+  // The GPU synthesis equals the CPU reference: "bit-identical to the CPU on N of N values".
+  CHECK_THAT(r.output, Catch::Contains("bit-identical to the CPU on 245760 of 245760 values"));
+  for (const char* file : {"index.html", "leather.cbtf", "sphere.png", "synthesized_00.png", "analysis/index_table.png",
+                           "analysis/eigenvalues.png", "plane_l19_v0_model.png", "plane_l19_v0_measured.png"}) {
+    CHECK(fs::exists(report / file));
+  }
+  const RgbImage sphere = decode_rgb_image((report / "sphere.png").string(), read_file_bytes(report / "sphere.png"));
+  REQUIRE(sphere.srgb8.size() == 960u * 640u * 3u);
+  // The sphere covers the centre, the clear colour the corner.
+  CHECK(sphere.srgb8[(320u * 960u + 480u) * 3u] != sphere.srgb8[0]);
   fs::remove_all(folder);
 }
 
@@ -248,10 +260,10 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
     REQUIRE(r.status == 0);
     CHECK_THAT(r.output, Catch::Contains("rendering 96x64") && Catch::Contains("wrote " + frame.string()));
     const RgbImage image = decode_rgb_image(frame.string(), read_file_bytes(frame));
-    REQUIRE(image.linear_rgb.size() == 96u * 64u * 3u);
+    REQUIRE(image.srgb8.size() == 96u * 64u * 3u);
     // The sphere covers the centre, the clear colour the corner, and the two differ.
     const std::size_t centre = (32u * 96u + 48u) * 3u;
-    CHECK(image.linear_rgb[centre] != image.linear_rgb[0]);
+    CHECK(image.srgb8[centre] != image.srgb8[0]);
 
     const fs::path obj = folder / "no_uv.obj";
     {
