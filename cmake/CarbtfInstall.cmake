@@ -15,3 +15,9 @@ configure_package_config_file("${PROJECT_SOURCE_DIR}/cmake/carbtfConfig.cmake.in
 write_basic_package_version_file("${PROJECT_BINARY_DIR}/carbtfConfigVersion.cmake" COMPATIBILITY SameMinorVersion)
 install(FILES "${PROJECT_BINARY_DIR}/carbtfConfig.cmake" "${PROJECT_BINARY_DIR}/carbtfConfigVersion.cmake"
   DESTINATION "${CMAKE_INSTALL_LIBDIR}/cmake/carbtf" COMPONENT engine)
+
+# The GLSL a host engine compiles into its own fragment shaders (carbtf_material.glsl and the layouts
+# it includes); carbtfConfig.cmake points carbtf_GLSL_INCLUDE_DIR at them.
+install(FILES "${PROJECT_SOURCE_DIR}/compute_shaders/include/carbtf_material.glsl"
+              "${PROJECT_SOURCE_DIR}/compute_shaders/include/carbtf_gpu_shared.h"
+  DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}/carbtf/glsl" COMPONENT engine)
