@@ -1,18 +1,23 @@
 #!/usr/bin/env python3
-"""Prints the polynomial coefficients of the division-free log and cos used by the Gaussian noise
-(compute_shaders/shared/noise_constants.h). Rerun to reproduce them; nothing reads this at build time.
+"""Prints the polynomial coefficients of the division-free log and cos used by the Gaussian noise, and
+of the arctangent the render pass projects directions with (compute_shaders/include/carbtf_gpu_shared.h).
+Rerun to reproduce them; nothing reads this at build time.
 
 Why polynomials: DESIGN.md 4.4 asks for CPU float32 and GPU noise that agree bit for bit. Vulkan only
 guarantees correctly rounded +, - and *, so log and cos are built from those alone.
 
   ln(1+x), x in [sqrt(1/2)-1, sqrt(2)-1]: Chebyshev interpolant, degree LOG_DEGREE, as monomials in x.
   cos(2*pi*r), r in [0, 1/4]: Chebyshev interpolant in z = r*r, degree COS_DEGREE, as monomials in z.
+  atan(t) = t * P(t*t), t in [0, 1]: Chebyshev interpolant of atan(sqrt z)/sqrt z, degree ATAN_DEGREE.
+  Vulkan allows atan 4096 ULP of error, enough to move a direction's interpolation weights by 1e-3;
+  the polynomial keeps the GPU within 1e-7 of the CPU, which scene pruning relies on.
 """
 import math
 from fractions import Fraction
 
 LOG_DEGREE = 13
 COS_DEGREE = 7
+ATAN_DEGREE = 10
 
 
 def chebyshev_monomials(f, a, b, degree):
@@ -78,3 +83,9 @@ if __name__ == "__main__":
             if name == "LOG1P" and i == 0:
                 continue
             print(f"CARBTF_CONST_FLOAT(CARBTF_{name}_C{i}, {as_float32(c):.9e}f)")
+    atan_f = lambda z: math.atan(math.sqrt(z)) / math.sqrt(z) if z > 0 else 1.0  # noqa: E731
+    atan_c = chebyshev_monomials(atan_f, 0.0, 1.0, ATAN_DEGREE)
+    print(f"// ATAN: max abs error of atan(t)/t {max_error(atan_f, atan_c, 0.0, 1.0):.1e} (float32 coefficients, "
+          f"double evaluation)")
+    for i, c in enumerate(atan_c):
+        print(f"CARBTF_CONST_FLOAT(CARBTF_ATAN_C{i}, {as_float32(c):.9e}f)")

@@ -185,6 +185,47 @@ CARBTF_FUNCTION uint carbtf_tile_edge_colour(uint seed_lo, uint seed_hi, uint ki
 }
 
 
+// ---- Direction angles (render pass, scene pruning) -------------------------------------------
+// atan(t) = t * sum_k C_k (t^2)^k, t in [0, 1], max abs error 3.0e-09 (scripts/gen_noise_polynomials.py).
+// Vulkan allows atan 4096 ULP of error, which moves interpolation weights by 1e-3; this keeps the GPU
+// within about 1e-7 of the CPU, so that scene pruning predicts the fragment stage's directions.
+CARBTF_CONST_FLOAT(CARBTF_ATAN_C0, 1.000000000e+00f)
+CARBTF_CONST_FLOAT(CARBTF_ATAN_C1, -3.333332241e-01f)
+CARBTF_CONST_FLOAT(CARBTF_ATAN_C2, 1.999955773e-01f)
+CARBTF_CONST_FLOAT(CARBTF_ATAN_C3, -1.427857578e-01f)
+CARBTF_CONST_FLOAT(CARBTF_ATAN_C4, 1.105077118e-01f)
+CARBTF_CONST_FLOAT(CARBTF_ATAN_C5, -8.785042912e-02f)
+CARBTF_CONST_FLOAT(CARBTF_ATAN_C6, 6.685281545e-02f)
+CARBTF_CONST_FLOAT(CARBTF_ATAN_C7, -4.392841086e-02f)
+CARBTF_CONST_FLOAT(CARBTF_ATAN_C8, 2.191294543e-02f)
+CARBTF_CONST_FLOAT(CARBTF_ATAN_C9, -7.030669134e-03f)
+CARBTF_CONST_FLOAT(CARBTF_ATAN_C10, 1.057607355e-03f)
+CARBTF_CONST_FLOAT(CARBTF_HALF_PI, 1.570796327e+00f)
+CARBTF_CONST_FLOAT(CARBTF_PI_F, 3.141592654e+00f)
+
+// The polar angle, in [0, pi], of a direction whose horizontal part has length r >= 0 and whose
+// vertical part is z: atan2(r, z) from +, -, * and / only.
+CARBTF_FUNCTION float carbtf_polar_angle(float r, float z) {
+  float h = z < 0.0f ? -z : z;
+  bool steep = r > h;
+  float t = steep ? h / r : (h > 0.0f ? r / h : 0.0f);
+  float s = t * t;
+  float p = CARBTF_ATAN_C10;
+  p = p * s + CARBTF_ATAN_C9;
+  p = p * s + CARBTF_ATAN_C8;
+  p = p * s + CARBTF_ATAN_C7;
+  p = p * s + CARBTF_ATAN_C6;
+  p = p * s + CARBTF_ATAN_C5;
+  p = p * s + CARBTF_ATAN_C4;
+  p = p * s + CARBTF_ATAN_C3;
+  p = p * s + CARBTF_ATAN_C2;
+  p = p * s + CARBTF_ATAN_C1;
+  p = p * s + CARBTF_ATAN_C0;
+  float a = t * p;
+  float from_z = steep ? CARBTF_HALF_PI - a : a;
+  return z < 0.0f ? CARBTF_PI_F - from_z : from_z;
+}
+
 // ---- Material render pass (carbtf_material.glsl, engine/include/carbtf/engine/material_binding.hpp) --
 // The material descriptor set: binding 0 the subspace images (sampler2DArray, one layer per
 // synthesized subspace image), binding 1 the enlarged range map (sampler2DArray, layer 0, heights in
@@ -198,6 +239,10 @@ CARBTF_CONST_UINT(CARBTF_NO_LAYER, 0xFFFFFFFFu)
 CARBTF_CONST_UINT(CARBTF_LOOKUP_EDGE_BIT, 0x80000000u)
 // A fragment inside a triangle up to this barycentric slack uses it; further out, the nearest edge.
 CARBTF_CONST_FLOAT(CARBTF_LOOKUP_INSIDE_SLACK, 1.0e-5f)
+// Direction weights below this are dropped (and the rest renormalised), so that a fragment at or next
+// to a measured direction uses exactly the directions it is nearest, whichever of two triangles that
+// share an edge its rounding picks; scene pruning relies on it.
+CARBTF_CONST_FLOAT(CARBTF_LOOKUP_MIN_WEIGHT, 1.0e-5f)
 // Lights one draw of carbtf's own mesh pipeline shades with.
 CARBTF_CONST_UINT(CARBTF_RENDER_MAX_LIGHTS, 4u)
 

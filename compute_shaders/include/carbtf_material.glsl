@@ -86,11 +86,12 @@ vec3 carbtf_normal(vec2 uv) {
 }
 
 // The azimuthal equidistant projection of a unit direction into the unit disk (direction_interpolation.hpp).
-// theta = atan(|xy|, z) rather than acos(z): acos is ill-conditioned near the normal, where a rounding
-// of z by 6e-8 moves theta by 1e-4.
+// theta from |xy| and z (carbtf_polar_angle, accurate to 1e-7) rather than acos(z), which is
+// ill-conditioned near the normal (a rounding of z by 6e-8 moves theta by 1e-4), or the device's atan,
+// which Vulkan lets be 4096 ULP off.
 vec2 carbtf_project_direction(vec3 d) {
   float r = length(d.xy);
-  float theta = atan(r, d.z);
+  float theta = carbtf_polar_angle(r, d.z);
   vec2 azimuth = r > 0.0 ? d.xy / r : vec2(1.0, 0.0);
   return (theta / (0.5 * CARBTF_PI)) * azimuth;
 }
@@ -101,7 +102,8 @@ vec2 carbtf_lookup_point(DirectionLookupGpu set, uint index) {
 }
 
 // Barycentric weights of the measured directions around projected point p: the triangle of p's grid
-// cell that holds p, or (outside every triangle) the nearest point of the cell's boundary edges.
+// cell that holds p, or (outside every triangle) the nearest point of the cell's boundary edges;
+// weights under CARBTF_LOOKUP_MIN_WEIGHT dropped.
 void carbtf_direction_weights(DirectionLookupGpu set, vec2 p, out uvec3 index, out vec3 weight) {
   index = uvec3(0u);
   weight = vec3(1.0, 0.0, 0.0);
@@ -153,6 +155,8 @@ void carbtf_direction_weights(DirectionLookupGpu set, vec2 p, out uvec3 index, o
     index = edge_index;
     weight = edge_weight;
   }
+  weight = mix(weight, vec3(0.0), lessThan(weight, vec3(CARBTF_LOOKUP_MIN_WEIGHT)));
+  weight /= weight.x + weight.y + weight.z;
 }
 
 // The smooth BTF colour at (already parallax-shifted) uv for tangent-frame light and view directions:

@@ -8,18 +8,16 @@
 
 namespace carbtf {
 
+static_assert(gpu::CARBTF_LOOKUP_MIN_WEIGHT == 1.0e-5f, "lookup_direction_weights() defaults to the shader's threshold");
+
 namespace {
 
 using Point = std::array<double, 2>;
 
-double edge_distance(const Point& a, const Point& b, const Point& q) {
-  const double ex = b[0] - a[0], ey = b[1] - a[1];
-  const double length2 = ex * ex + ey * ey;
-  const double t = length2 > 0 ? std::clamp(((q[0] - a[0]) * ex + (q[1] - a[1]) * ey) / length2, 0.0, 1.0) : 0.0;
-  return std::hypot(a[0] + t * ex - q[0], a[1] + t * ey - q[1]);
-}
+}  // namespace
 
-bool inside_triangulation(const DirectionTriangulation& tri, const Point& q) {
+bool inside_triangulation(const DirectionTriangulation& tri, double x, double y) {
+  const Point q{x, y};
   for (const auto& t : tri.triangles) {
     const Point &a = tri.points[t[0]], &b = tri.points[t[1]], &c = tri.points[t[2]];
     const double area = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
@@ -30,7 +28,14 @@ bool inside_triangulation(const DirectionTriangulation& tri, const Point& q) {
   return false;
 }
 
-}  // namespace
+double boundary_edge_distance(const DirectionTriangulation& tri, std::uint32_t edge, double x, double y) {
+  const Point& a = tri.points[tri.boundary[edge][0]];
+  const Point& b = tri.points[tri.boundary[edge][1]];
+  const double ex = b[0] - a[0], ey = b[1] - a[1];
+  const double length2 = ex * ex + ey * ey;
+  const double t = length2 > 0 ? std::clamp(((x - a[0]) * ex + (y - a[1]) * ey) / length2, 0.0, 1.0) : 0.0;
+  return std::hypot(a[0] + t * ex - x, a[1] + t * ey - y);
+}
 
 DirectionLookupGrid build_direction_lookup(const DirectionTriangulation& tri, std::uint32_t grid_size) {
   grid_size = std::clamp(grid_size, 1u, 256u);
@@ -59,19 +64,18 @@ DirectionLookupGrid build_direction_lookup(const DirectionTriangulation& tri, st
       // The triangulation is convex, so a cell whose corners are all inside it lies inside.
       const Point corners[4] = {{x0, y0}, {x1, y0}, {x0, y1}, {x1, y1}};
       bool partly_outside = false;
-      for (const Point& corner : corners) partly_outside = partly_outside || !inside_triangulation(tri, corner);
+      for (const Point& corner : corners) partly_outside = partly_outside || !inside_triangulation(tri, corner[0], corner[1]);
       if (!partly_outside || tri.boundary.empty()) continue;
       // An edge can be nearest to some point of the cell only if it is within the nearest edge's
       // distance from the centre plus the cell's diameter.
       const Point centre{0.5 * (x0 + x1), 0.5 * (y0 + y1)};
       const double radius = 0.5 * std::sqrt(2.0) * cell;
       double nearest = std::numeric_limits<double>::infinity();
-      for (const auto& e : tri.boundary) {
-        nearest = std::min(nearest, edge_distance(tri.points[e[0]], tri.points[e[1]], centre));
+      for (std::uint32_t e = 0; e < tri.boundary.size(); ++e) {
+        nearest = std::min(nearest, boundary_edge_distance(tri, e, centre[0], centre[1]));
       }
       for (std::uint32_t e = 0; e < tri.boundary.size(); ++e) {
-        const auto& edge = tri.boundary[e];
-        if (edge_distance(tri.points[edge[0]], tri.points[edge[1]], centre) <= nearest + 2.0 * radius + kSlack) {
+        if (boundary_edge_distance(tri, e, centre[0], centre[1]) <= nearest + 2.0 * radius + kSlack) {
           grid.entries.push_back(gpu::CARBTF_LOOKUP_EDGE_BIT | e);
         }
       }
@@ -82,7 +86,7 @@ DirectionLookupGrid build_direction_lookup(const DirectionTriangulation& tri, st
 }
 
 DirectionWeights lookup_direction_weights(const DirectionLookupGrid& grid, const DirectionTriangulation& tri, float x,
-                                          float y) {
+                                          float y, float min_weight) {
   DirectionWeights w;
   w.weight = {1.0f, 0.0f, 0.0f};
   if (grid.grid_size == 0) return w;
@@ -127,8 +131,14 @@ DirectionWeights lookup_direction_weights(const DirectionLookupGrid& grid, const
       }
     }
   }
-  if (best_inside < -gpu::CARBTF_LOOKUP_INSIDE_SLACK && best_distance < 1.0e30f) return edge_weights;
-  return w;
+  DirectionWeights& chosen = best_inside < -gpu::CARBTF_LOOKUP_INSIDE_SLACK && best_distance < 1.0e30f ? edge_weights : w;
+  float sum = 0.0f;
+  for (float& weight : chosen.weight) {
+    if (weight < min_weight) weight = 0.0f;
+    sum += weight;
+  }
+  for (float& weight : chosen.weight) weight /= sum;
+  return chosen;
 }
 
 }  // namespace carbtf

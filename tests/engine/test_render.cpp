@@ -16,6 +16,7 @@
 #include "carbtf/engine/direction_lookup.hpp"
 #include "carbtf/engine/material_binding.hpp"
 #include "carbtf/engine/mesh_renderer.hpp"
+#include "carbtf/engine/scene_pruning.hpp"
 #include "carbtf/engine/subspace_synthesizer.hpp"
 #include "test_support.hpp"
 
@@ -192,5 +193,98 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
   // 1e-6 RMS; allowed: 1e-4 of the peak at any pixel, 1e-5 RMS.
   CHECK(worst <= 1e-4 * peak);
   CHECK(rms <= 1e-5 * peak);
+  context.require_clean();
+}
+
+namespace {
+
+// The UBO2003 81 x 81 direction sets with 20 subspace images laid out by elevation, as segmentation
+// tends to: light ring (0..5) and view ring, 3 * light ring + view ring / 2, and 18, 19 for the
+// grazing light ring's azimuths past 180 degrees.
+Material ubo_material() {
+  Material m = bumpy_material();
+  const Material twenty = synthetic_material(20, 2);
+  m.subspaces = twenty.subspaces;
+  m.lights = m.views = ubo_set();
+  m.subspace_index.clear();
+  auto ring = [](const MaterialDirection& d) { return static_cast<std::uint32_t>(std::lround(d.theta / 0.2617994f)); };
+  for (std::uint32_t l = 0; l < 81; ++l) {
+    for (std::uint32_t v = 0; v < 81; ++v) {
+      std::uint32_t s = 3 * ring(m.lights[l]) + ring(m.views[v]) / 2;
+      if (ring(m.lights[l]) == 5 && m.lights[l].phi > 3.2f) s = 18 + ring(m.views[v]) % 2;
+      m.subspace_index.push_back(static_cast<std::uint8_t>(s));
+    }
+  }
+  return m;
+}
+
+std::vector<float> render_with(Context& context, const Material& m, const std::vector<std::uint32_t>& subspaces,
+                               const Mesh& mesh, const RenderScene& scene) {
+  std::unique_ptr<SubspaceSynthesizer> synthesizer;
+  REQUIRE(SubspaceSynthesizer::create(context, synthesizer).ok());
+  SynthesisRequest request;
+  request.seed = 3;
+  request.width = request.height = 64;
+  request.margin = 8;
+  request.subspaces = subspaces;
+  REQUIRE(synthesizer->prepare(m, request).ok());
+  REQUIRE(context.submit_and_wait([&](VkCommandBuffer cb) { return synthesizer->record(cb); }).ok());
+  MaterialBindingInfo info;
+  info.seed = 3;
+  std::unique_ptr<MaterialBinding> binding;
+  REQUIRE(MaterialBinding::create(context, m, material_textures(*synthesizer, m), info, binding).ok());
+  REQUIRE(binding->upload_and_wait().ok());
+  RenderTargetInfo target;
+  target.width = target.height = 96;
+  target.colour_format = VK_FORMAT_R32G32B32A32_SFLOAT;
+  std::unique_ptr<MeshRenderer> renderer;
+  REQUIRE(MeshRenderer::create(context, *binding, target, renderer).ok());
+  REQUIRE(renderer->set_mesh(mesh).ok());
+  RenderedImage frame;
+  const Status status = renderer->render(scene, frame);
+  INFO(status.message());
+  REQUIRE(status.ok());
+  return as_floats(frame);
+}
+
+}  // namespace
+
+TEST_CASE("scene pruning: a scene seen from above needs fewer subspace images and renders the same pixels",
+          "[render][gpu]") {
+  test::ValidatedContext context;
+  const Material m = ubo_material();
+  RenderScene scene;
+  Mesh mesh;
+  bool expect_fewer = false;
+  SECTION("a plane from above, perspective, one directional light") {
+    mesh = make_plane(4);
+    scene.camera.eye = {0.1f, 0.2f, 2.8f};
+    scene.camera.up = {0, 1, 0};
+    const Direction light = Direction::from_degrees(45, 60);
+    const auto d = light.vector();
+    scene.lights = {{false, {static_cast<float>(d[0]), static_cast<float>(d[1]), static_cast<float>(d[2])}, {1, 1, 1}}};
+    expect_fewer = true;
+  }
+  SECTION("a sphere from the side, a point light and a grazing light") {
+    mesh = make_sphere(24, 12);
+    scene.camera.eye = {2.4f, 1.5f, 1.2f};
+    scene.lights = {{true, {1.5f, -1.0f, 1.6f}, {2, 2, 2}}, {false, {0.2f, 1.0f, 0.05f}, {0.5f, 0.5f, 0.5f}}};
+  }
+  SceneNeeds needs;
+  const Status status = scene_needs(m, mesh, scene, 96, 96, {}, needs);
+  INFO(status.message());
+  REQUIRE(status.ok());
+  INFO("needs " << needs.subspaces.size() << " of 20 subspace images, " << needs.light_view_pairs << " pairs, texture "
+                << needs.texture_size);
+  REQUIRE(!needs.subspaces.empty());
+  if (expect_fewer) CHECK(needs.subspaces.size() <= 3);
+  CHECK(needs.texture_size >= 32);
+
+  const std::vector<float> full = render_with(*context, m, {}, mesh, scene);
+  const std::vector<float> pruned = render_with(*context, m, needs.subspaces, mesh, scene);
+  std::size_t covered = 0;
+  for (std::size_t i = 3; i < full.size(); i += 4) covered += full[i] == 1.0f;
+  CHECK(covered > full.size() / 4 / 8);
+  test::require_bitwise_equal(pruned, full, 96 * 4);
   context.require_clean();
 }

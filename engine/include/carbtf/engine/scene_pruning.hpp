@@ -1,0 +1,43 @@
+// Only what a scene needs (DESIGN.md 4.7): before synthesis, which subspace images and what texture
+// resolution one frame of a mesh under a camera and lights can use.
+//
+// Per triangle of the mesh that is not outside the view frustum: the light and view directions in the
+// triangle's tangent frame are evaluated on a grid of points over the triangle, as the rasterizer
+// interpolates them. When they do not vary over the triangle, the direction weights there (from the
+// same lookup grids the fragment stage uses) name the measured directions exactly; when they do, every
+// measured direction of a direction-set triangle meeting their projected bounding box, widened by a
+// quarter of its size, counts. Occlusion is ignored. So the set errs on the large side: a frame
+// rendered from only these subspace images equals the one rendered from all of them (the tests check
+// this bit for bit).
+// The texture size is the texel density of the most magnified visible triangle: the power of two
+// that gives it at least one texel per pixel, clamped to the options' range.
+// Thread safety: pure.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "carbtf/engine/material.hpp"
+#include "carbtf/engine/mesh.hpp"
+#include "carbtf/engine/mesh_renderer.hpp"
+
+namespace carbtf {
+
+struct PruningOptions {
+  std::uint32_t samples_per_edge = 4;  // the grid over each triangle: (n + 1)(n + 2) / 2 points
+  std::uint32_t min_texture_size = 32;
+  std::uint32_t max_texture_size = 4096;
+  std::uint32_t lookup_grid_size = 32;  // as MaterialBindingInfo::lookup_grid_size
+};
+
+struct SceneNeeds {
+  std::vector<std::uint32_t> subspaces;  // ascending
+  std::uint32_t light_view_pairs = 0;    // distinct measured (light, view) pairs that can carry weight
+  std::uint32_t texture_size = 0;
+  std::uint32_t visible_triangles = 0;
+};
+
+Status scene_needs(const Material& material, const Mesh& mesh, const RenderScene& scene, std::uint32_t frame_width,
+                   std::uint32_t frame_height, const PruningOptions& options, SceneNeeds& out) noexcept;
+
+}  // namespace carbtf

@@ -1,0 +1,214 @@
+#include "carbtf/engine/scene_pruning.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <set>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include <carbtf_gpu_shared.h>
+
+#include "carbtf/engine/direction_lookup.hpp"
+#include "vk_check.hpp"
+
+namespace carbtf {
+
+namespace {
+
+struct DirectionSet {
+  DirectionTriangulation triangulation;
+  DirectionLookupGrid grid;
+};
+
+// As the fragment stage projects (carbtf_project_direction).
+glm::vec2 projected(glm::vec3 d) {
+  const float r = glm::length(glm::vec2(d));
+  const float theta = gpu::carbtf_polar_angle(r, d.z);
+  const glm::vec2 azimuth = r > 0.0f ? glm::vec2(d) / r : glm::vec2(1, 0);
+  return theta / (0.5f * 3.14159265358979f) * azimuth;
+}
+
+// Measured directions that can carry weight for projected points inside [lo, hi] (widened).
+void directions_in_box(const DirectionSet& set, glm::vec2 lo, glm::vec2 hi, std::set<std::uint32_t>& out) {
+  const glm::vec2 widen = 0.25f * (hi - lo) + glm::vec2(1e-3f);
+  lo -= widen;
+  hi += widen;
+  const auto& tri = set.triangulation;
+  bool any = false;
+  for (const auto& t : tri.triangles) {
+    glm::vec2 a(1e30f), b(-1e30f);
+    for (std::uint32_t k : t) {
+      const glm::vec2 p(static_cast<float>(tri.points[k][0]), static_cast<float>(tri.points[k][1]));
+      a = glm::min(a, p);
+      b = glm::max(b, p);
+    }
+    if (a.x <= hi.x && b.x >= lo.x && a.y <= hi.y && b.y >= lo.y) {
+      out.insert(t.begin(), t.end());
+      any = true;
+    }
+  }
+  // Where the box reaches beyond the triangulation, points take the nearest boundary point, as in the
+  // fragment stage: every boundary edge that can be nearest to a point of the box counts.
+  bool partly_outside = !any;
+  for (const glm::vec2 corner : {lo, hi, glm::vec2(lo.x, hi.y), glm::vec2(hi.x, lo.y)}) {
+    partly_outside = partly_outside || !inside_triangulation(tri, corner.x, corner.y);
+  }
+  if (partly_outside && !tri.boundary.empty()) {
+    const glm::vec2 centre = 0.5f * (lo + hi);
+    const double radius = 0.5 * glm::length(hi - lo);
+    double nearest = 1e30;
+    for (std::uint32_t e = 0; e < tri.boundary.size(); ++e) {
+      nearest = std::min(nearest, boundary_edge_distance(tri, e, centre.x, centre.y));
+    }
+    for (std::uint32_t e = 0; e < tri.boundary.size(); ++e) {
+      if (boundary_edge_distance(tri, e, centre.x, centre.y) <= nearest + 2.0 * radius + 1e-6) {
+        out.insert(tri.boundary[e].begin(), tri.boundary[e].end());
+      }
+    }
+  }
+  if (tri.points.size() == 1) out.insert(0);
+}
+
+void exact_directions(const DirectionSet& set, glm::vec2 p, std::set<std::uint32_t>& out) {
+  // A tenth of the shader's threshold: a weight the fragment stage keeps is never dropped here.
+  const DirectionWeights w =
+      lookup_direction_weights(set.grid, set.triangulation, p.x, p.y, 0.1f * gpu::CARBTF_LOOKUP_MIN_WEIGHT);
+  for (int k = 0; k < 3; ++k) {
+    if (w.weight[k] != 0.0f) out.insert(w.index[k]);
+  }
+}
+
+}  // namespace
+
+Status scene_needs(const Material& material, const Mesh& mesh, const RenderScene& scene, std::uint32_t frame_width,
+                   std::uint32_t frame_height, const PruningOptions& options, SceneNeeds& out) noexcept {
+  try {
+    CARBTF_TRY(validate_mesh(mesh));
+    if (frame_width == 0 || frame_height == 0) return {ErrorCode::invalid_argument, "the frame has no pixels"};
+    DirectionSet lights, views;
+    CARBTF_TRY(build_direction_triangulation(material.lights, lights.triangulation));
+    CARBTF_TRY(build_direction_triangulation(material.views, views.triangulation));
+    lights.grid = build_direction_lookup(lights.triangulation, options.lookup_grid_size);
+    views.grid = build_direction_lookup(views.triangulation, options.lookup_grid_size);
+
+    glm::mat4 model, clip;
+    std::copy(scene.model.begin(), scene.model.end(), glm::value_ptr(model));
+    const auto vp = view_projection(scene.camera, static_cast<float>(frame_width) / static_cast<float>(frame_height));
+    std::copy(vp.begin(), vp.end(), glm::value_ptr(clip));
+    const glm::vec3 eye(scene.camera.eye[0], scene.camera.eye[1], scene.camera.eye[2]);
+    const glm::vec3 target(scene.camera.target[0], scene.camera.target[1], scene.camera.target[2]);
+    const bool perspective = scene.camera.fov_y_degrees > 0.0f;
+    const std::size_t light_count = std::min<std::size_t>(scene.lights.size(), kMaxRenderLights);
+
+    std::set<std::pair<std::uint32_t, std::uint32_t>> pairs;
+    double densest = 0.0;  // pixels per unit of uv area
+    std::uint32_t visible = 0;
+    const std::uint32_t n = std::max(options.samples_per_edge, 1u);
+    for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+      const MeshVertex* v[3] = {&mesh.vertices[mesh.indices[i]], &mesh.vertices[mesh.indices[i + 1]],
+                                &mesh.vertices[mesh.indices[i + 2]]};
+      glm::vec3 world[3], normal[3];
+      glm::vec4 tangent[3], clip_position[3];
+      for (int k = 0; k < 3; ++k) {
+        world[k] = glm::vec3(model * glm::vec4(glm::make_vec3(v[k]->position), 1.0f));
+        normal[k] = glm::mat3(model) * glm::make_vec3(v[k]->normal);
+        tangent[k] = glm::vec4(glm::mat3(model) * glm::make_vec3(v[k]->tangent), v[k]->tangent[3]);
+        clip_position[k] = clip * glm::vec4(world[k], 1.0f);
+      }
+      // Outside one clip plane with all three corners: not in the frame.
+      bool outside = false;
+      for (int axis = 0; axis < 3 && !outside; ++axis) {
+        bool below = true, above = true;
+        for (const glm::vec4& c : clip_position) {
+          below = below && c[axis] < (axis == 2 ? 0.0f : -c.w);
+          above = above && c[axis] > c.w;
+        }
+        outside = below || above;
+      }
+      if (outside) continue;
+      ++visible;
+
+      // Texel density: screen pixels over uv area, for triangles in front of the camera.
+      if (clip_position[0].w > 0 && clip_position[1].w > 0 && clip_position[2].w > 0) {
+        glm::vec2 screen[3];
+        for (int k = 0; k < 3; ++k) {
+          screen[k] = (glm::vec2(clip_position[k]) / clip_position[k].w * 0.5f + 0.5f) *
+                      glm::vec2(static_cast<float>(frame_width), static_cast<float>(frame_height));
+        }
+        const glm::vec2 s1 = screen[1] - screen[0], s2 = screen[2] - screen[0];
+        const glm::vec2 t1(v[1]->uv[0] - v[0]->uv[0], v[1]->uv[1] - v[0]->uv[1]);
+        const glm::vec2 t2(v[2]->uv[0] - v[0]->uv[0], v[2]->uv[1] - v[0]->uv[1]);
+        const double pixel_area = 0.5 * std::abs(static_cast<double>(s1.x) * s2.y - static_cast<double>(s1.y) * s2.x);
+        const double uv_area = 0.5 * std::abs(static_cast<double>(t1.x) * t2.y - static_cast<double>(t1.y) * t2.x);
+        if (uv_area > 1e-14) densest = std::max(densest, pixel_area / uv_area);
+      }
+
+      // Directions over the triangle, interpolated as the rasterizer does (linearly at this scale).
+      std::vector<glm::vec2> view_points;
+      std::vector<std::vector<glm::vec2>> light_points(light_count);
+      for (std::uint32_t a = 0; a <= n; ++a) {
+        for (std::uint32_t b = 0; a + b <= n; ++b) {
+          const float wa = static_cast<float>(a) / n, wb = static_cast<float>(b) / n, wc = 1.0f - wa - wb;
+          const glm::vec3 p = wa * world[0] + wb * world[1] + wc * world[2];
+          const glm::vec3 nn = glm::normalize(wa * normal[0] + wb * normal[1] + wc * normal[2]);
+          const glm::vec3 tt = wa * glm::vec3(tangent[0]) + wb * glm::vec3(tangent[1]) + wc * glm::vec3(tangent[2]);
+          const glm::vec3 t = glm::normalize(tt - nn * glm::dot(nn, tt));
+          const float handedness = wa * tangent[0].w + wb * tangent[1].w + wc * tangent[2].w;
+          const glm::vec3 up = handedness * glm::cross(nn, t);
+          const glm::mat3 to_tangent = glm::transpose(glm::mat3(t, up, nn));
+          const glm::vec3 view = glm::normalize(to_tangent * (perspective ? eye - p : eye - target));
+          if (view.z <= 0.0f) continue;  // the fragment stage shades nothing seen from below
+          view_points.push_back(projected(view));
+          for (std::size_t l = 0; l < light_count; ++l) {
+            const RenderLight& light = scene.lights[l];
+            const glm::vec3 q(light.position[0], light.position[1], light.position[2]);
+            const glm::vec3 dir = glm::normalize(to_tangent * (light.point ? q - p : q));
+            if (dir.z > 0.0f) light_points[l].push_back(projected(dir));
+          }
+        }
+      }
+      if (view_points.empty()) continue;
+      auto gather = [](const DirectionSet& set, const std::vector<glm::vec2>& points, std::set<std::uint32_t>& found) {
+        glm::vec2 lo(1e30f), hi(-1e30f);
+        for (const glm::vec2& p : points) {
+          lo = glm::min(lo, p);
+          hi = glm::max(hi, p);
+        }
+        if (glm::length(hi - lo) < 1e-6f) {
+          exact_directions(set, points.front(), found);
+        } else {
+          directions_in_box(set, lo, hi, found);
+        }
+      };
+      std::set<std::uint32_t> view_set;
+      gather(views, view_points, view_set);
+      for (std::size_t l = 0; l < light_count; ++l) {
+        if (light_points[l].empty()) continue;
+        std::set<std::uint32_t> light_set;
+        gather(lights, light_points[l], light_set);
+        for (std::uint32_t a : light_set) {
+          for (std::uint32_t b : view_set) pairs.insert({a, b});
+        }
+      }
+    }
+
+    SceneNeeds needs;
+    std::set<std::uint32_t> subspaces;
+    for (const auto& [light, view] : pairs) subspaces.insert(subspace_of(material, light, view));
+    needs.subspaces.assign(subspaces.begin(), subspaces.end());
+    needs.light_view_pairs = static_cast<std::uint32_t>(pairs.size());
+    needs.visible_triangles = visible;
+    const double texels = std::sqrt(std::max(densest, 1.0));
+    std::uint32_t size = std::max(options.min_texture_size, 1u);
+    while (size < texels && size < options.max_texture_size) size *= 2;
+    needs.texture_size = std::min(size, std::max(options.max_texture_size, options.min_texture_size));
+    out = std::move(needs);
+    return {};
+  } catch (const std::bad_alloc&) {
+    return {ErrorCode::out_of_host_memory, "out of host memory while working out what the scene needs"};
+  }
+}
+
+}  // namespace carbtf
