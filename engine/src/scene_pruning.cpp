@@ -103,7 +103,7 @@ Status scene_needs(const Material& material, const Mesh& mesh, const RenderScene
     const std::size_t light_count = std::min<std::size_t>(scene.lights.size(), kMaxRenderLights);
 
     std::set<std::pair<std::uint32_t, std::uint32_t>> pairs;
-    double densest = 0.0;  // pixels per unit of uv area
+    std::vector<std::pair<double, double>> densities;  // (pixels per unit of uv area, pixels) per triangle
     std::uint32_t visible = 0;
     const std::uint32_t n = std::max(options.samples_per_edge, 1u);
     for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
@@ -142,7 +142,7 @@ Status scene_needs(const Material& material, const Mesh& mesh, const RenderScene
         const glm::vec2 t2(v[2]->uv[0] - v[0]->uv[0], v[2]->uv[1] - v[0]->uv[1]);
         const double pixel_area = 0.5 * std::abs(static_cast<double>(s1.x) * s2.y - static_cast<double>(s1.y) * s2.x);
         const double uv_area = 0.5 * std::abs(static_cast<double>(t1.x) * t2.y - static_cast<double>(t1.y) * t2.x);
-        if (uv_area > 1e-14) densest = std::max(densest, pixel_area / uv_area);
+        if (uv_area > 1e-14 && pixel_area > 0.0) densities.push_back({pixel_area / uv_area, pixel_area});
       }
 
       // Directions over the triangle, interpolated as the rasterizer does (linearly at this scale).
@@ -200,7 +200,17 @@ Status scene_needs(const Material& material, const Mesh& mesh, const RenderScene
     needs.subspaces.assign(subspaces.begin(), subspaces.end());
     needs.light_view_pairs = static_cast<std::uint32_t>(pairs.size());
     needs.visible_triangles = visible;
-    const double texels = std::sqrt(std::max(densest, 1.0));
+    // The density that 90% of the covered pixels need at most: a mesh's uv-degenerate corners (a sphere's
+    // poles) would otherwise ask for the largest size the options allow.
+    std::sort(densities.begin(), densities.end());
+    double total = 0.0, density = 1.0;
+    for (const auto& d : densities) total += d.second;
+    for (double covered = 0.0; const auto& d : densities) {
+      covered += d.second;
+      density = d.first;
+      if (covered >= 0.9 * total) break;
+    }
+    const double texels = std::sqrt(std::max(density, 1.0));
     std::uint32_t size = std::max(options.min_texture_size, 1u);
     while (size < texels && size < options.max_texture_size) size *= 2;
     needs.texture_size = std::min(size, std::max(options.max_texture_size, options.min_texture_size));

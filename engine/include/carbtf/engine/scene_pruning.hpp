@@ -9,8 +9,9 @@
 // quarter of its size, counts. Occlusion is ignored. So the set errs on the large side: a frame
 // rendered from only these subspace images equals the one rendered from all of them (the tests check
 // this bit for bit).
-// The texture size is the texel density of the most magnified visible triangle: the power of two
-// that gives it at least one texel per pixel, clamped to the options' range.
+// The texture size is the power of two that gives at least one texel per pixel to the triangles
+// covering 90% of the frame's mesh pixels (by their pixel-to-uv area ratio; the most magnified tenth,
+// such as a sphere's uv-degenerate poles, does not decide), clamped to the options' range.
 // Thread safety: pure.
 #pragma once
 
