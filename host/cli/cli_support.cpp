@@ -1,6 +1,6 @@
 #include "cli/cli_support.hpp"
 
-
+#include <algorithm>
 #include <iostream>
 
 namespace carbtf::cli {
@@ -66,6 +66,15 @@ void check(const Status& status, const std::string& what) {
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+double percentile(std::vector<double> samples, double fraction) {
+  if (samples.empty()) return 0.0;
+  std::sort(samples.begin(), samples.end());
+  const double position = std::clamp(fraction, 0.0, 1.0) * static_cast<double>(samples.size() - 1);
+  const auto below = static_cast<std::size_t>(position);
+  const std::size_t above = std::min(below + 1, samples.size() - 1);
+  return samples[below] + (position - static_cast<double>(below)) * (samples[above] - samples[below]);
 }
 
 }  // namespace carbtf::cli

@@ -7,6 +7,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "carbtf/engine/context.hpp"
 #include "carbtf/engine/subspace_synthesizer.hpp"
@@ -40,5 +41,10 @@ void check_validation(const Context& context);
 void check(const Status& status, const std::string& what);
 
 double seconds_since(std::chrono::steady_clock::time_point start);
+
+// The `fraction` quantile of benchmark samples, interpolating linearly between order statistics
+// (0.5: the median, the mean of the two middle samples for an even count); 0 for no samples.
+double percentile(std::vector<double> samples, double fraction);
+inline double median(std::vector<double> samples) { return percentile(std::move(samples), 0.5); }
 
 }  // namespace carbtf::cli

@@ -28,12 +28,6 @@ struct NoiseBenchOptions {
   unsigned repeats = 5;
 };
 
-double median(std::vector<double> samples) {
-  std::sort(samples.begin(), samples.end());
-  const std::size_t n = samples.size();
-  return n % 2 ? samples[n / 2] : 0.5 * (samples[n / 2 - 1] + samples[n / 2]);
-}
-
 template <typename Run>
 std::vector<double> time_runs(unsigned repeats, Run&& run) {
   std::vector<double> seconds;
@@ -155,6 +149,7 @@ void register_bench_command(CLI::App& app) {
 
   register_bench_analyze_command(*bench);
   register_bench_synth_command(*bench);
+  register_bench_frame_command(*bench);
 }
 
 }  // namespace carbtf::cli

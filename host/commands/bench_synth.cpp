@@ -73,11 +73,6 @@ struct BenchRow {
   std::uint32_t dispatches = 0;
 };
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
-
 // The measured images the fidelity error compares with, each analysed once (quality/fidelity.hpp).
 struct MeasuredStatistics {
   std::vector<LightView> pairs;

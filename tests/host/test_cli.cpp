@@ -127,7 +127,7 @@ TEST_CASE("carbtf demo runs the whole pipeline and writes a report", "[cli]") {
 
 TEST_CASE("--help answers for every command", "[cli]") {
   for (const std::string command : {"", "noise", "devices", "demo", "sample", "info", "analyze", "normals",
-                                    "synth", "conform", "render", "bench noise", "bench data", "bench analyze", "bench synth"}) {
+                                    "synth", "conform", "render", "bench noise", "bench data", "bench analyze", "bench synth", "bench frame"}) {
     const Run r = run(command + " --help");
     INFO("carbtf " << command << " --help\n" << r.output);
     CHECK(r.status == 0);
@@ -282,6 +282,20 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
       CHECK_THAT(bad.output, Catch::StartsWith("carbtf: error: ") && Catch::Contains(expected));
     }
     CHECK_FALSE(fs::exists(folder / "bad.png"));
+  }
+  SECTION("carbtf bench frame reports synthesis and render times per frame") {
+    const fs::path out = folder / "frames";
+    const Run bench = run("bench frame --material " + material.string() + " --frames 4 --width 64 --height 48 "
+                          "--texture-size 32 --validation --out " + out.string());
+    INFO(bench.output);
+    REQUIRE(bench.status == 0);
+    CHECK_THAT(bench.output, Catch::Contains("render pass, GPU timestamps | 4 |") &&
+                                 Catch::Contains("synthesis, GPU timestamps (frames that synthesize)"));
+    const auto csv_bytes = read_file_bytes(out / "bench_frame.csv");
+    std::string csv;
+    for (const std::byte b : csv_bytes) csv.push_back(static_cast<char>(b));
+    CHECK(line_count(csv) == 5);  // header + 4 frames
+    CHECK(fs::exists(out / "bench_frame.md"));
   }
   SECTION("bad analysis arguments") {
     for (const auto& [arguments, expected] : std::vector<std::pair<std::string, std::string>>{

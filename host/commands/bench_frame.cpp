@@ -1,0 +1,239 @@
+// `carbtf bench frame`: N frames of a material on a mesh with the camera and the light orbiting it.
+// Each frame works out what it needs (scene pruning), synthesizes the subspace images it needs and has
+// not got yet (the first frame: all it sees), then renders. It reports, per frame and as median and
+// p95, the GPU timestamps of synthesis (on frames that synthesize) and of the render pass, and the CPU
+// wall time of the whole frame (pruning, recording, submit, wait; readback excluded), as a table and a CSV.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <set>
+
+#include "carbtf/analysis/analyze.hpp"
+#include "carbtf/analysis/btf/btf_reader.hpp"
+#include "carbtf/analysis/btf/directions.hpp"
+#include "carbtf/analysis/btf/ubo2003_writer.hpp"
+#include "carbtf/analysis/image_io.hpp"
+#include "carbtf/analysis/sample/height_field_renderer.hpp"
+#include "carbtf/analysis/sample/sample_materials.hpp"
+#include "carbtf/engine/gpu_timer.hpp"
+#include "carbtf/engine/material_binding.hpp"
+#include "carbtf/engine/material_file.hpp"
+#include "carbtf/engine/mesh_renderer.hpp"
+#include "carbtf/engine/scene_pruning.hpp"
+#include "carbtf/engine/subspace_synthesizer.hpp"
+#include "cli/cli_support.hpp"
+#include "commands/commands.hpp"
+
+namespace carbtf::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct FrameBenchOptions {
+  DeviceOptions device;
+  std::string material;  // empty: the leather sample, analysed into the output folder
+  std::string mesh = "sphere";
+  std::uint32_t frames = 30;
+  std::uint32_t width = 1920;
+  std::uint32_t height = 1080;
+  std::uint32_t texture_size = 0;  // 0: what the first frame needs, up to 1024
+  std::string out = "bench_frame";
+};
+
+struct FrameRecord {
+  std::uint32_t frame = 0;
+  std::size_t synthesized = 0;  // subspace images synthesized on this frame (0: none)
+  std::size_t resident = 0;     // subspace images available to the render
+  double synthesis_gpu_ms = 0.0;
+  double render_gpu_ms = 0.0;
+  double wall_ms = 0.0;
+};
+
+Material bench_material(const FrameBenchOptions& options, const fs::path& out) {
+  Material material;
+  if (!options.material.empty()) {
+    check(read_material_file(options.material, material), "cannot read the material");
+    return material;
+  }
+  std::printf("no --material: analysing the leather sample (64^2) into %s\n", (out / "leather.cbtf").c_str());
+  std::fflush(stdout);
+  const Surface surface = make_sample_surface("leather", 64, 1);
+  const fs::path btf = out / "leather_btf";
+  {
+    Ubo2003Writer writer(btf, ".png", false);
+    const auto& directions = ubo2003_directions();
+    render_btf(surface, directions, directions, {}, [&](std::uint32_t l, std::uint32_t v, std::span<const float> image) {
+      writer.write(l, v, image, surface.size, surface.size);
+    });
+    writer.finish();
+  }
+  std::vector<std::string> warnings;
+  AnalysisOptions analysis;
+  analysis.progress = false;
+  material = analyze_btf(load_btf(btf, {}, warnings), analysis).material;
+  check(write_material_file(out / "leather.cbtf", material), "cannot write the material");
+  fs::remove_all(btf);
+  return material;
+}
+
+Mesh bench_mesh(const std::string& name) {
+  if (name == "plane") return make_plane(8);
+  if (name == "cylinder") return make_cylinder();
+  if (name == "torus") return make_torus();
+  if (name == "sphere") return make_sphere();
+  throw CommandError("--mesh " + name + ": expected plane, sphere, cylinder or torus");
+}
+
+// Frame i of n: the camera orbits at 60 degrees from the pole, the light the other way at 40.
+RenderScene orbit_scene(std::uint32_t i, std::uint32_t n) {
+  constexpr double kDegree = std::numbers::pi / 180.0;
+  const double turn = 360.0 * i / std::max(n, 1u);
+  RenderScene scene;
+  const double camera_phi = (35.0 + turn) * kDegree, camera_theta = 60.0 * kDegree, distance = 3.6;
+  scene.camera.eye = {static_cast<float>(distance * std::sin(camera_theta) * std::cos(camera_phi)),
+                      static_cast<float>(distance * std::sin(camera_theta) * std::sin(camera_phi)),
+                      static_cast<float>(distance * std::cos(camera_theta))};
+  const double light_phi = (120.0 - turn) * kDegree, light_theta = 40.0 * kDegree;
+  scene.lights = {{false,
+                   {static_cast<float>(std::sin(light_theta) * std::cos(light_phi)),
+                    static_cast<float>(std::sin(light_theta) * std::sin(light_phi)), static_cast<float>(std::cos(light_theta))},
+                   {1, 1, 1}}};
+  return scene;
+}
+
+void run_bench_frame(const FrameBenchOptions& options) {
+  const fs::path out = options.out;
+  create_folder(out);
+  const Material material = bench_material(options, out);
+  const Mesh mesh = bench_mesh(options.mesh);
+  auto context = make_context(options.device);
+  if (context->device_info().timestamp_valid_bits == 0) {
+    throw CommandError(context->device_info().name + " has no GPU timestamps on its queue; bench frame needs them");
+  }
+  std::unique_ptr<SubspaceSynthesizer> synthesizer;
+  check(SubspaceSynthesizer::create(*context, synthesizer), "cannot build the synthesis pipelines");
+  GpuTimer timer;
+  check(GpuTimer::create(*context, 3, timer), "cannot create the GPU timer");
+
+  std::set<std::uint32_t> resident;
+  std::uint32_t texture_size = options.texture_size;
+  std::unique_ptr<MaterialBinding> binding;
+  std::unique_ptr<MeshRenderer> renderer;
+  RenderTargetInfo target;
+  target.width = options.width;
+  target.height = options.height;
+  std::vector<FrameRecord> records;
+  std::printf("bench frame: %u frames of %ux%u, %s, %zu subspace images in the material, on %s\n", options.frames,
+              options.width, options.height, options.mesh.c_str(), material.subspaces.size(),
+              context->device_info().name.c_str());
+  std::fflush(stdout);
+  for (std::uint32_t i = 0; i < options.frames; ++i) {
+    const RenderScene scene = orbit_scene(i, options.frames);
+    const auto start = std::chrono::steady_clock::now();
+    SceneNeeds needs;
+    PruningOptions pruning;
+    pruning.max_texture_size = 1024;
+    check(scene_needs(material, mesh, scene, options.width, options.height, pruning, needs), "cannot prune the scene");
+    if (texture_size == 0) texture_size = needs.texture_size;
+    FrameRecord record;
+    record.frame = i;
+    const std::size_t before = resident.size();
+    resident.insert(needs.subspaces.begin(), needs.subspaces.end());
+    const bool synthesize = resident.size() != before || !binding;
+    if (synthesize) {
+      // Everything resident is synthesized again: one texture array per material keeps the render's
+      // descriptor set simple, and only frames that see new (light, view) regions pay for it.
+      SynthesisRequest request;
+      request.seed = 1;
+      request.width = request.height = texture_size;
+      request.subspaces.assign(resident.begin(), resident.end());
+      record.synthesized = resident.size() - before;
+      renderer.reset();
+      binding.reset();
+      check(synthesizer->prepare(material, request), "cannot plan the synthesis");
+      check(MaterialBinding::create(*context, material, material_textures(*synthesizer, material), {request.seed},
+                                    binding),
+            "cannot bind the material");
+      check(MeshRenderer::create(*context, *binding, target, renderer), "cannot build the render pass");
+      check(renderer->set_mesh(mesh), "cannot upload the mesh");
+    }
+    record.resident = resident.size();
+    check(context->submit_and_wait([&](VkCommandBuffer cb) {
+      timer.record_reset(cb);
+      timer.record_timestamp(cb, 0, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT);
+      if (synthesize) {
+        if (Status s = synthesizer->record(cb); !s.ok()) return s;
+        binding->record_upload(cb);
+      }
+      timer.record_timestamp(cb, 1);
+      if (Status s = renderer->record(cb, scene); !s.ok()) return s;
+      timer.record_timestamp(cb, 2);
+      return Status{};
+    }),
+          "frame " + std::to_string(i) + " failed");
+    record.wall_ms = seconds_since(start) * 1e3;
+    check(timer.elapsed_ms(0, 1, record.synthesis_gpu_ms), "cannot read the GPU timestamps");
+    check(timer.elapsed_ms(1, 2, record.render_gpu_ms), "cannot read the GPU timestamps");
+    if (!synthesize) record.synthesis_gpu_ms = 0.0;
+    records.push_back(record);
+  }
+  check_validation(*context);
+
+  std::ofstream csv(out / "bench_frame.csv");
+  csv << "frame,synthesized_subspaces,resident_subspaces,synthesis_gpu_ms,render_gpu_ms,frame_wall_ms\n";
+  for (const FrameRecord& r : records) {
+    csv << r.frame << ',' << r.synthesized << ',' << r.resident << ',' << r.synthesis_gpu_ms << ',' << r.render_gpu_ms
+        << ',' << r.wall_ms << '\n';
+  }
+  std::vector<double> render_gpu, render_wall, synthesis_gpu, synthesis_wall;
+  for (const FrameRecord& r : records) {
+    render_gpu.push_back(r.render_gpu_ms);
+    (r.synthesized > 0 || r.frame == 0 ? synthesis_wall : render_wall).push_back(r.wall_ms);
+    if (r.synthesized > 0 || r.frame == 0) synthesis_gpu.push_back(r.synthesis_gpu_ms);
+  }
+  char line[256];
+  std::string table = "| what | frames | median ms | p95 ms |\n|---|---|---|---|\n";
+  auto row = [&](const char* what, const std::vector<double>& v) {
+    if (v.empty()) return;
+    std::snprintf(line, sizeof line, "| %s | %zu | %.2f | %.2f |\n", what, v.size(), median(v), percentile(v, 0.95));
+    table += line;
+  };
+  row("render pass, GPU timestamps", render_gpu);
+  row("frame wall time, render only", render_wall);
+  row("synthesis, GPU timestamps (frames that synthesize)", synthesis_gpu);
+  row("frame wall time, with synthesis", synthesis_wall);
+  std::ofstream md(out / "bench_frame.md");
+  std::snprintf(line, sizeof line, "bench frame: %u frames of %ux%u, %s on %s, texture %u^2, %zu of %zu subspace images resident at the end\n\n",
+                options.frames, options.width, options.height, options.mesh.c_str(), context->device_info().name.c_str(),
+                texture_size, resident.size(), material.subspaces.size());
+  md << line << table;
+  std::printf("%s%s", line, table.c_str());
+  std::printf("wrote %s/bench_frame.csv and bench_frame.md\n", out.string().c_str());
+}
+
+}  // namespace
+
+void register_bench_frame_command(CLI::App& bench) {
+  auto options = std::make_shared<FrameBenchOptions>();
+  auto* command = bench.add_subcommand(
+      "frame", "Render frames of a material on a mesh with an orbiting camera and light: GPU time of synthesis and of the "
+               "render pass, CPU wall time per frame, as median and p95, in a table and a CSV");
+  command->add_option("--material", options->material,
+                      "Material file (default: the leather sample, analysed at 64^2 into the output folder)");
+  command->add_option("--mesh", options->mesh, "plane, sphere, cylinder or torus")->capture_default_str();
+  command->add_option("--frames", options->frames, "Frames to render")->check(CLI::Range(1u, 100000u))->capture_default_str();
+  command->add_option("--width", options->width, "Frame width")->check(CLI::Range(1u, 16384u))->capture_default_str();
+  command->add_option("--height", options->height, "Frame height")->check(CLI::Range(1u, 16384u))->capture_default_str();
+  command->add_option("--texture-size", options->texture_size,
+                      "Synthesized texels per side (default: what the first frame needs, up to 1024)")
+      ->check(CLI::Range(16u, 8192u));
+  command->add_option("--out", options->out, "Output folder")->capture_default_str();
+  add_device_options(*command, options->device);
+  command->callback([options] { run_bench_frame(*options); });
+}
+
+}  // namespace carbtf::cli
