@@ -8,7 +8,8 @@
 
 namespace carbtf {
 
-static_assert(gpu::CARBTF_LOOKUP_MIN_WEIGHT == 1.0e-5f, "lookup_direction_weights() defaults to the shader's threshold");
+static_assert(gpu::CARBTF_LOOKUP_MIN_WEIGHT == 1.0e-5f,
+              "lookup_direction_weights() defaults to the shader's threshold");
 
 namespace {
 
@@ -64,7 +65,8 @@ DirectionLookupGrid build_direction_lookup(const DirectionTriangulation& tri, st
       // The triangulation is convex, so a cell whose corners are all inside it lies inside.
       const Point corners[4] = {{x0, y0}, {x1, y0}, {x0, y1}, {x1, y1}};
       bool partly_outside = false;
-      for (const Point& corner : corners) partly_outside = partly_outside || !inside_triangulation(tri, corner[0], corner[1]);
+      for (const Point& corner : corners)
+        partly_outside = partly_outside || !inside_triangulation(tri, corner[0], corner[1]);
       if (!partly_outside || tri.boundary.empty()) continue;
       // An edge can be nearest to some point of the cell only if it is within the nearest edge's
       // distance from the centre plus the cell's diameter.
@@ -85,14 +87,16 @@ DirectionLookupGrid build_direction_lookup(const DirectionTriangulation& tri, st
   return grid;
 }
 
-DirectionWeights lookup_direction_weights(const DirectionLookupGrid& grid, const DirectionTriangulation& tri, float x,
-                                          float y, float min_weight) {
+DirectionWeights lookup_direction_weights(const DirectionLookupGrid& grid, const DirectionTriangulation& tri,
+                                          float x, float y, float min_weight) {
   DirectionWeights w;
   w.weight = {1.0f, 0.0f, 0.0f};
   if (grid.grid_size == 0) return w;
   const int g = static_cast<int>(grid.grid_size);
-  const int cx = std::clamp(static_cast<int>(std::floor((x * 0.5f + 0.5f) * static_cast<float>(g))), 0, g - 1);
-  const int cy = std::clamp(static_cast<int>(std::floor((y * 0.5f + 0.5f) * static_cast<float>(g))), 0, g - 1);
+  const int cx =
+      std::clamp(static_cast<int>(std::floor((x * 0.5f + 0.5f) * static_cast<float>(g))), 0, g - 1);
+  const int cy =
+      std::clamp(static_cast<int>(std::floor((y * 0.5f + 0.5f) * static_cast<float>(g))), 0, g - 1);
   const std::size_t c = static_cast<std::size_t>(cy) * grid.grid_size + static_cast<std::size_t>(cx);
   auto point = [&](std::uint32_t i) {
     return std::array<float, 2>{static_cast<float>(tri.points[i][0]), static_cast<float>(tri.points[i][1])};
@@ -131,7 +135,8 @@ DirectionWeights lookup_direction_weights(const DirectionLookupGrid& grid, const
       }
     }
   }
-  DirectionWeights& chosen = best_inside < -gpu::CARBTF_LOOKUP_INSIDE_SLACK && best_distance < 1.0e30f ? edge_weights : w;
+  DirectionWeights& chosen =
+      best_inside < -gpu::CARBTF_LOOKUP_INSIDE_SLACK && best_distance < 1.0e30f ? edge_weights : w;
   float sum = 0.0f;
   for (float& weight : chosen.weight) {
     if (weight < min_weight) weight = 0.0f;

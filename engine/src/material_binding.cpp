@@ -77,17 +77,20 @@ MaterialTextures material_textures(const SubspaceSynthesizer& synthesizer, const
 }
 
 Status MaterialBinding::create(Context& context, const Material& material, const MaterialTextures& textures,
-                               const MaterialBindingInfo& info, std::unique_ptr<MaterialBinding>& out) noexcept {
+                               const MaterialBindingInfo& info,
+                               std::unique_ptr<MaterialBinding>& out) noexcept {
   try {
     if (textures.view == VK_NULL_HANDLE || textures.width == 0 || textures.height == 0) {
-      return {ErrorCode::invalid_argument, "the material textures are empty: synthesize the subspace images first"};
+      return {ErrorCode::invalid_argument,
+              "the material textures are empty: synthesize the subspace images first"};
     }
     if (textures.layers.size() != material.subspaces.size()) {
-      return {ErrorCode::invalid_argument, "the material textures give layers for " +
-                                               std::to_string(textures.layers.size()) + " subspace images, the material has " +
-                                               std::to_string(material.subspaces.size())};
+      return {ErrorCode::invalid_argument,
+              "the material textures give layers for " + std::to_string(textures.layers.size()) +
+                  " subspace images, the material has " + std::to_string(material.subspaces.size())};
     }
-    if (!std::isfinite(info.parallax_scale)) return {ErrorCode::invalid_argument, "the parallax scale is not finite"};
+    if (!std::isfinite(info.parallax_scale))
+      return {ErrorCode::invalid_argument, "the parallax scale is not finite"};
     std::unique_ptr<MaterialBinding> binding(new MaterialBinding());
     binding->context_ = &context;
     binding->resources_ = std::make_unique<Resources>();
@@ -103,9 +106,11 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     header.layer_table = static_cast<std::uint32_t>(r.tables.size() - kHeaderWords);
     for (std::size_t l = 0; l < material.lights.size(); ++l) {
       for (std::size_t v = 0; v < material.views.size(); ++v) {
-        const std::uint32_t s = subspace_of(material, static_cast<std::uint32_t>(l), static_cast<std::uint32_t>(v));
-        r.tables.push_back(textures.layers[s] == std::numeric_limits<std::uint32_t>::max() ? gpu::CARBTF_NO_LAYER
-                                                                                             : textures.layers[s]);
+        const std::uint32_t s =
+            subspace_of(material, static_cast<std::uint32_t>(l), static_cast<std::uint32_t>(v));
+        r.tables.push_back(textures.layers[s] == std::numeric_limits<std::uint32_t>::max()
+                               ? gpu::CARBTF_NO_LAYER
+                               : textures.layers[s]);
       }
     }
     header.width = textures.width;
@@ -117,7 +122,8 @@ Status MaterialBinding::create(Context& context, const Material& material, const
 
     r.range_map.assign(std::size_t{textures.width} * textures.height, 0.0f);
     if (material.range.tile_size > 0) {
-      enlarge_range_map(material.range, info.seed, info.row0, info.col0, textures.width, textures.height, r.range_map);
+      enlarge_range_map(material.range, info.seed, info.row0, info.col0, textures.width, textures.height,
+                        r.range_map);
     }
     double sum = 0.0;
     for (float h : r.range_map) sum += h;
@@ -126,13 +132,13 @@ Status MaterialBinding::create(Context& context, const Material& material, const
 
     // GPU side.
     CARBTF_TRY(Buffer::create(context,
-                              {r.tables.size() * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::host_upload,
-                               "carbtf material tables"},
+                              {r.tables.size() * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                               MemoryUsage::host_upload, "carbtf material tables"},
                               r.table_buffer));
     std::memcpy(r.table_buffer.mapped(), r.tables.data(), r.tables.size() * 4);
     CARBTF_TRY(Buffer::create(context,
-                              {r.range_map.size() * 4, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, MemoryUsage::host_upload,
-                               "carbtf range map staging"},
+                              {r.range_map.size() * 4, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                               MemoryUsage::host_upload, "carbtf range map staging"},
                               r.range_staging));
     std::memcpy(r.range_staging.mapped(), r.range_map.data(), r.range_map.size() * 4);
     ImageCreateInfo image_info;
@@ -158,10 +164,12 @@ Status MaterialBinding::create(Context& context, const Material& material, const
 
     const VkShaderStageFlags stages = VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT;
     const VkDescriptorSetLayoutBinding bindings[3] = {
-        {gpu::CARBTF_MATERIAL_BINDING_SUBSPACES, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stages, nullptr},
+        {gpu::CARBTF_MATERIAL_BINDING_SUBSPACES, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stages,
+         nullptr},
         {gpu::CARBTF_MATERIAL_BINDING_RANGE, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stages, nullptr},
         {gpu::CARBTF_MATERIAL_BINDING_TABLES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stages, nullptr}};
-    auto layout_info = vk_struct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
+    auto layout_info =
+        vk_struct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
     layout_info.bindingCount = 3;
     layout_info.pBindings = bindings;
     VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
@@ -186,7 +194,8 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     CARBTF_VK_TRY(vk.vkAllocateDescriptorSets(device, &allocate, &r.set));
 
     const VkDescriptorImageInfo subspaces{sampler, textures.view, textures.layout};
-    const VkDescriptorImageInfo range{sampler, r.range_image.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    const VkDescriptorImageInfo range{sampler, r.range_image.view(),
+                                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     const VkDescriptorBufferInfo tables{r.table_buffer.handle(), 0, VK_WHOLE_SIZE};
     VkWriteDescriptorSet writes[3];
     for (int i = 0; i < 3; ++i) {
@@ -219,8 +228,8 @@ void MaterialBinding::record_upload(VkCommandBuffer command_buffer) const noexce
   barrier.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
   barrier.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
   barrier.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-  vk.vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0,
-                          nullptr, 0, nullptr, 1, &barrier);
+  vk.vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                          0, 0, nullptr, 0, nullptr, 1, &barrier);
   VkBufferImageCopy copy{};
   copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
   copy.imageExtent = {r.width, r.height, 1};
@@ -231,8 +240,8 @@ void MaterialBinding::record_upload(VkCommandBuffer command_buffer) const noexce
   barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
   barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
   vk.vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                          VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0,
-                          nullptr, 1, &barrier);
+                          VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0,
+                          nullptr, 0, nullptr, 1, &barrier);
 }
 
 Status MaterialBinding::upload_and_wait() noexcept {
@@ -242,11 +251,23 @@ Status MaterialBinding::upload_and_wait() noexcept {
   });
 }
 
-VkDescriptorSetLayout MaterialBinding::set_layout() const noexcept { return resources_->set_layout.get(); }
-VkDescriptorSet MaterialBinding::set() const noexcept { return resources_->set; }
-std::uint32_t MaterialBinding::width() const noexcept { return resources_->width; }
-std::uint32_t MaterialBinding::height() const noexcept { return resources_->height; }
-const std::vector<std::uint32_t>& MaterialBinding::tables() const noexcept { return resources_->tables; }
-const std::vector<float>& MaterialBinding::range_map() const noexcept { return resources_->range_map; }
+VkDescriptorSetLayout MaterialBinding::set_layout() const noexcept {
+  return resources_->set_layout.get();
+}
+VkDescriptorSet MaterialBinding::set() const noexcept {
+  return resources_->set;
+}
+std::uint32_t MaterialBinding::width() const noexcept {
+  return resources_->width;
+}
+std::uint32_t MaterialBinding::height() const noexcept {
+  return resources_->height;
+}
+const std::vector<std::uint32_t>& MaterialBinding::tables() const noexcept {
+  return resources_->tables;
+}
+const std::vector<float>& MaterialBinding::range_map() const noexcept {
+  return resources_->range_map;
+}
 
 }  // namespace carbtf

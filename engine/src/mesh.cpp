@@ -66,11 +66,12 @@ Mesh make_plane(std::uint32_t subdivisions) {
 // Azimuth a = 2 pi u - pi / 2 starts at -y, so u = 0 (the seam) faces away from a camera on +y... and
 // a camera on -y sees it; the CLI's default camera looks from +x +y.
 Mesh make_sphere(std::uint32_t segments, std::uint32_t rings) {
-  return parametric(std::max(segments, 3u), std::max(rings, 2u), [](glm::vec2 uv, glm::vec3& p, glm::vec3& n) {
-    const float a = 2 * kPi * uv.x - kPi / 2, polar = kPi * uv.y;
-    n = glm::vec3(std::sin(polar) * std::cos(a), std::sin(polar) * std::sin(a), std::cos(polar));
-    p = n;
-  });
+  return parametric(
+      std::max(segments, 3u), std::max(rings, 2u), [](glm::vec2 uv, glm::vec3& p, glm::vec3& n) {
+        const float a = 2 * kPi * uv.x - kPi / 2, polar = kPi * uv.y;
+        n = glm::vec3(std::sin(polar) * std::cos(a), std::sin(polar) * std::sin(a), std::cos(polar));
+        p = n;
+      });
 }
 
 Mesh make_cylinder(std::uint32_t segments) {
@@ -82,26 +83,32 @@ Mesh make_cylinder(std::uint32_t segments) {
 }
 
 Mesh make_torus(std::uint32_t segments, std::uint32_t tube_segments) {
-  return parametric(std::max(segments, 3u), std::max(tube_segments, 3u), [](glm::vec2 uv, glm::vec3& p, glm::vec3& n) {
-    const float a = 2 * kPi * uv.x - kPi / 2, b = 2 * kPi * uv.y;
-    const glm::vec3 radial(std::cos(a), std::sin(a), 0);
-    n = std::cos(b) * radial + glm::vec3(0, 0, std::sin(b));
-    p = radial + 0.4f * n;
-  });
+  return parametric(std::max(segments, 3u), std::max(tube_segments, 3u),
+                    [](glm::vec2 uv, glm::vec3& p, glm::vec3& n) {
+                      const float a = 2 * kPi * uv.x - kPi / 2, b = 2 * kPi * uv.y;
+                      const glm::vec3 radial(std::cos(a), std::sin(a), 0);
+                      n = std::cos(b) * radial + glm::vec3(0, 0, std::sin(b));
+                      p = radial + 0.4f * n;
+                    });
 }
 
 Mesh make_mesh(MeshShape shape) {
   switch (shape) {
-    case MeshShape::sphere: return make_sphere();
-    case MeshShape::cylinder: return make_cylinder();
-    case MeshShape::torus: return make_torus();
-    case MeshShape::plane: break;
+    case MeshShape::sphere:
+      return make_sphere();
+    case MeshShape::cylinder:
+      return make_cylinder();
+    case MeshShape::torus:
+      return make_torus();
+    case MeshShape::plane:
+      break;
   }
   return make_plane();
 }
 
 void generate_tangents(Mesh& mesh) {
-  std::vector<glm::vec3> along_u(mesh.vertices.size(), glm::vec3(0)), along_v(mesh.vertices.size(), glm::vec3(0));
+  std::vector<glm::vec3> along_u(mesh.vertices.size(), glm::vec3(0)),
+      along_v(mesh.vertices.size(), glm::vec3(0));
   for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
     const std::uint32_t k[3] = {mesh.indices[i], mesh.indices[i + 1], mesh.indices[i + 2]};
     const auto& a = mesh.vertices[k[0]];
@@ -142,7 +149,8 @@ void generate_tangents(Mesh& mesh) {
 }
 
 Status validate_mesh(const Mesh& mesh) {
-  if (mesh.vertices.empty() || mesh.indices.empty()) return {ErrorCode::invalid_argument, "the mesh has no triangles"};
+  if (mesh.vertices.empty() || mesh.indices.empty())
+    return {ErrorCode::invalid_argument, "the mesh has no triangles"};
   if (mesh.indices.size() % 3 != 0) {
     return {ErrorCode::invalid_argument, "the mesh's index count " + std::to_string(mesh.indices.size()) +
                                              " is not a whole number of triangles"};
@@ -155,10 +163,12 @@ Status validate_mesh(const Mesh& mesh) {
   }
   for (const MeshVertex& v : mesh.vertices) {
     for (float x : v.position) {
-      if (!std::isfinite(x)) return {ErrorCode::invalid_argument, "the mesh has a non-finite vertex position"};
+      if (!std::isfinite(x))
+        return {ErrorCode::invalid_argument, "the mesh has a non-finite vertex position"};
     }
     for (float x : v.uv) {
-      if (!std::isfinite(x)) return {ErrorCode::invalid_argument, "the mesh has a non-finite texture coordinate"};
+      if (!std::isfinite(x))
+        return {ErrorCode::invalid_argument, "the mesh has a non-finite texture coordinate"};
     }
   }
   return {};

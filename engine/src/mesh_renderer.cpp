@@ -21,9 +21,13 @@ static_assert(kMaxRenderLights == gpu::CARBTF_RENDER_MAX_LIGHTS);
 
 namespace {
 
-glm::vec3 vec3_of(const std::array<float, 3>& a) { return {a[0], a[1], a[2]}; }
+glm::vec3 vec3_of(const std::array<float, 3>& a) {
+  return {a[0], a[1], a[2]};
+}
 
-std::uint32_t bytes_per_pixel(VkFormat format) { return format == VK_FORMAT_R32G32B32A32_SFLOAT ? 16 : 4; }
+std::uint32_t bytes_per_pixel(VkFormat format) {
+  return format == VK_FORMAT_R32G32B32A32_SFLOAT ? 16 : 4;
+}
 
 }  // namespace
 
@@ -31,7 +35,8 @@ std::array<float, 16> view_projection(const RenderCamera& camera, float aspect) 
   const glm::mat4 view = glm::lookAtRH(vec3_of(camera.eye), vec3_of(camera.target), vec3_of(camera.up));
   glm::mat4 projection;
   if (camera.fov_y_degrees > 0.0f) {
-    projection = glm::perspectiveRH_ZO(glm::radians(camera.fov_y_degrees), aspect, camera.near_plane, camera.far_plane);
+    projection = glm::perspectiveRH_ZO(glm::radians(camera.fov_y_degrees), aspect, camera.near_plane,
+                                       camera.far_plane);
   } else {
     const float h = 0.5f * camera.ortho_height, w = h * aspect;
     projection = glm::orthoRH_ZO(-w, w, -h, h, camera.near_plane, camera.far_plane);
@@ -88,9 +93,11 @@ Status create_render_pass(const Context& context, VkFormat colour_format, Unique
   dependencies[0].srcSubpass = VK_SUBPASS_EXTERNAL;
   dependencies[0].dstSubpass = 0;
   dependencies[0].srcStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
-  dependencies[0].dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT;
+  dependencies[0].dstStageMask =
+      VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT | VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT;
   dependencies[0].srcAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
-  dependencies[0].dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
+  dependencies[0].dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT |
+                                  VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
                                   VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT;
   // The colour target's copy to the readback buffer.
   dependencies[1].srcSubpass = 0;
@@ -116,8 +123,9 @@ Status create_render_pass(const Context& context, VkFormat colour_format, Unique
 Status create_pipeline(const Context& context, VkRenderPass render_pass, VkPipelineLayout layout,
                        UniqueHandle<VkPipeline>& out) {
   UniqueHandle<VkShaderModule> vertex, fragment;
-  CARBTF_TRY(detail::create_shader_module(context, carbtf_spirv_material_vertex, sizeof(carbtf_spirv_material_vertex),
-                                          "carbtf material vertex", vertex));
+  CARBTF_TRY(detail::create_shader_module(context, carbtf_spirv_material_vertex,
+                                          sizeof(carbtf_spirv_material_vertex), "carbtf material vertex",
+                                          vertex));
   CARBTF_TRY(detail::create_shader_module(context, carbtf_spirv_material_fragment,
                                           sizeof(carbtf_spirv_material_fragment), "carbtf material fragment",
                                           fragment));
@@ -137,39 +145,43 @@ Status create_pipeline(const Context& context, VkRenderPass render_pass, VkPipel
       {1, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(MeshVertex, normal)},
       {2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, offsetof(MeshVertex, tangent)},
       {3, 0, VK_FORMAT_R32G32_SFLOAT, offsetof(MeshVertex, uv)}};
-  auto vertex_input =
-      vk_struct<VkPipelineVertexInputStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO);
+  auto vertex_input = vk_struct<VkPipelineVertexInputStateCreateInfo>(
+      VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO);
   vertex_input.vertexBindingDescriptionCount = 1;
   vertex_input.pVertexBindingDescriptions = &vertex_binding;
   vertex_input.vertexAttributeDescriptionCount = 4;
   vertex_input.pVertexAttributeDescriptions = attributes;
-  auto assembly =
-      vk_struct<VkPipelineInputAssemblyStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO);
+  auto assembly = vk_struct<VkPipelineInputAssemblyStateCreateInfo>(
+      VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO);
   assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-  auto viewport = vk_struct<VkPipelineViewportStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO);
+  auto viewport =
+      vk_struct<VkPipelineViewportStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO);
   viewport.viewportCount = 1;
   viewport.scissorCount = 1;
-  auto raster =
-      vk_struct<VkPipelineRasterizationStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO);
+  auto raster = vk_struct<VkPipelineRasterizationStateCreateInfo>(
+      VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO);
   raster.polygonMode = VK_POLYGON_MODE_FILL;
   raster.cullMode = VK_CULL_MODE_NONE;  // the depth test hides back faces; open meshes show both sides
   raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
   raster.lineWidth = 1.0f;
-  auto multisample =
-      vk_struct<VkPipelineMultisampleStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO);
+  auto multisample = vk_struct<VkPipelineMultisampleStateCreateInfo>(
+      VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO);
   multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-  auto depth = vk_struct<VkPipelineDepthStencilStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO);
+  auto depth = vk_struct<VkPipelineDepthStencilStateCreateInfo>(
+      VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO);
   depth.depthTestEnable = VK_TRUE;
   depth.depthWriteEnable = VK_TRUE;
   depth.depthCompareOp = VK_COMPARE_OP_LESS;
   VkPipelineColorBlendAttachmentState blend_attachment{};
-  blend_attachment.colorWriteMask =
-      VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
-  auto blend = vk_struct<VkPipelineColorBlendStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO);
+  blend_attachment.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
+                                    VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+  auto blend = vk_struct<VkPipelineColorBlendStateCreateInfo>(
+      VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO);
   blend.attachmentCount = 1;
   blend.pAttachments = &blend_attachment;
   const VkDynamicState dynamic_states[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-  auto dynamic = vk_struct<VkPipelineDynamicStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO);
+  auto dynamic =
+      vk_struct<VkPipelineDynamicStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO);
   dynamic.dynamicStateCount = 2;
   dynamic.pDynamicStates = dynamic_states;
 
@@ -187,7 +199,8 @@ Status create_pipeline(const Context& context, VkRenderPass render_pass, VkPipel
   info.layout = layout;
   info.renderPass = render_pass;
   VkPipeline pipeline = VK_NULL_HANDLE;
-  CARBTF_VK_TRY(context.vk().vkCreateGraphicsPipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
+  CARBTF_VK_TRY(
+      context.vk().vkCreateGraphicsPipelines(context.device(), VK_NULL_HANDLE, 1, &info, nullptr, &pipeline));
   out = UniqueHandle<VkPipeline>(&context.vk(), context.device(), pipeline);
   context.set_debug_name(out, "carbtf mesh pipeline");
   return {};
@@ -198,8 +211,10 @@ Status create_pipeline(const Context& context, VkRenderPass render_pass, VkPipel
 Status MeshRenderer::create(Context& context, const MaterialBinding& binding, const RenderTargetInfo& target,
                             std::unique_ptr<MeshRenderer>& out) noexcept {
   try {
-    if (target.colour_format != VK_FORMAT_R8G8B8A8_SRGB && target.colour_format != VK_FORMAT_R32G32B32A32_SFLOAT) {
-      return {ErrorCode::invalid_argument, "the render target format must be R8G8B8A8_SRGB or R32G32B32A32_SFLOAT"};
+    if (target.colour_format != VK_FORMAT_R8G8B8A8_SRGB &&
+        target.colour_format != VK_FORMAT_R32G32B32A32_SFLOAT) {
+      return {ErrorCode::invalid_argument,
+              "the render target format must be R8G8B8A8_SRGB or R32G32B32A32_SFLOAT"};
     }
     const std::uint32_t limit = context.device_info().max_image_dimension_2d;
     if (target.width == 0 || target.height == 0 || target.width > limit || target.height > limit) {
@@ -228,10 +243,11 @@ Status MeshRenderer::create(Context& context, const MaterialBinding& binding, co
     depth_info.usage = VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT;
     depth_info.debug_name = "carbtf render depth";
     CARBTF_TRY(Image::create(context, depth_info, r.depth));
-    CARBTF_TRY(Buffer::create(context,
-                              {VkDeviceSize{target.width} * target.height * bytes_per_pixel(target.colour_format),
-                               VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::host_readback, "carbtf render readback"},
-                              r.readback));
+    CARBTF_TRY(Buffer::create(
+        context,
+        {VkDeviceSize{target.width} * target.height * bytes_per_pixel(target.colour_format),
+         VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::host_readback, "carbtf render readback"},
+        r.readback));
     CARBTF_TRY(Buffer::create(context,
                               {sizeof(gpu::RenderFrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
                                MemoryUsage::host_upload, "carbtf render frame uniforms"},
@@ -251,8 +267,9 @@ Status MeshRenderer::create(Context& context, const MaterialBinding& binding, co
     r.framebuffer = UniqueHandle<VkFramebuffer>(&vk, device, framebuffer);
     context.set_debug_name(r.framebuffer, "carbtf render framebuffer");
 
-    const VkDescriptorSetLayoutBinding frame_binding{0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
-                                                     VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr};
+    const VkDescriptorSetLayoutBinding frame_binding{
+        0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT,
+        nullptr};
     auto frame_layout_info =
         vk_struct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
     frame_layout_info.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
@@ -279,7 +296,9 @@ Status MeshRenderer::create(Context& context, const MaterialBinding& binding, co
 
 MeshRenderer::~MeshRenderer() = default;
 
-const RenderTargetInfo& MeshRenderer::target() const noexcept { return resources_->target; }
+const RenderTargetInfo& MeshRenderer::target() const noexcept {
+  return resources_->target;
+}
 
 Status MeshRenderer::set_mesh(const Mesh& mesh) noexcept {
   CARBTF_TRY(validate_mesh(mesh));
@@ -290,8 +309,8 @@ Status MeshRenderer::set_mesh(const Mesh& mesh) noexcept {
                             r.vertices));
   std::memcpy(r.vertices.mapped(), mesh.vertices.data(), mesh.vertices.size() * sizeof(MeshVertex));
   CARBTF_TRY(Buffer::create(*context_,
-                            {mesh.indices.size() * 4, VK_BUFFER_USAGE_INDEX_BUFFER_BIT, MemoryUsage::host_upload,
-                             "carbtf mesh indices"},
+                            {mesh.indices.size() * 4, VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
+                             MemoryUsage::host_upload, "carbtf mesh indices"},
                             r.indices));
   std::memcpy(r.indices.mapped(), mesh.indices.data(), mesh.indices.size() * 4);
   r.index_count = static_cast<std::uint32_t>(mesh.indices.size());
@@ -310,10 +329,12 @@ Status MeshRenderer::record(VkCommandBuffer cb, const RenderScene& scene) noexce
   std::copy(scene.model.begin(), scene.model.end(), frame.model);
   const auto& c = scene.camera;
   if (c.fov_y_degrees > 0.0f) {
-    frame.camera[0] = c.eye[0], frame.camera[1] = c.eye[1], frame.camera[2] = c.eye[2], frame.camera[3] = 1.0f;
+    frame.camera[0] = c.eye[0], frame.camera[1] = c.eye[1], frame.camera[2] = c.eye[2],
+    frame.camera[3] = 1.0f;
   } else {
     const glm::vec3 towards = glm::normalize(vec3_of(c.eye) - vec3_of(c.target));
-    frame.camera[0] = towards.x, frame.camera[1] = towards.y, frame.camera[2] = towards.z, frame.camera[3] = 0.0f;
+    frame.camera[0] = towards.x, frame.camera[1] = towards.y, frame.camera[2] = towards.z,
+    frame.camera[3] = 0.0f;
   }
   const std::uint32_t lights =
       std::min<std::uint32_t>(static_cast<std::uint32_t>(scene.lights.size()), gpu::CARBTF_RENDER_MAX_LIGHTS);
@@ -321,7 +342,8 @@ Status MeshRenderer::record(VkCommandBuffer cb, const RenderScene& scene) noexce
     const RenderLight& light = scene.lights[i];
     glm::vec3 p = vec3_of(light.position);
     if (!light.point) p = glm::normalize(p);
-    frame.light_position[4 * i] = p.x, frame.light_position[4 * i + 1] = p.y, frame.light_position[4 * i + 2] = p.z;
+    frame.light_position[4 * i] = p.x, frame.light_position[4 * i + 1] = p.y,
+                             frame.light_position[4 * i + 2] = p.z;
     frame.light_position[4 * i + 3] = light.point ? 1.0f : 0.0f;
     for (int k = 0; k < 3; ++k) frame.light_colour[4 * i + k] = light.colour[k];
   }
@@ -339,12 +361,14 @@ Status MeshRenderer::record(VkCommandBuffer cb, const RenderScene& scene) noexce
   begin.pClearValues = clears;
   vk.vkCmdBeginRenderPass(cb, &begin, VK_SUBPASS_CONTENTS_INLINE);
   vk.vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, r.pipeline.get());
-  const VkViewport viewport{0, 0, static_cast<float>(r.target.width), static_cast<float>(r.target.height), 0, 1};
+  const VkViewport viewport{0, 0, static_cast<float>(r.target.width), static_cast<float>(r.target.height),
+                            0, 1};
   const VkRect2D scissor{{0, 0}, {r.target.width, r.target.height}};
   vk.vkCmdSetViewport(cb, 0, 1, &viewport);
   vk.vkCmdSetScissor(cb, 0, 1, &scissor);
   const VkDescriptorSet material_set = r.binding->set();
-  vk.vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, r.layout.get(), 0, 1, &material_set, 0, nullptr);
+  vk.vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, r.layout.get(), 0, 1, &material_set, 0,
+                             nullptr);
   const VkDescriptorBufferInfo uniform_info{r.uniforms.handle(), 0, sizeof(gpu::RenderFrameUniforms)};
   auto write = vk_struct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
   write.dstBinding = 0;
@@ -362,15 +386,16 @@ Status MeshRenderer::record(VkCommandBuffer cb, const RenderScene& scene) noexce
   VkBufferImageCopy copy{};
   copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
   copy.imageExtent = {r.target.width, r.target.height, 1};
-  vk.vkCmdCopyImageToBuffer(cb, r.colour.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, r.readback.handle(), 1, &copy);
+  vk.vkCmdCopyImageToBuffer(cb, r.colour.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, r.readback.handle(),
+                            1, &copy);
   auto to_host = vk_struct<VkBufferMemoryBarrier>(VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER);
   to_host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
   to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
   to_host.srcQueueFamilyIndex = to_host.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   to_host.buffer = r.readback.handle();
   to_host.size = VK_WHOLE_SIZE;
-  vk.vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr, 1, &to_host, 0,
-                          nullptr);
+  vk.vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr, 1,
+                          &to_host, 0, nullptr);
   return {};
 }
 

@@ -82,11 +82,13 @@ void exact_directions(const DirectionSet& set, glm::vec2 p, std::set<std::uint32
 
 }  // namespace
 
-Status scene_needs(const Material& material, const Mesh& mesh, const RenderScene& scene, std::uint32_t frame_width,
-                   std::uint32_t frame_height, const PruningOptions& options, SceneNeeds& out) noexcept {
+Status scene_needs(const Material& material, const Mesh& mesh, const RenderScene& scene,
+                   std::uint32_t frame_width, std::uint32_t frame_height, const PruningOptions& options,
+                   SceneNeeds& out) noexcept {
   try {
     CARBTF_TRY(validate_mesh(mesh));
-    if (frame_width == 0 || frame_height == 0) return {ErrorCode::invalid_argument, "the frame has no pixels"};
+    if (frame_width == 0 || frame_height == 0)
+      return {ErrorCode::invalid_argument, "the frame has no pixels"};
     DirectionSet lights, views;
     CARBTF_TRY(build_direction_triangulation(material.lights, lights.triangulation));
     CARBTF_TRY(build_direction_triangulation(material.views, views.triangulation));
@@ -95,7 +97,8 @@ Status scene_needs(const Material& material, const Mesh& mesh, const RenderScene
 
     glm::mat4 model, clip;
     std::copy(scene.model.begin(), scene.model.end(), glm::value_ptr(model));
-    const auto vp = view_projection(scene.camera, static_cast<float>(frame_width) / static_cast<float>(frame_height));
+    const auto vp =
+        view_projection(scene.camera, static_cast<float>(frame_width) / static_cast<float>(frame_height));
     std::copy(vp.begin(), vp.end(), glm::value_ptr(clip));
     const glm::vec3 eye(scene.camera.eye[0], scene.camera.eye[1], scene.camera.eye[2]);
     const glm::vec3 target(scene.camera.target[0], scene.camera.target[1], scene.camera.target[2]);
@@ -140,8 +143,10 @@ Status scene_needs(const Material& material, const Mesh& mesh, const RenderScene
         const glm::vec2 s1 = screen[1] - screen[0], s2 = screen[2] - screen[0];
         const glm::vec2 t1(v[1]->uv[0] - v[0]->uv[0], v[1]->uv[1] - v[0]->uv[1]);
         const glm::vec2 t2(v[2]->uv[0] - v[0]->uv[0], v[2]->uv[1] - v[0]->uv[1]);
-        const double pixel_area = 0.5 * std::abs(static_cast<double>(s1.x) * s2.y - static_cast<double>(s1.y) * s2.x);
-        const double uv_area = 0.5 * std::abs(static_cast<double>(t1.x) * t2.y - static_cast<double>(t1.y) * t2.x);
+        const double pixel_area =
+            0.5 * std::abs(static_cast<double>(s1.x) * s2.y - static_cast<double>(s1.y) * s2.x);
+        const double uv_area =
+            0.5 * std::abs(static_cast<double>(t1.x) * t2.y - static_cast<double>(t1.y) * t2.x);
         if (uv_area > 1e-14 && pixel_area > 0.0) densities.push_back({pixel_area / uv_area, pixel_area});
       }
 
@@ -153,7 +158,8 @@ Status scene_needs(const Material& material, const Mesh& mesh, const RenderScene
           const float wa = static_cast<float>(a) / n, wb = static_cast<float>(b) / n, wc = 1.0f - wa - wb;
           const glm::vec3 p = wa * world[0] + wb * world[1] + wc * world[2];
           const glm::vec3 nn = glm::normalize(wa * normal[0] + wb * normal[1] + wc * normal[2]);
-          const glm::vec3 tt = wa * glm::vec3(tangent[0]) + wb * glm::vec3(tangent[1]) + wc * glm::vec3(tangent[2]);
+          const glm::vec3 tt =
+              wa * glm::vec3(tangent[0]) + wb * glm::vec3(tangent[1]) + wc * glm::vec3(tangent[2]);
           const glm::vec3 t = glm::normalize(tt - nn * glm::dot(nn, tt));
           const float handedness = wa * tangent[0].w + wb * tangent[1].w + wc * tangent[2].w;
           const glm::vec3 up = handedness * glm::cross(nn, t);
@@ -170,7 +176,8 @@ Status scene_needs(const Material& material, const Mesh& mesh, const RenderScene
         }
       }
       if (view_points.empty()) continue;
-      auto gather = [](const DirectionSet& set, const std::vector<glm::vec2>& points, std::set<std::uint32_t>& found) {
+      auto gather = [](const DirectionSet& set, const std::vector<glm::vec2>& points,
+                       std::set<std::uint32_t>& found) {
         glm::vec2 lo(1e30f), hi(-1e30f);
         for (const glm::vec2& p : points) {
           lo = glm::min(lo, p);

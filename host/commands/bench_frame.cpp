@@ -66,9 +66,10 @@ Material bench_material(const FrameBenchOptions& options, const fs::path& out) {
   {
     Ubo2003Writer writer(btf, ".png", false);
     const auto& directions = ubo2003_directions();
-    render_btf(surface, directions, directions, {}, [&](std::uint32_t l, std::uint32_t v, std::span<const float> image) {
-      writer.write(l, v, image, surface.size, surface.size);
-    });
+    render_btf(surface, directions, directions, {},
+               [&](std::uint32_t l, std::uint32_t v, std::span<const float> image) {
+                 writer.write(l, v, image, surface.size, surface.size);
+               });
     writer.finish();
   }
   std::vector<std::string> warnings;
@@ -100,7 +101,8 @@ RenderScene orbit_scene(std::uint32_t i, std::uint32_t n) {
   const double light_phi = (120.0 - turn) * kDegree, light_theta = 40.0 * kDegree;
   scene.lights = {{false,
                    {static_cast<float>(std::sin(light_theta) * std::cos(light_phi)),
-                    static_cast<float>(std::sin(light_theta) * std::sin(light_phi)), static_cast<float>(std::cos(light_theta))},
+                    static_cast<float>(std::sin(light_theta) * std::sin(light_phi)),
+                    static_cast<float>(std::cos(light_theta))},
                    {1, 1, 1}}};
   return scene;
 }
@@ -112,7 +114,8 @@ void run_bench_frame(const FrameBenchOptions& options) {
   const Mesh mesh = bench_mesh(options.mesh);
   auto context = make_context(options.device);
   if (context->device_info().timestamp_valid_bits == 0) {
-    throw CommandError(context->device_info().name + " has no GPU timestamps on its queue; bench frame needs them");
+    throw CommandError(context->device_info().name +
+                       " has no GPU timestamps on its queue; bench frame needs them");
   }
   std::unique_ptr<SubspaceSynthesizer> synthesizer;
   check(SubspaceSynthesizer::create(*context, synthesizer), "cannot build the synthesis pipelines");
@@ -127,8 +130,8 @@ void run_bench_frame(const FrameBenchOptions& options) {
   target.width = options.width;
   target.height = options.height;
   std::vector<FrameRecord> records;
-  std::printf("bench frame: %u frames of %ux%u, %s, %zu subspace images in the material, on %s\n", options.frames,
-              options.width, options.height, options.mesh.c_str(), material.subspaces.size(),
+  std::printf("bench frame: %u frames of %ux%u, %s, %zu subspace images in the material, on %s\n",
+              options.frames, options.width, options.height, options.mesh.c_str(), material.subspaces.size(),
               context->device_info().name.c_str());
   std::fflush(stdout);
   for (std::uint32_t i = 0; i < options.frames; ++i) {
@@ -137,7 +140,8 @@ void run_bench_frame(const FrameBenchOptions& options) {
     SceneNeeds needs;
     PruningOptions pruning;
     pruning.max_texture_size = 1024;
-    check(scene_needs(material, mesh, scene, options.width, options.height, pruning, needs), "cannot prune the scene");
+    check(scene_needs(material, mesh, scene, options.width, options.height, pruning, needs),
+          "cannot prune the scene");
     if (texture_size == 0) texture_size = needs.texture_size;
     FrameRecord record;
     record.frame = i;
@@ -155,8 +159,8 @@ void run_bench_frame(const FrameBenchOptions& options) {
       renderer.reset();
       binding.reset();
       check(synthesizer->prepare(material, request), "cannot plan the synthesis");
-      check(MaterialBinding::create(*context, material, material_textures(*synthesizer, material), {request.seed},
-                                    binding),
+      check(MaterialBinding::create(*context, material, material_textures(*synthesizer, material),
+                                    {request.seed}, binding),
             "cannot bind the material");
       check(MeshRenderer::create(*context, *binding, target, renderer), "cannot build the render pass");
       check(renderer->set_mesh(mesh), "cannot upload the mesh");
@@ -186,8 +190,8 @@ void run_bench_frame(const FrameBenchOptions& options) {
   std::ofstream csv(out / "bench_frame.csv");
   csv << "frame,synthesized_subspaces,resident_subspaces,synthesis_gpu_ms,render_gpu_ms,frame_wall_ms\n";
   for (const FrameRecord& r : records) {
-    csv << r.frame << ',' << r.synthesized << ',' << r.resident << ',' << r.synthesis_gpu_ms << ',' << r.render_gpu_ms
-        << ',' << r.wall_ms << '\n';
+    csv << r.frame << ',' << r.synthesized << ',' << r.resident << ',' << r.synthesis_gpu_ms << ','
+        << r.render_gpu_ms << ',' << r.wall_ms << '\n';
   }
   std::vector<double> render_gpu, render_wall, synthesis_gpu, synthesis_wall;
   for (const FrameRecord& r : records) {
@@ -199,7 +203,8 @@ void run_bench_frame(const FrameBenchOptions& options) {
   std::string table = "| what | frames | median ms | p95 ms |\n|---|---|---|---|\n";
   auto row = [&](const char* what, const std::vector<double>& v) {
     if (v.empty()) return;
-    std::snprintf(line, sizeof line, "| %s | %zu | %.2f | %.2f |\n", what, v.size(), median(v), percentile(v, 0.95));
+    std::snprintf(line, sizeof line, "| %s | %zu | %.2f | %.2f |\n", what, v.size(), median(v),
+                  percentile(v, 0.95));
     table += line;
   };
   row("render pass, GPU timestamps", render_gpu);
@@ -207,9 +212,12 @@ void run_bench_frame(const FrameBenchOptions& options) {
   row("synthesis, GPU timestamps (frames that synthesize)", synthesis_gpu);
   row("frame wall time, with synthesis", synthesis_wall);
   std::ofstream md(out / "bench_frame.md");
-  std::snprintf(line, sizeof line, "bench frame: %u frames of %ux%u, %s on %s, texture %u^2, %zu of %zu subspace images resident at the end\n\n",
-                options.frames, options.width, options.height, options.mesh.c_str(), context->device_info().name.c_str(),
-                texture_size, resident.size(), material.subspaces.size());
+  std::snprintf(line, sizeof line,
+                "bench frame: %u frames of %ux%u, %s on %s, texture %u^2, %zu of %zu subspace images "
+                "resident at the end\n\n",
+                options.frames, options.width, options.height, options.mesh.c_str(),
+                context->device_info().name.c_str(), texture_size, resident.size(),
+                material.subspaces.size());
   md << line << table;
   std::printf("%s%s", line, table.c_str());
   std::printf("wrote %s/bench_frame.csv and bench_frame.md\n", out.string().c_str());
@@ -219,17 +227,26 @@ void run_bench_frame(const FrameBenchOptions& options) {
 
 void register_bench_frame_command(CLI::App& bench) {
   auto options = std::make_shared<FrameBenchOptions>();
-  auto* command = bench.add_subcommand(
-      "frame", "Render frames of a material on a mesh with an orbiting camera and light: GPU time of synthesis and of the "
-               "render pass, CPU wall time per frame, as median and p95, in a table and a CSV");
+  auto* command =
+      bench.add_subcommand("frame",
+                           "Render frames of a material on a mesh with an orbiting camera and light: GPU "
+                           "time of synthesis and of the "
+                           "render pass, CPU wall time per frame, as median and p95, in a table and a CSV");
   command->add_option("--material", options->material,
                       "Material file (default: the leather sample, analysed at 64^2 into the output folder)");
   command->add_option("--mesh", options->mesh, "plane, sphere, cylinder or torus")->capture_default_str();
-  command->add_option("--frames", options->frames, "Frames to render")->check(CLI::Range(1u, 100000u))->capture_default_str();
-  command->add_option("--width", options->width, "Frame width")->check(CLI::Range(1u, 16384u))->capture_default_str();
-  command->add_option("--height", options->height, "Frame height")->check(CLI::Range(1u, 16384u))->capture_default_str();
-  command->add_option("--texture-size", options->texture_size,
-                      "Synthesized texels per side (default: what the first frame needs, up to 1024)")
+  command->add_option("--frames", options->frames, "Frames to render")
+      ->check(CLI::Range(1u, 100000u))
+      ->capture_default_str();
+  command->add_option("--width", options->width, "Frame width")
+      ->check(CLI::Range(1u, 16384u))
+      ->capture_default_str();
+  command->add_option("--height", options->height, "Frame height")
+      ->check(CLI::Range(1u, 16384u))
+      ->capture_default_str();
+  command
+      ->add_option("--texture-size", options->texture_size,
+                   "Synthesized texels per side (default: what the first frame needs, up to 1024)")
       ->check(CLI::Range(16u, 8192u));
   command->add_option("--out", options->out, "Output folder")->capture_default_str();
   add_device_options(*command, options->device);

@@ -75,10 +75,12 @@ std::vector<float> rgb_of(const RenderedImage& frame) {
 }
 
 // Model channels to RGB for a picture (grey repeated, missing channels zero).
-std::vector<float> subspace_rgb(const std::vector<float>& values, std::uint32_t channels, std::size_t pixels) {
+std::vector<float> subspace_rgb(const std::vector<float>& values, std::uint32_t channels,
+                                std::size_t pixels) {
   std::vector<float> rgb(pixels * 3);
   for (std::size_t p = 0; p < pixels; ++p) {
-    for (std::uint32_t c = 0; c < 3; ++c) rgb[p * 3 + c] = channels == 1 ? values[p] : c < channels ? values[p * channels + c] : 0.0f;
+    for (std::uint32_t c = 0; c < 3; ++c)
+      rgb[p * 3 + c] = channels == 1 ? values[p] : c < channels ? values[p * channels + c] : 0.0f;
   }
   return rgb;
 }
@@ -94,10 +96,14 @@ void run_demo(const DemoOptions& options) {
   const fs::path folder = fs::absolute(options.out);
   create_folder(folder);
   std::vector<std::vector<std::string>> times{{"stage", "time"}};
-  auto timed = [&times](const std::string& name, double seconds) { times.push_back({name, format("%.2f s", seconds)}); };
+  auto timed = [&times](const std::string& name, double seconds) {
+    times.push_back({name, format("%.2f s", seconds)});
+  };
 
   // 1. A measured BTF to start from.
-  step(1, ("sample material '" + options.material + "': 81 x 81 images of " + std::to_string(options.size) + "^2").c_str());
+  step(1, ("sample material '" + options.material + "': 81 x 81 images of " + std::to_string(options.size) +
+           "^2")
+              .c_str());
   auto start = std::chrono::steady_clock::now();
   const Surface surface = make_sample_surface(options.material, options.size, options.seed);
   const fs::path btf_folder = folder / "btf";
@@ -126,14 +132,15 @@ void run_demo(const DemoOptions& options) {
   check(write_material_file(material_path, result.material), "cannot write the material");
   write_analysis_report(folder / "analysis", dataset, result);
   const Material& material = result.material;
-  const double raw_bytes = static_cast<double>(dataset.present_pairs().size()) * static_cast<double>(dataset.pixel_count()) * 3.0;
+  const double raw_bytes =
+      static_cast<double>(dataset.present_pairs().size()) * static_cast<double>(dataset.pixel_count()) * 3.0;
   const auto file_bytes = static_cast<double>(fs::file_size(material_path));
 
   // 3. Synthesis on the device, and its CPU twin.
   auto context = make_context(options.device);
   const std::uint32_t n = options.texture_size;
-  step(3, ("synthesis of " + std::to_string(material.subspaces.size()) + " subspace images of " + std::to_string(n) + "^2 on " +
-           context->device_info().name + ", and the CPU reference")
+  step(3, ("synthesis of " + std::to_string(material.subspaces.size()) + " subspace images of " +
+           std::to_string(n) + "^2 on " + context->device_info().name + ", and the CPU reference")
               .c_str());
   std::unique_ptr<SubspaceSynthesizer> synthesizer;
   check(SubspaceSynthesizer::create(*context, synthesizer), "cannot build the synthesis pipelines");
@@ -148,11 +155,13 @@ void run_demo(const DemoOptions& options) {
   start = std::chrono::steady_clock::now();
   const SynthesisBlock& block = request;
   const std::vector<std::vector<float>> cpu = reference::synthesize_subspaces(material, {}, block);
-  timed("CPU reference synthesis (" + std::to_string(std::thread::hardware_concurrency()) + " threads)", seconds_since(start));
+  timed("CPU reference synthesis (" + std::to_string(std::thread::hardware_concurrency()) + " threads)",
+        seconds_since(start));
   std::size_t texels = 0, differing = 0;
   for (std::size_t s = 0; s < cpu.size(); ++s) {
     texels += cpu[s].size();
-    for (std::size_t i = 0; i < cpu[s].size(); ++i) differing += std::memcmp(&cpu[s][i], &images.images[s][i], sizeof(float)) != 0;
+    for (std::size_t i = 0; i < cpu[s].size(); ++i)
+      differing += std::memcmp(&cpu[s][i], &images.images[s][i], sizeof(float)) != 0;
   }
   for (std::size_t s = 0; s < images.images.size(); ++s) {
     write_rgb_image(folder / ("synthesized_" + two_digits(s) + ".png"),
@@ -164,7 +173,8 @@ void run_demo(const DemoOptions& options) {
   MaterialBindingInfo binding_info;
   binding_info.seed = options.seed;
   std::unique_ptr<MaterialBinding> binding;
-  check(MaterialBinding::create(*context, material, material_textures(*synthesizer, material), binding_info, binding),
+  check(MaterialBinding::create(*context, material, material_textures(*synthesizer, material), binding_info,
+                                binding),
         "cannot bind the material");
   check(binding->upload_and_wait(), "cannot upload the range map");
   // One texel per pixel over as many texels as the rectified measurement shows, so that model and
@@ -174,10 +184,12 @@ void run_demo(const DemoOptions& options) {
   plane_target.width = plane_target.height = plane_size;
   plane_target.colour_format = VK_FORMAT_R32G32B32A32_SFLOAT;
   std::unique_ptr<MeshRenderer> plane_renderer;
-  check(MeshRenderer::create(*context, *binding, plane_target, plane_renderer), "cannot build the render pass");
+  check(MeshRenderer::create(*context, *binding, plane_target, plane_renderer),
+        "cannot build the render pass");
   check(plane_renderer->set_mesh(make_plane()), "cannot upload the plane");
-  std::vector<Comparison> comparisons = {{"light 45 deg", *ubo2003_index(45, 0), *ubo2003_index(0, 0), {}},
-                                         {"grazing light 75 deg", *ubo2003_index(75, 90), *ubo2003_index(0, 0), {}}};
+  std::vector<Comparison> comparisons = {
+      {"light 45 deg", *ubo2003_index(45, 0), *ubo2003_index(0, 0), {}},
+      {"grazing light 75 deg", *ubo2003_index(75, 90), *ubo2003_index(0, 0), {}}};
   std::vector<float> measured(dataset.pixel_count() * 3);
   double plane_ms = 0.0;
   for (Comparison& c : comparisons) {
@@ -199,7 +211,8 @@ void run_demo(const DemoOptions& options) {
     write_rgb_image(folder / (stem + "_model.png"), model, plane_size, plane_size);
     write_rgb_image(folder / (stem + "_measured.png"), measured, dataset.width(), dataset.height());
   }
-  timed("render, plane " + std::to_string(plane_size) + "^2 (mean of " + std::to_string(comparisons.size()) + ", wall)",
+  timed("render, plane " + std::to_string(plane_size) + "^2 (mean of " + std::to_string(comparisons.size()) +
+            ", wall)",
         plane_ms / 1e3 / static_cast<double>(comparisons.size()));
 
   // 5. The material on a sphere.
@@ -209,7 +222,8 @@ void run_demo(const DemoOptions& options) {
   sphere_target.height = 640;
   sphere_target.colour_format = VK_FORMAT_R32G32B32A32_SFLOAT;
   std::unique_ptr<MeshRenderer> sphere_renderer;
-  check(MeshRenderer::create(*context, *binding, sphere_target, sphere_renderer), "cannot build the render pass");
+  check(MeshRenderer::create(*context, *binding, sphere_target, sphere_renderer),
+        "cannot build the render pass");
   check(sphere_renderer->set_mesh(make_sphere()), "cannot upload the sphere");
   RenderScene sphere_scene;
   sphere_scene.camera.eye = {2.6f, 1.8f, 1.5f};
@@ -225,19 +239,24 @@ void run_demo(const DemoOptions& options) {
   // 6. The report.
   step(6, "report");
   HtmlReport report("carbtf demo: " + options.material);
-  report.paragraph("The whole pipeline on built-in data: a sample material rendered as a measured BTF (81 lights x 81 "
-                   "views), analysed into a material file of a few tens of kilobytes, synthesized on the Vulkan device "
-                   "at any size, and rendered with parallax bump mapping.");
+  report.paragraph(
+      "The whole pipeline on built-in data: a sample material rendered as a measured BTF (81 lights x 81 "
+      "views), analysed into a material file of a few tens of kilobytes, synthesized on the Vulkan device "
+      "at any size, and rendered with parallax bump mapping.");
   report.heading("The material on a sphere");
-  report.image("sphere.png", "model, " + std::to_string(n) + "^2 synthesized texture, two directional lights", 960);
+  report.image("sphere.png", "model, " + std::to_string(n) + "^2 synthesized texture, two directional lights",
+               960);
   report.heading("Model beside measurement");
-  report.paragraph("A plane seen straight down, lit from a measured direction, beside the measured image of that "
-                   "(light, view) pair. The model is a random field: it matches statistics, not pixels, so the "
-                   "fidelity figures (DESIGN.md 5) say how close it is.");
-  std::vector<std::vector<std::string>> fidelity{{"pair", "delta E (Lab)", "std rel. error", "spectrum L1", "histogram W1"}};
+  report.paragraph(
+      "A plane seen straight down, lit from a measured direction, beside the measured image of that "
+      "(light, view) pair. The model is a random field: it matches statistics, not pixels, so the "
+      "fidelity figures (DESIGN.md 5) say how close it is.");
+  std::vector<std::vector<std::string>> fidelity{
+      {"pair", "delta E (Lab)", "std rel. error", "spectrum L1", "histogram W1"}};
   for (const Comparison& c : comparisons) {
     const std::string stem = "plane_l" + std::to_string(c.light) + "_v" + std::to_string(c.view);
-    report.image_row({{stem + "_model.png", "model, " + c.name}, {stem + "_measured.png", "measured, " + c.name}});
+    report.image_row(
+        {{stem + "_model.png", "model, " + c.name}, {stem + "_measured.png", "measured, " + c.name}});
     fidelity.push_back({c.name, format("%.2f", c.error.delta_e), format("%.3f", c.error.std_relative),
                         format("%.3f", c.error.spectrum_l1), format("%.2f", c.error.histogram_w1)});
   }
@@ -248,27 +267,36 @@ void run_demo(const DemoOptions& options) {
                    420);
   std::vector<std::pair<std::string, std::string>> subspaces;
   for (std::size_t s = 0; s < std::min<std::size_t>(images.images.size(), 6); ++s) {
-    subspaces.push_back({"analysis/subspace_" + two_digits(s) + ".png", "subspace " + std::to_string(s) + ", measured"});
-    subspaces.push_back({"synthesized_" + two_digits(s) + ".png", "subspace " + std::to_string(s) + ", synthesized"});
+    subspaces.push_back(
+        {"analysis/subspace_" + two_digits(s) + ".png", "subspace " + std::to_string(s) + ", measured"});
+    subspaces.push_back(
+        {"synthesized_" + two_digits(s) + ".png", "subspace " + std::to_string(s) + ", synthesized"});
   }
   report.heading("Subspace images, measured and synthesized");
   report.image_row(subspaces, 160);
   report.heading("Figures");
-  report.table({{"figure", "value"},
-                {"device", context->device_info().name + " (" + device_type_name(context->device_info().type) + ")"},
-                {"measured BTF", std::to_string(dataset.present_pairs().size()) + " images of " + std::to_string(options.size) + "^2, " +
-                                     format("%.1f MiB as 8-bit RGB", raw_bytes / 1048576.0)},
-                {"material file", format("%.1f KiB", file_bytes / 1024.0) + ", " + std::to_string(material.subspaces.size()) + " subspaces"},
-                {"compression ratio", "1 : " + format("%.0f", raw_bytes / file_bytes)},
-                {"GPU vs CPU synthesis", std::to_string(texels - differing) + " of " + std::to_string(texels) + " values bit-identical"},
-                {"GPU synthesis time (timestamps)", format("%.1f ms", timing.total_ms)}});
+  report.table(
+      {{"figure", "value"},
+       {"device", context->device_info().name + " (" + device_type_name(context->device_info().type) + ")"},
+       {"measured BTF", std::to_string(dataset.present_pairs().size()) + " images of " +
+                            std::to_string(options.size) + "^2, " +
+                            format("%.1f MiB as 8-bit RGB", raw_bytes / 1048576.0)},
+       {"material file", format("%.1f KiB", file_bytes / 1024.0) + ", " +
+                             std::to_string(material.subspaces.size()) + " subspaces"},
+       {"compression ratio", "1 : " + format("%.0f", raw_bytes / file_bytes)},
+       {"GPU vs CPU synthesis",
+        std::to_string(texels - differing) + " of " + std::to_string(texels) + " values bit-identical"},
+       {"GPU synthesis time (timestamps)", format("%.1f ms", timing.total_ms)}});
   report.table(times);
   if (std::string error; !report.write(folder, error)) throw CommandError(error);
 
-  std::printf("material %.1f KiB, ratio 1 : %.0f; GPU synthesis %.1f ms, bit-identical to the CPU on %zu of %zu values\n",
-              file_bytes / 1024.0, raw_bytes / file_bytes, timing.total_ms, texels - differing, texels);
+  std::printf(
+      "material %.1f KiB, ratio 1 : %.0f; GPU synthesis %.1f ms, bit-identical to the CPU on %zu of %zu "
+      "values\n",
+      file_bytes / 1024.0, raw_bytes / file_bytes, timing.total_ms, texels - differing, texels);
   for (const Comparison& c : comparisons) {
-    std::printf("model vs measured, %s: delta E %.2f, spectrum L1 %.3f\n", c.name.c_str(), c.error.delta_e, c.error.spectrum_l1);
+    std::printf("model vs measured, %s: delta E %.2f, spectrum L1 %.3f\n", c.name.c_str(), c.error.delta_e,
+                c.error.spectrum_l1);
   }
   std::printf("report: %s\n", (folder / "index.html").c_str());
   if (differing != 0) throw CommandError("the GPU synthesis differs from the CPU reference");
@@ -278,12 +306,16 @@ void run_demo(const DemoOptions& options) {
 
 void register_demo_command(CLI::App& app) {
   auto options = std::make_shared<DemoOptions>();
-  auto* command = app.add_subcommand(
-      "demo", "Run the whole pipeline on built-in data (sample BTF, analysis, GPU synthesis, render) and write an HTML report");
+  auto* command = app.add_subcommand("demo",
+                                     "Run the whole pipeline on built-in data (sample BTF, analysis, GPU "
+                                     "synthesis, render) and write an HTML report");
   command->add_option("--out", options->out, "Report folder")->capture_default_str();
-  command->add_option("--material", options->material, "Built-in sample material (see `carbtf sample --help`)")
+  command
+      ->add_option("--material", options->material, "Built-in sample material (see `carbtf sample --help`)")
       ->capture_default_str();
-  command->add_option("--size", options->size, "Sample images: texels per side")->check(CLI::Range(32u, 512u))->capture_default_str();
+  command->add_option("--size", options->size, "Sample images: texels per side")
+      ->check(CLI::Range(32u, 512u))
+      ->capture_default_str();
   command->add_option("--texture-size", options->texture_size, "Synthesized subspace images: texels per side")
       ->check(CLI::Range(32u, 2048u))
       ->capture_default_str();

@@ -57,8 +57,8 @@ Mesh load_mesh(const std::string& spec) {
 void parse_size(const std::string& text, std::uint32_t& width, std::uint32_t& height) {
   unsigned w = 0, h = 0;
   char x = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w == 0 || h == 0 ||
-      w > 16384 || h > 16384) {
+  if (std::sscanf(text.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w == 0 ||
+      h == 0 || w > 16384 || h > 16384) {
     throw CommandError("--size " + text + ": expected WIDTHxHEIGHT, each 1 to 16384 (e.g. 1920x1080)");
   }
   width = w;
@@ -72,7 +72,8 @@ RenderScene make_scene(const RenderOptions& options) {
   if (!(distance > 0.0f)) throw CommandError("--camera: the distance must be above 0");
   scene.camera.eye = {distance * towards[0], distance * towards[1], distance * towards[2]};
   // Looking straight down the z axis, "up" cannot be z.
-  scene.camera.up = std::abs(towards[2]) > 0.999f ? std::array<float, 3>{0, 1, 0} : std::array<float, 3>{0, 0, 1};
+  scene.camera.up =
+      std::abs(towards[2]) > 0.999f ? std::array<float, 3>{0, 1, 0} : std::array<float, 3>{0, 0, 1};
   scene.camera.fov_y_degrees = options.fov;
   scene.camera.ortho_height = 2.4f;
   scene.camera.far_plane = distance + 10.0f;
@@ -82,13 +83,15 @@ RenderScene make_scene(const RenderOptions& options) {
   }
   for (const auto& light : options.point_lights) {
     const float intensity = light.size() > 3 ? static_cast<float>(light[3]) : 1.0f;
-    scene.lights.push_back({true,
-                            {static_cast<float>(light[0]), static_cast<float>(light[1]), static_cast<float>(light[2])},
-                            {intensity, intensity, intensity}});
+    scene.lights.push_back(
+        {true,
+         {static_cast<float>(light[0]), static_cast<float>(light[1]), static_cast<float>(light[2])},
+         {intensity, intensity, intensity}});
   }
   if (scene.lights.empty()) scene.lights.push_back({false, direction_of(45.0, 120.0), {1, 1, 1}});
   if (scene.lights.size() > kMaxRenderLights) {
-    throw CommandError("at most " + std::to_string(kMaxRenderLights) + " lights (--light and --point-light together)");
+    throw CommandError("at most " + std::to_string(kMaxRenderLights) +
+                       " lights (--light and --point-light together)");
   }
   return scene;
 }
@@ -106,22 +109,25 @@ void run_render(const RenderOptions& options) {
   // density of its most magnified triangle.
   SceneNeeds needs;
   PruningOptions pruning;
-  pruning.max_texture_size = 1024;  // beyond it only on request (--texture-size): 20 x 2048^2 takes 16 s on lavapipe
-  check(scene_needs(material, mesh, scene, width, height, pruning, needs), "cannot work out what the scene needs");
+  pruning.max_texture_size =
+      1024;  // beyond it only on request (--texture-size): 20 x 2048^2 takes 16 s on lavapipe
+  check(scene_needs(material, mesh, scene, width, height, pruning, needs),
+        "cannot work out what the scene needs");
   SynthesisRequest request;
   request.seed = options.seed;
   request.width = request.height = options.texture_size ? options.texture_size : needs.texture_size;
   if (options.prune) request.subspaces = needs.subspaces;
   const std::size_t synthesized = options.prune ? needs.subspaces.size() : material.subspaces.size();
-  std::printf("[1/3] synthesizing %zu of %zu subspace images of %ux%u on %s\n", synthesized, material.subspaces.size(),
-              request.width, request.height, context->device_info().name.c_str());
+  std::printf("[1/3] synthesizing %zu of %zu subspace images of %ux%u on %s\n", synthesized,
+              material.subspaces.size(), request.width, request.height, context->device_info().name.c_str());
   std::fflush(stdout);
   std::unique_ptr<SubspaceSynthesizer> synthesizer;
   check(SubspaceSynthesizer::create(*context, synthesizer), "cannot build the synthesis pipelines");
   auto synthesize = [&](const SynthesisRequest& r) {
     const auto begin = std::chrono::steady_clock::now();
     check(synthesizer->prepare(material, r), "cannot plan the synthesis");
-    check(context->submit_and_wait([&](VkCommandBuffer cb) { return synthesizer->record(cb); }), "synthesis failed");
+    check(context->submit_and_wait([&](VkCommandBuffer cb) { return synthesizer->record(cb); }),
+          "synthesis failed");
     return seconds_since(begin) * 1e3;
   };
   double full_ms = 0.0;
@@ -133,12 +139,13 @@ void run_render(const RenderOptions& options) {
     full_ms = synthesize(full);
   }
   const double synthesis_ms = synthesize(request);
-  std::printf("synthesized %zu of %zu subspace images (%u light-view pairs in view), %.1f Mtexels, in %.1f ms\n",
-              synthesized, material.subspaces.size(), needs.light_view_pairs,
-              static_cast<double>(synthesized) * request.width * request.height * 1e-6, synthesis_ms);
+  std::printf(
+      "synthesized %zu of %zu subspace images (%u light-view pairs in view), %.1f Mtexels, in %.1f ms\n",
+      synthesized, material.subspaces.size(), needs.light_view_pairs,
+      static_cast<double>(synthesized) * request.width * request.height * 1e-6, synthesis_ms);
   if (full_ms > 0.0) {
-    std::printf("all %zu would take %.1f ms: pruning saved %.1f ms (%.1fx)\n", material.subspaces.size(), full_ms,
-                full_ms - synthesis_ms, full_ms / synthesis_ms);
+    std::printf("all %zu would take %.1f ms: pruning saved %.1f ms (%.1fx)\n", material.subspaces.size(),
+                full_ms, full_ms - synthesis_ms, full_ms / synthesis_ms);
   }
 
   std::printf("[2/3] range map, lookup tables and render pipeline\n");
@@ -147,7 +154,8 @@ void run_render(const RenderOptions& options) {
   binding_info.seed = options.seed;
   binding_info.parallax_scale = options.parallax;
   std::unique_ptr<MaterialBinding> binding;
-  check(MaterialBinding::create(*context, material, material_textures(*synthesizer, material), binding_info, binding),
+  check(MaterialBinding::create(*context, material, material_textures(*synthesizer, material), binding_info,
+                                binding),
         "cannot bind the material");
   check(binding->upload_and_wait(), "cannot upload the range map");
   RenderTargetInfo target;
@@ -188,42 +196,59 @@ void register_render_command(CLI::App& app) {
       "render",
       "Render a material on a mesh, headless: GPU synthesis, then parallax bump mapping with the 9-weight "
       "interpolation of the subspace images, relit by the range map");
-  command->add_option("material", options->material, "Material file (.cbtf) from `carbtf analyze`")->required();
-  command->add_option("--mesh", options->mesh, "plane, sphere, cylinder, torus, or an OBJ file with texture coordinates")
+  command->add_option("material", options->material, "Material file (.cbtf) from `carbtf analyze`")
+      ->required();
+  command
+      ->add_option("--mesh", options->mesh,
+                   "plane, sphere, cylinder, torus, or an OBJ file with texture coordinates")
       ->capture_default_str();
-  command->add_option("--camera", options->camera,
-                      "Camera orbit THETA,PHI[,DISTANCE]: elevation from +z and azimuth in degrees, distance from the "
-                      "origin; it looks at the origin")
+  command
+      ->add_option(
+          "--camera", options->camera,
+          "Camera orbit THETA,PHI[,DISTANCE]: elevation from +z and azimuth in degrees, distance from the "
+          "origin; it looks at the origin")
       ->delimiter(',')
       ->expected(2, 3)
       ->capture_default_str();
-  command->add_option("--fov", options->fov, "Vertical field of view in degrees; 0 gives an orthographic camera")
+  command
+      ->add_option("--fov", options->fov, "Vertical field of view in degrees; 0 gives an orthographic camera")
       ->check(CLI::Range(0.0f, 170.0f))
       ->capture_default_str();
-  command->add_option("--light", options->lights,
-                      "Directional light THETA,PHI[,INTENSITY] in degrees, towards the light; repeat for more "
-                      "(default: one at 45,120)")
+  command
+      ->add_option("--light", options->lights,
+                   "Directional light THETA,PHI[,INTENSITY] in degrees, towards the light; repeat for more "
+                   "(default: one at 45,120)")
       ->delimiter(',')
       ->expected(2, 3)
       ->allow_extra_args(false);
-  command->add_option("--point-light", options->point_lights, "Point light X,Y,Z[,INTENSITY] (intensity at distance 1)")
+  command
+      ->add_option("--point-light", options->point_lights,
+                   "Point light X,Y,Z[,INTENSITY] (intensity at distance 1)")
       ->delimiter(',')
       ->expected(3, 4)
       ->allow_extra_args(false);
   command->add_option("--size", options->size, "Frame size WIDTHxHEIGHT")->capture_default_str();
-  command->add_option("--texture-size", options->texture_size,
-                      "Texels per side of the synthesized subspace images (default: the frame's densest visible texels, "
-                      "a power of two up to 1024)")
+  command
+      ->add_option(
+          "--texture-size", options->texture_size,
+          "Texels per side of the synthesized subspace images (default: the frame's densest visible texels, "
+          "a power of two up to 1024)")
       ->check(CLI::Range(16u, 8192u));
-  command->add_flag("!--no-prune", options->prune,
-                    "Synthesize every subspace image, not only those the frame's (light, view) pairs fall in");
+  command->add_flag(
+      "!--no-prune", options->prune,
+      "Synthesize every subspace image, not only those the frame's (light, view) pairs fall in");
   command->add_flag("--measure-savings", options->measure_savings,
                     "Also time the synthesis of every subspace image, to report what pruning saved");
-  command->add_option("--seed", options->seed, "Synthesis and range-map layout seed")->check(non_negative())->capture_default_str();
-  command->add_option("--parallax", options->parallax, "Parallax scale (1: the range map's own heights; 0: none)")
+  command->add_option("--seed", options->seed, "Synthesis and range-map layout seed")
+      ->check(non_negative())
+      ->capture_default_str();
+  command
+      ->add_option("--parallax", options->parallax,
+                   "Parallax scale (1: the range map's own heights; 0: none)")
       ->check(CLI::Range(0.0f, 16.0f))
       ->capture_default_str();
-  command->add_option("--out", options->out, "Output image: .png (sRGB) or .exr (linear)")->capture_default_str();
+  command->add_option("--out", options->out, "Output image: .png (sRGB) or .exr (linear)")
+      ->capture_default_str();
   add_device_options(*command, options->device);
   command->callback([options] { run_render(*options); });
 }

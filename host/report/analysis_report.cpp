@@ -37,7 +37,8 @@ void write_analysis_report(const fs::path& folder, const BtfDataset& dataset, co
   {
     std::ofstream csv(folder / "eigenvalues.csv");
     csv << "rank,eigenvalue\n";
-    for (std::size_t i = 0; i < seg.eigenvalues.size(); ++i) csv << i + 1 << ',' << seg.eigenvalues[i] << '\n';
+    for (std::size_t i = 0; i < seg.eigenvalues.size(); ++i)
+      csv << i + 1 << ',' << seg.eigenvalues[i] << '\n';
   }
   {
     std::ofstream csv(folder / "subspaces.csv");
@@ -64,19 +65,21 @@ void write_analysis_report(const fs::path& folder, const BtfDataset& dataset, co
   std::vector<float> range(result.range_map.data(), result.range_map.data() + result.range_map.size());
   const auto [low, high] = std::minmax_element(range.begin(), range.end());
   write_field_image(folder / "range_map.exr", range, n.width, n.height);
-  write_field_image(folder / "range_map.png", range, n.width, n.height, {*low, std::max(*high, *low + 1e-6f)});
+  write_field_image(folder / "range_map.png", range, n.width, n.height,
+                    {*low, std::max(*high, *low + 1e-6f)});
   const std::uint32_t enlarged_size = 512;
   std::vector<float> enlarged(std::size_t{enlarged_size} * enlarged_size);
   enlarge_range_map(result.material.range, 1, 0, 0, enlarged_size, enlarged_size, enlarged);
-  write_field_image(folder / "range_enlarged.png", enlarged, enlarged_size, enlarged_size, {*low, std::max(*high, *low + 1e-6f)});
+  write_field_image(folder / "range_enlarged.png", enlarged, enlarged_size, enlarged_size,
+                    {*low, std::max(*high, *low + 1e-6f)});
   {
     std::ofstream csv(folder / "stages.csv");
     csv << "stage,seconds,peak_rss_mib\n";
-    for (const StageReport& s : result.stages) csv << s.name << ',' << s.seconds << ',' << s.peak_rss_bytes / 1048576.0 << '\n';
+    for (const StageReport& s : result.stages)
+      csv << s.name << ',' << s.seconds << ',' << s.peak_rss_bytes / 1048576.0 << '\n';
   }
   std::ofstream log(folder / "analysis_log.txt");
   for (const std::string& line : result.log) log << line << '\n';
 }
-
 
 }  // namespace carbtf::cli

@@ -12,6 +12,7 @@ namespace carbtf::cli {
 
 // Writes index_table.png, eigenvalues.png/.csv, subspaces.csv, subspace_NN.png, normals.png,
 // albedo.png, range_map.exr/.png, range_enlarged.png, stages.csv and analysis_log.txt into `folder`.
-void write_analysis_report(const std::filesystem::path& folder, const BtfDataset& dataset, const AnalysisResult& result);
+void write_analysis_report(const std::filesystem::path& folder, const BtfDataset& dataset,
+                           const AnalysisResult& result);
 
 }  // namespace carbtf::cli

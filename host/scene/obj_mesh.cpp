@@ -4,8 +4,8 @@
 #include <map>
 #include <tuple>
 
-#include <glm/glm.hpp>
 #include <tiny_obj_loader.h>
+#include <glm/glm.hpp>
 
 #include "cli/cli_support.hpp"
 
@@ -26,7 +26,8 @@ Mesh load_obj_mesh(const std::filesystem::path& path) {
   config.mtl_search_path = "";  // materials are carbtf's; never read .mtl files beside the mesh
   tinyobj::ObjReader reader;
   if (!reader.ParseFromFile(name, config)) {
-    throw CommandError(name + ": not a readable OBJ mesh: " + (reader.Error().empty() ? "parse error" : reader.Error()));
+    throw CommandError(
+        name + ": not a readable OBJ mesh: " + (reader.Error().empty() ? "parse error" : reader.Error()));
   }
   const tinyobj::attrib_t& attrib = reader.GetAttrib();
   Mesh mesh;
@@ -39,18 +40,23 @@ Mesh load_obj_mesh(const std::filesystem::path& path) {
         mesh.indices.push_back(found->second);
         continue;
       }
-      if (index.vertex_index < 0 || 3 * static_cast<std::size_t>(index.vertex_index) + 2 >= attrib.vertices.size()) {
+      if (index.vertex_index < 0 ||
+          3 * static_cast<std::size_t>(index.vertex_index) + 2 >= attrib.vertices.size()) {
         throw CommandError(name + ": a face refers to a vertex position that does not exist");
       }
-      if (index.texcoord_index < 0 || 2 * static_cast<std::size_t>(index.texcoord_index) + 1 >= attrib.texcoords.size()) {
+      if (index.texcoord_index < 0 ||
+          2 * static_cast<std::size_t>(index.texcoord_index) + 1 >= attrib.texcoords.size()) {
         throw CommandError(name + ": a face has no texture coordinates (vt); the material needs them");
       }
       MeshVertex v{};
-      for (int k = 0; k < 3; ++k) v.position[k] = attrib.vertices[3 * static_cast<std::size_t>(index.vertex_index) + k];
+      for (int k = 0; k < 3; ++k)
+        v.position[k] = attrib.vertices[3 * static_cast<std::size_t>(index.vertex_index) + k];
       v.uv[0] = attrib.texcoords[2 * static_cast<std::size_t>(index.texcoord_index)];
       v.uv[1] = 1.0f - attrib.texcoords[2 * static_cast<std::size_t>(index.texcoord_index) + 1];
-      if (index.normal_index >= 0 && 3 * static_cast<std::size_t>(index.normal_index) + 2 < attrib.normals.size()) {
-        for (int k = 0; k < 3; ++k) v.normal[k] = attrib.normals[3 * static_cast<std::size_t>(index.normal_index) + k];
+      if (index.normal_index >= 0 &&
+          3 * static_cast<std::size_t>(index.normal_index) + 2 < attrib.normals.size()) {
+        for (int k = 0; k < 3; ++k)
+          v.normal[k] = attrib.normals[3 * static_cast<std::size_t>(index.normal_index) + k];
       } else {
         has_normals = false;
       }

@@ -48,7 +48,8 @@ Material bumpy_material() {
   std::uniform_real_distribution<double> phase(0.0, 6.28);
   const double a = phase(random), b = phase(random);
   for (int r = 0; r < 48; ++r) {
-    for (int c = 0; c < 48; ++c) heights(r, c) = 2.0 * std::sin(0.4 * c + a) * std::cos(0.3 * r + b) + 0.05 * r;
+    for (int c = 0; c < 48; ++c)
+      heights(r, c) = 2.0 * std::sin(0.4 * c + a) * std::cos(0.3 * r + b) + 0.05 * r;
   }
   RangeTileOptions options;
   options.tile_size = 16;
@@ -56,7 +57,8 @@ Material bumpy_material() {
   return m;
 }
 
-std::unique_ptr<SubspaceSynthesizer> synthesized(Context& context, const Material& m, SynthesizedImages& images) {
+std::unique_ptr<SubspaceSynthesizer> synthesized(Context& context, const Material& m,
+                                                 SynthesizedImages& images) {
   std::unique_ptr<SubspaceSynthesizer> synthesizer;
   REQUIRE(SubspaceSynthesizer::create(context, synthesizer).ok());
   SynthesisRequest request;
@@ -78,7 +80,8 @@ std::vector<float> as_floats(const RenderedImage& image) {
 
 }  // namespace
 
-TEST_CASE("lookup grids give the triangulation's weights, inside and beyond the measured directions", "[render]") {
+TEST_CASE("lookup grids give the triangulation's weights, inside and beyond the measured directions",
+          "[render]") {
   for (const auto& directions : {ubo_set(), synthetic_material(1, 1).lights}) {
     DirectionTriangulation triangulation;
     REQUIRE(build_direction_triangulation(directions, triangulation).ok());
@@ -92,8 +95,8 @@ TEST_CASE("lookup grids give the triangulation's weights, inside and beyond the 
         const double t = theta(random), p = phi(random);
         const auto q = project_direction(t, p);
         const auto expected = as_map(direction_weights(triangulation, t, p));
-        const auto actual = as_map(
-            lookup_direction_weights(grid, triangulation, static_cast<float>(q[0]), static_cast<float>(q[1])));
+        const auto actual = as_map(lookup_direction_weights(grid, triangulation, static_cast<float>(q[0]),
+                                                            static_cast<float>(q[1])));
         for (const auto& [index, weight] : expected) {
           const double got = actual.count(index) ? actual.at(index) : 0.0;
           worst = std::max(worst, std::abs(got - weight));
@@ -117,7 +120,8 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
   MaterialBindingInfo binding_info;
   binding_info.seed = 42;
   std::unique_ptr<MaterialBinding> binding;
-  Status status = MaterialBinding::create(*context, m, material_textures(*synthesizer, m), binding_info, binding);
+  Status status =
+      MaterialBinding::create(*context, m, material_textures(*synthesizer, m), binding_info, binding);
   INFO(status.message());
   REQUIRE(status.ok());
   REQUIRE(binding->upload_and_wait().ok());
@@ -137,7 +141,8 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
   input.parallax_scale = binding_info.parallax_scale;
 
   auto direction = [](float theta, float phi) {
-    return std::array<float, 3>{std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+    return std::array<float, 3>{std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                                std::cos(theta)};
   };
   RenderScene scene;
   std::string what;
@@ -154,14 +159,16 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
     what = "between";
     scene.camera.eye = {0.7f, -1.9f, 1.6f};
     scene.camera.up = {0, 0, 1};
-    scene.lights = {{true, {0.4f, 0.8f, 1.1f}, {2, 1.5f, 1}}, {false, direction(1.45f, 0.3f), {0.5f, 0.5f, 0.5f}}};
+    scene.lights = {{true, {0.4f, 0.8f, 1.1f}, {2, 1.5f, 1}},
+                    {false, direction(1.45f, 0.3f), {0.5f, 0.5f, 0.5f}}};
   }
   RenderedImage frame;
   status = renderer->render(scene, frame);
   INFO(status.message());
   REQUIRE(status.ok());
   const std::vector<float> gpu = as_floats(frame);
-  const std::vector<float> cpu = reference::render_plane(input, scene, target.width, target.height, target.clear);
+  const std::vector<float> cpu =
+      reference::render_plane(input, scene, target.width, target.height, target.clear);
 
   double peak = 0.0, worst = 0.0, sum_squares = 0.0;
   std::size_t both = 0, coverage_differs = 0;
@@ -207,7 +214,9 @@ Material ubo_material() {
   m.subspaces = twenty.subspaces;
   m.lights = m.views = ubo_set();
   m.subspace_index.clear();
-  auto ring = [](const MaterialDirection& d) { return static_cast<std::uint32_t>(std::lround(d.theta / 0.2617994f)); };
+  auto ring = [](const MaterialDirection& d) {
+    return static_cast<std::uint32_t>(std::lround(d.theta / 0.2617994f));
+  };
   for (std::uint32_t l = 0; l < 81; ++l) {
     for (std::uint32_t v = 0; v < 81; ++v) {
       std::uint32_t s = 3 * ring(m.lights[l]) + ring(m.views[v]) / 2;
@@ -218,8 +227,9 @@ Material ubo_material() {
   return m;
 }
 
-std::vector<float> render_with(Context& context, const Material& m, const std::vector<std::uint32_t>& subspaces,
-                               const Mesh& mesh, const RenderScene& scene) {
+std::vector<float> render_with(Context& context, const Material& m,
+                               const std::vector<std::uint32_t>& subspaces, const Mesh& mesh,
+                               const RenderScene& scene) {
   std::unique_ptr<SubspaceSynthesizer> synthesizer;
   REQUIRE(SubspaceSynthesizer::create(context, synthesizer).ok());
   SynthesisRequest request;
@@ -262,7 +272,8 @@ TEST_CASE("scene pruning: a scene seen from above needs fewer subspace images an
     scene.camera.up = {0, 1, 0};
     const Direction light = Direction::from_degrees(45, 60);
     const auto d = light.vector();
-    scene.lights = {{false, {static_cast<float>(d[0]), static_cast<float>(d[1]), static_cast<float>(d[2])}, {1, 1, 1}}};
+    scene.lights = {
+        {false, {static_cast<float>(d[0]), static_cast<float>(d[1]), static_cast<float>(d[2])}, {1, 1, 1}}};
     expect_fewer = true;
   }
   SECTION("a sphere from the side, a point light and a grazing light") {
@@ -274,8 +285,8 @@ TEST_CASE("scene pruning: a scene seen from above needs fewer subspace images an
   const Status status = scene_needs(m, mesh, scene, 96, 96, {}, needs);
   INFO(status.message());
   REQUIRE(status.ok());
-  INFO("needs " << needs.subspaces.size() << " of 20 subspace images, " << needs.light_view_pairs << " pairs, texture "
-                << needs.texture_size);
+  INFO("needs " << needs.subspaces.size() << " of 20 subspace images, " << needs.light_view_pairs
+                << " pairs, texture " << needs.texture_size);
   REQUIRE(!needs.subspaces.empty());
   if (expect_fewer) CHECK(needs.subspaces.size() <= 3);
   CHECK(needs.texture_size >= 32);

@@ -28,8 +28,12 @@ struct Sampler {
     const int w = static_cast<int>(width), h = static_cast<int>(height);
     const int ix = static_cast<int>(std::clamp(base.x, -1.0f, static_cast<float>(w)));
     const int iy = static_cast<int>(std::clamp(base.y, -1.0f, static_cast<float>(h)));
-    return {std::clamp(ix, 0, w - 1), std::clamp(iy, 0, h - 1), std::clamp(ix + 1, 0, w - 1),
-            std::clamp(iy + 1, 0, h - 1), t.x - base.x, t.y - base.y};
+    return {std::clamp(ix, 0, w - 1),
+            std::clamp(iy, 0, h - 1),
+            std::clamp(ix + 1, 0, w - 1),
+            std::clamp(iy + 1, 0, h - 1),
+            t.x - base.x,
+            t.y - base.y};
   }
   float height_at(glm::vec2 uv) const {
     const Bilinear b = bilinear(uv);
@@ -54,14 +58,15 @@ struct Sampler {
 };
 
 void angles(glm::vec3 d, double& theta, double& phi) {
-  theta = std::atan2(std::hypot(static_cast<double>(d.x), static_cast<double>(d.y)), static_cast<double>(d.z));
+  theta =
+      std::atan2(std::hypot(static_cast<double>(d.x), static_cast<double>(d.y)), static_cast<double>(d.z));
   phi = std::atan2(static_cast<double>(d.y), static_cast<double>(d.x));
 }
 
 }  // namespace
 
-std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderScene& scene, std::uint32_t width,
-                                std::uint32_t height, std::array<float, 4> clear) {
+std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderScene& scene,
+                                std::uint32_t width, std::uint32_t height, std::array<float, 4> clear) {
   if (input.material == nullptr || input.images == nullptr || input.images->width == 0) {
     throw std::invalid_argument("render_plane: no material or subspace images");
   }
@@ -82,7 +87,8 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
   const double sum = std::accumulate(input.range_map.begin(), input.range_map.end(), 0.0);
   const Sampler sampler{input, tw, th, static_cast<float>(sum / static_cast<double>(input.range_map.size()))};
 
-  const std::array<float, 16> vp = view_projection(scene.camera, static_cast<float>(width) / static_cast<float>(height));
+  const std::array<float, 16> vp =
+      view_projection(scene.camera, static_cast<float>(width) / static_cast<float>(height));
   // Rays in double: unprojecting to a far plane 100 units away in float would move the hit point by
   // 1e-5, a thousandth of a texel, more than the GPU's own interpolation error.
   glm::dmat4 clip_from_world;
@@ -113,10 +119,13 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
       // The plane's tangent frame is the world's: x along u, y towards row 0, z the normal.
       const glm::vec3 view = glm::normalize(perspective ? eye - world : eye - target);
       const float shift = input.parallax_scale * sampler.height_at(uv);
-      const glm::vec2 shifted = uv + shift * glm::vec2(view.x, -view.y) / glm::vec2(static_cast<float>(tw), static_cast<float>(th));
+      const glm::vec2 shifted =
+          uv + shift * glm::vec2(view.x, -view.y) / glm::vec2(static_cast<float>(tw), static_cast<float>(th));
       const glm::vec2 texel(1.0f / static_cast<float>(tw), 1.0f / static_cast<float>(th));
-      const float dx = 0.5f * (sampler.height_at(shifted + glm::vec2(texel.x, 0)) - sampler.height_at(shifted - glm::vec2(texel.x, 0)));
-      const float dy = 0.5f * (sampler.height_at(shifted - glm::vec2(0, texel.y)) - sampler.height_at(shifted + glm::vec2(0, texel.y)));
+      const float dx = 0.5f * (sampler.height_at(shifted + glm::vec2(texel.x, 0)) -
+                               sampler.height_at(shifted - glm::vec2(texel.x, 0)));
+      const float dy = 0.5f * (sampler.height_at(shifted - glm::vec2(0, texel.y)) -
+                               sampler.height_at(shifted + glm::vec2(0, texel.y)));
       const glm::vec3 normal = glm::normalize(glm::vec3(-dx, -dy, 1.0f));
       const Sampler::Bilinear bilinear = sampler.bilinear(shifted);
 

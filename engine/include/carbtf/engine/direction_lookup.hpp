@@ -22,15 +22,18 @@ struct DirectionLookupGrid {
 // Whether projected point (x, y) lies in a triangle of the triangulation (up to 1e-12 barycentric slack).
 bool inside_triangulation(const DirectionTriangulation& triangulation, double x, double y);
 // Distance from projected point (x, y) to boundary edge `edge` of the triangulation.
-double boundary_edge_distance(const DirectionTriangulation& triangulation, std::uint32_t edge, double x, double y);
+double boundary_edge_distance(const DirectionTriangulation& triangulation, std::uint32_t edge, double x,
+                              double y);
 
 // grid_size in [1, 256].
-DirectionLookupGrid build_direction_lookup(const DirectionTriangulation& triangulation, std::uint32_t grid_size = 32);
+DirectionLookupGrid build_direction_lookup(const DirectionTriangulation& triangulation,
+                                           std::uint32_t grid_size = 32);
 
 // The weights the fragment stage computes from a grid for projected point (x, y), with the shader's
 // float arithmetic, weights under `min_weight` dropped and the rest renormalised (the shader uses
 // CARBTF_LOOKUP_MIN_WEIGHT, 1e-5); within float rounding of direction_weights() for the same direction.
-DirectionWeights lookup_direction_weights(const DirectionLookupGrid& grid, const DirectionTriangulation& triangulation,
-                                          float x, float y, float min_weight = 1.0e-5f);
+DirectionWeights lookup_direction_weights(const DirectionLookupGrid& grid,
+                                          const DirectionTriangulation& triangulation, float x, float y,
+                                          float min_weight = 1.0e-5f);
 
 }  // namespace carbtf

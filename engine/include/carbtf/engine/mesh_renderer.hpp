@@ -26,7 +26,7 @@ namespace carbtf {
 inline constexpr std::uint32_t kMaxRenderLights = 4;
 
 struct RenderLight {
-  bool point = false;                 // false: directional
+  bool point = false;                      // false: directional
   std::array<float, 3> position{0, 0, 1};  // point: world position; directional: direction towards the light
   std::array<float, 3> colour{1, 1, 1};    // linear scale of the material's measured radiance
 };

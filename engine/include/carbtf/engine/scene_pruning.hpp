@@ -38,7 +38,8 @@ struct SceneNeeds {
   std::uint32_t visible_triangles = 0;
 };
 
-Status scene_needs(const Material& material, const Mesh& mesh, const RenderScene& scene, std::uint32_t frame_width,
-                   std::uint32_t frame_height, const PruningOptions& options, SceneNeeds& out) noexcept;
+Status scene_needs(const Material& material, const Mesh& mesh, const RenderScene& scene,
+                   std::uint32_t frame_width, std::uint32_t frame_height, const PruningOptions& options,
+                   SceneNeeds& out) noexcept;
 
 }  // namespace carbtf

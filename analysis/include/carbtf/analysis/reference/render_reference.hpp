@@ -24,7 +24,7 @@ struct ReferenceRenderInput {
 
 // width * height RGBA floats, row 0 at the top: linear colour and alpha 1 where the plane covers the
 // pixel centre, `clear` elsewhere. Throws std::invalid_argument for inconsistent inputs.
-std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderScene& scene, std::uint32_t width,
-                                std::uint32_t height, std::array<float, 4> clear);
+std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderScene& scene,
+                                std::uint32_t width, std::uint32_t height, std::array<float, 4> clear);
 
 }  // namespace carbtf::reference
