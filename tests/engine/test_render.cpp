@@ -18,6 +18,7 @@
 #include "carbtf/engine/mesh_renderer.hpp"
 #include "carbtf/engine/scene_pruning.hpp"
 #include "carbtf/engine/subspace_synthesizer.hpp"
+#include "test_materials.hpp"
 #include "test_support.hpp"
 
 using namespace carbtf;
@@ -37,23 +38,6 @@ std::map<std::uint32_t, double> as_map(const DirectionWeights& w) {
   for (int k = 0; k < 3; ++k) {
     if (w.weight[k] != 0.0f) m[w.index[k]] += w.weight[k];
   }
-  return m;
-}
-
-// A material with a bumpy range map: the synthetic models plus tiles cut from a smooth random surface.
-Material bumpy_material() {
-  Material m = synthetic_material(5, 2);
-  Plane heights(48, 48);
-  std::mt19937 random(11);
-  std::uniform_real_distribution<double> phase(0.0, 6.28);
-  const double a = phase(random), b = phase(random);
-  for (int r = 0; r < 48; ++r) {
-    for (int c = 0; c < 48; ++c)
-      heights(r, c) = 2.0 * std::sin(0.4 * c + a) * std::cos(0.3 * r + b) + 0.05 * r;
-  }
-  RangeTileOptions options;
-  options.tile_size = 16;
-  m.range = build_range_tiles(heights, options);
   return m;
 }
 
@@ -114,7 +98,7 @@ TEST_CASE("lookup grids give the triangulation's weights, inside and beyond the 
 
 TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment stage", "[render][gpu]") {
   test::ValidatedContext context;
-  const Material m = bumpy_material();
+  const Material m = test::bumpy_material();
   SynthesizedImages images;
   auto synthesizer = synthesized(*context, m, images);
   MaterialBindingInfo binding_info;
@@ -209,7 +193,7 @@ namespace {
 // tends to: light ring (0..5) and view ring, 3 * light ring + view ring / 2, and 18, 19 for the
 // grazing light ring's azimuths past 180 degrees.
 Material ubo_material() {
-  Material m = bumpy_material();
+  Material m = test::bumpy_material();
   const Material twenty = synthetic_material(20, 2);
   m.subspaces = twenty.subspaces;
   m.lights = m.views = ubo_set();
