@@ -84,7 +84,13 @@ Status MaterialBinding::create(Context& context, const Material& material, const
       return {ErrorCode::invalid_argument,
               "the material textures are empty: synthesize the subspace images first"};
     }
-    if (textures.layers.size() != material.subspaces.size()) {
+    const std::size_t pairs = material.lights.size() * material.views.size();
+    if (!textures.pair_layers.empty() && textures.pair_layers.size() != pairs) {
+      return {ErrorCode::invalid_argument,
+              "the material textures give layers for " + std::to_string(textures.pair_layers.size()) +
+                  " (light, view) pairs, the material has " + std::to_string(pairs)};
+    }
+    if (textures.pair_layers.empty() && textures.layers.size() != material.subspaces.size()) {
       return {ErrorCode::invalid_argument,
               "the material textures give layers for " + std::to_string(textures.layers.size()) +
                   " subspace images, the material has " + std::to_string(material.subspaces.size())};
@@ -106,11 +112,11 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     header.layer_table = static_cast<std::uint32_t>(r.tables.size() - kHeaderWords);
     for (std::size_t l = 0; l < material.lights.size(); ++l) {
       for (std::size_t v = 0; v < material.views.size(); ++v) {
-        const std::uint32_t s =
-            subspace_of(material, static_cast<std::uint32_t>(l), static_cast<std::uint32_t>(v));
-        r.tables.push_back(textures.layers[s] == std::numeric_limits<std::uint32_t>::max()
-                               ? gpu::CARBTF_NO_LAYER
-                               : textures.layers[s]);
+        const std::uint32_t layer = textures.pair_layers.empty()
+                                        ? textures.layers[subspace_of(material, static_cast<std::uint32_t>(l),
+                                                                      static_cast<std::uint32_t>(v))]
+                                        : textures.pair_layers[l * material.views.size() + v];
+        r.tables.push_back(layer == std::numeric_limits<std::uint32_t>::max() ? gpu::CARBTF_NO_LAYER : layer);
       }
     }
     header.width = textures.width;

@@ -206,6 +206,7 @@ Status scene_needs(const Material& material, const Mesh& mesh, const RenderScene
     for (const auto& [light, view] : pairs) subspaces.insert(subspace_of(material, light, view));
     needs.subspaces.assign(subspaces.begin(), subspaces.end());
     needs.light_view_pairs = static_cast<std::uint32_t>(pairs.size());
+    needs.pairs.assign(pairs.begin(), pairs.end());
     needs.visible_triangles = visible;
     // The density that 90% of the covered pixels need at most: a mesh's uv-degenerate corners (a sphere's
     // poles) would otherwise ask for the largest size the options allow.

@@ -5,13 +5,17 @@
 #include <cstdio>
 #include <filesystem>
 #include <numbers>
+#include <optional>
 
+#include "carbtf/analysis/btf/btf_dataset.hpp"
+#include "carbtf/analysis/btf/btf_reader.hpp"
 #include "carbtf/analysis/image_io.hpp"
 #include "carbtf/engine/material_binding.hpp"
 #include "carbtf/engine/material_file.hpp"
 #include "carbtf/engine/mesh_renderer.hpp"
 #include "carbtf/engine/scene_pruning.hpp"
 #include "carbtf/engine/subspace_synthesizer.hpp"
+#include "carbtf/engine/texture_array.hpp"
 #include "cli/cli_support.hpp"
 #include "commands/commands.hpp"
 #include "scene/obj_mesh.hpp"
@@ -36,6 +40,7 @@ struct RenderOptions {
   std::uint64_t seed = 1;
   float parallax = 1.0f;
   std::string out = "frame.png";
+  std::string compare;  // a measured BTF to render beside the model
 };
 
 std::array<float, 3> direction_of(double theta_degrees, double phi_degrees) {
@@ -96,6 +101,96 @@ RenderScene make_scene(const RenderOptions& options) {
   return scene;
 }
 
+// The dataset's directions must be the material's (the same measurement), to within 0.06 degrees.
+void check_same_directions(const BtfDataset& dataset, const Material& material, const std::string& name) {
+  auto same = [](const std::vector<Direction>& measured, const std::vector<MaterialDirection>& model) {
+    if (measured.size() != model.size()) return false;
+    for (std::size_t i = 0; i < model.size(); ++i) {
+      if (std::abs(measured[i].theta - model[i].theta) > 1e-3) return false;
+      if (measured[i].theta > 1e-6 &&
+          std::abs(std::remainder(measured[i].phi - model[i].phi, 2 * std::numbers::pi)) > 1e-3) {
+        return false;
+      }
+    }
+    return true;
+  };
+  if (!same(dataset.lights(), material.lights) || !same(dataset.views(), material.views)) {
+    throw CommandError("--compare " + name + ": its " + std::to_string(dataset.lights().size()) + " x " +
+                       std::to_string(dataset.views().size()) + " directions are not the material's " +
+                       std::to_string(material.lights.size()) + " x " +
+                       std::to_string(material.views.size()));
+  }
+}
+
+// The measured images of the pairs a frame needs, drawn through the same render pass: one texture
+// layer per pair, a flat range map (the relief is in the photographs already), no parallax.
+RenderedImage render_measured(Context& context, const Material& material, const BtfDataset& dataset,
+                              const SceneNeeds& needs, const Mesh& mesh, const RenderScene& scene,
+                              const RenderTargetInfo& target) {
+  const std::uint32_t w = dataset.width(), h = dataset.height();
+  const double bytes = static_cast<double>(needs.pairs.size()) * w * h * 4;
+  if (bytes > 1.5 * 1024 * 1024 * 1024) {
+    throw CommandError("--compare: the frame needs " + std::to_string(needs.pairs.size()) +
+                       " measured images, more than 1.5 GiB; use a smaller view of the mesh");
+  }
+  const std::uint32_t layer_limit = context.device_info().max_image_array_layers;
+  if (needs.pairs.size() > layer_limit) {
+    throw CommandError("--compare: the frame can use " + std::to_string(needs.pairs.size()) +
+                       " measured (light, view) pairs, more than the " + std::to_string(layer_limit) +
+                       " layers a texture array holds on " + context.device_info().name +
+                       "; compare on a plane or a narrower view (--fov), which use fewer pairs");
+  }
+  std::unique_ptr<TextureArray> array;
+  check(TextureArray::create(context, w, h,
+                             static_cast<std::uint32_t>(std::max<std::size_t>(needs.pairs.size(), 1)),
+                             VK_FORMAT_R8G8B8A8_SRGB, array),
+        "cannot hold the measured images");
+  MaterialTextures textures;
+  textures.view = array->view();
+  textures.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+  textures.width = w;
+  textures.height = h;
+  textures.pair_layers.assign(material.lights.size() * material.views.size(), UINT32_MAX);
+  std::vector<float> linear(std::size_t{w} * h * 3);
+  std::vector<std::uint8_t> texels(std::size_t{w} * h * 4, 255);
+  std::uint32_t layer = 0;
+  for (const auto& [light, view] : needs.pairs) {
+    if (!dataset.has_image({light, view})) continue;
+    dataset.linear_rgb({light, view}, linear);
+    for (std::size_t p = 0; p < std::size_t{w} * h; ++p) {
+      for (int k = 0; k < 3; ++k) {
+        texels[4 * p + k] = static_cast<std::uint8_t>(
+            std::lround(255.0f * linear_to_srgb(std::clamp(linear[3 * p + k], 0.0f, 1.0f))));
+      }
+    }
+    check(array->set_layer(layer, texels), "cannot stage a measured image");
+    textures.pair_layers[std::size_t{light} * material.views.size() + view] = layer++;
+  }
+  check(array->upload_and_wait(), "cannot upload the measured images");
+  Material flat = material;
+  flat.range = {};
+  MaterialBindingInfo info;
+  info.parallax_scale = 0.0f;
+  std::unique_ptr<MaterialBinding> binding;
+  check(MaterialBinding::create(context, flat, textures, info, binding), "cannot bind the measured images");
+  check(binding->upload_and_wait(), "cannot upload the flat range map");
+  std::unique_ptr<MeshRenderer> renderer;
+  check(MeshRenderer::create(context, *binding, target, renderer), "cannot build the render pass");
+  check(renderer->set_mesh(mesh), "cannot upload the mesh");
+  RenderedImage frame;
+  check(renderer->render(scene, frame), "rendering the measured BTF failed");
+  return frame;
+}
+
+std::vector<float> rgb_of(const RenderedImage& frame) {
+  std::vector<float> rgb(std::size_t{frame.width} * frame.height * 3);
+  const auto* rgba = reinterpret_cast<const float*>(frame.bytes.data());
+  for (std::size_t p = 0; p < std::size_t{frame.width} * frame.height; ++p) {
+    for (int k = 0; k < 3; ++k) rgb[3 * p + k] = rgba[4 * p + k];
+  }
+  return rgb;
+}
+
 void run_render(const RenderOptions& options) {
   std::uint32_t width = 0, height = 0;
   parse_size(options.size, width, height);
@@ -103,6 +198,13 @@ void run_render(const RenderOptions& options) {
   check(read_material_file(options.material, material), "cannot read the material");
   Mesh mesh = load_mesh(options.mesh);
   const RenderScene scene = make_scene(options);
+  std::optional<BtfDataset> measured;
+  if (!options.compare.empty()) {
+    std::vector<std::string> warnings;
+    measured = load_btf(options.compare, {}, warnings);
+    for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    check_same_directions(*measured, material, options.compare);
+  }
 
   auto context = make_context(options.device);
   // Only what the frame can use: the subspace images its (light, view) pairs fall in, at the texel
@@ -116,6 +218,11 @@ void run_render(const RenderOptions& options) {
   SynthesisRequest request;
   request.seed = options.seed;
   request.width = request.height = options.texture_size ? options.texture_size : needs.texture_size;
+  if (measured && !options.texture_size) {
+    // Beside the measurement, the model at the measurement's scale: one texel per measured pixel.
+    request.width = measured->width();
+    request.height = measured->height();
+  }
   if (options.prune) request.subspaces = needs.subspaces;
   const std::size_t synthesized = options.prune ? needs.subspaces.size() : material.subspaces.size();
   std::printf("[1/3] synthesizing %zu of %zu subspace images of %ux%u on %s\n", synthesized,
@@ -175,15 +282,32 @@ void run_render(const RenderOptions& options) {
   const double render_ms = seconds_since(start) * 1e3;
   check_validation(*context);
 
-  // Background pixels (alpha 0) keep the clear colour; the file gets RGB.
-  std::vector<float> rgb(std::size_t{width} * height * 3);
-  const auto* rgba = reinterpret_cast<const float*>(frame.bytes.data());
-  for (std::size_t p = 0; p < std::size_t{width} * height; ++p) {
-    for (int k = 0; k < 3; ++k) rgb[3 * p + k] = rgba[4 * p + k];
-  }
+  const std::vector<float> rgb = rgb_of(frame);
   const fs::path out = options.out;
   if (out.has_parent_path()) create_folder(out.parent_path());
   write_rgb_image(out, rgb, width, height, true);
+  if (measured) {
+    std::printf("rendering the measured BTF (%zu of its images) on the same mesh\n", needs.pairs.size());
+    std::fflush(stdout);
+    const std::vector<float> other =
+        rgb_of(render_measured(*context, material, *measured, needs, mesh, scene, target));
+    check_validation(*context);
+    const fs::path measured_path =
+        fs::path(out).replace_filename(out.stem().string() + "_measured" + out.extension().string());
+    write_rgb_image(measured_path, other, width, height, true);
+    // Model left, measurement right.
+    std::vector<float> both(rgb.size() * 2);
+    for (std::uint32_t y = 0; y < height; ++y) {
+      std::copy_n(&rgb[std::size_t{y} * width * 3], width * 3, &both[std::size_t{y} * width * 6]);
+      std::copy_n(&other[std::size_t{y} * width * 3], width * 3,
+                  &both[std::size_t{y} * width * 6 + width * 3]);
+    }
+    const fs::path compare_path =
+        fs::path(out).replace_filename(out.stem().string() + "_compare" + out.extension().string());
+    write_rgb_image(compare_path, both, 2 * width, height, true);
+    std::printf("wrote %s (measured) and %s (model | measured)\n", measured_path.string().c_str(),
+                compare_path.string().c_str());
+  }
   std::printf("synthesis %.1f ms, render %.1f ms (wall, with readback)\nwrote %s\n", synthesis_ms, render_ms,
               out.string().c_str());
 }
@@ -249,6 +373,10 @@ void register_render_command(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--out", options->out, "Output image: .png (sRGB) or .exr (linear)")
       ->capture_default_str();
+  command->add_option(
+      "--compare", options->compare,
+      "A measured BTF (the one the material came from): also render its images, interpolated the same "
+      "way, on the same mesh, view and lights; writes OUT_measured and OUT_compare (model | measured)");
   add_device_options(*command, options->device);
   command->callback([options] { run_render(*options); });
 }

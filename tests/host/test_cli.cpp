@@ -265,6 +265,23 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
     const std::size_t centre = (32u * 96u + 48u) * 3u;
     CHECK(image.srgb8[centre] != image.srgb8[0]);
 
+    // Beside the measurement: the measured BTF drawn the same way on the same plane, view and light.
+    const fs::path compare = folder / "render" / "plane.png";
+    const Run beside = run("render " + material.string() + " --compare " + (folder / "leather" / "btf").string() +
+                           " --mesh plane --camera 35,200,2.6 --light 45,60 --size 64x48 --validation --out " +
+                           compare.string());
+    INFO(beside.output);
+    REQUIRE(beside.status == 0);
+    CHECK_THAT(beside.output, Catch::Contains("rendering the measured BTF"));
+    const RgbImage pair = decode_rgb_image((folder / "render" / "plane_compare.png").string(),
+                                           read_file_bytes(folder / "render" / "plane_compare.png"));
+    CHECK(pair.width == 128u);
+    CHECK(fs::exists(folder / "render" / "plane_measured.png"));
+    const Run no_dataset = run("render " + material.string() + " --compare " + (folder / "missing").string() +
+                               " --out " + (folder / "bad.png").string());
+    CHECK(no_dataset.status == 1);
+    CHECK(line_count(no_dataset.output) == 1);
+
     const fs::path obj = folder / "no_uv.obj";
     {
       std::ofstream file(obj);

@@ -34,6 +34,9 @@ struct MaterialTextures {
   // Per subspace of the material: its layer, or UINT32_MAX when it was not synthesized (pairs that
   // fall there then contribute nothing).
   std::vector<std::uint32_t> layers;
+  // Instead of `layers` when not empty: the layer of every (light, view) pair, [light * views + view],
+  // or UINT32_MAX. Measured images (one per pair, TextureArray) are drawn this way.
+  std::vector<std::uint32_t> pair_layers;
 };
 
 // The textures of a prepared synthesizer.

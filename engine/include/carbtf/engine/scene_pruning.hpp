@@ -16,6 +16,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "carbtf/engine/material.hpp"
@@ -34,6 +35,7 @@ struct PruningOptions {
 struct SceneNeeds {
   std::vector<std::uint32_t> subspaces;  // ascending
   std::uint32_t light_view_pairs = 0;    // distinct measured (light, view) pairs that can carry weight
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;  // those pairs, (light, view), ascending
   std::uint32_t texture_size = 0;
   std::uint32_t visible_triangles = 0;
 };

@@ -1,0 +1,45 @@
+// Host images uploaded into a sampled 2D-array image: for instance the measured BTF images of the
+// (light, view) pairs a frame needs, drawn through a MaterialBinding beside the model
+// (MaterialTextures::pair_layers). RGBA8 (sRGB or UNORM) or RGBA32F texels.
+//
+// Use: create(); set_layer() for every layer (host memory, staged); record_upload() into a command
+// buffer of yours, or upload_and_wait(). The image ends in VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL.
+// Lifetime: destroy after the last command buffer that reads it has finished, and before the Context.
+// Thread safety: externally synchronized.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+
+#include "carbtf/engine/buffer.hpp"
+#include "carbtf/engine/context.hpp"
+
+namespace carbtf {
+
+class TextureArray {
+ public:
+  // invalid_argument for another format, an empty size, or more layers than the device allows.
+  static Status create(Context& context, std::uint32_t width, std::uint32_t height, std::uint32_t layers,
+                       VkFormat format, std::unique_ptr<TextureArray>& out) noexcept;
+  ~TextureArray();
+
+  // Copies one layer, width * height texels row-major, into the staging memory.
+  Status set_layer(std::uint32_t layer, std::span<const std::uint8_t> texels) noexcept;
+  void record_upload(VkCommandBuffer command_buffer) const noexcept;
+  Status upload_and_wait() noexcept;
+
+  VkImageView view() const noexcept { return image_.view(); }
+  std::uint32_t width() const noexcept { return image_.info().width; }
+  std::uint32_t height() const noexcept { return image_.info().height; }
+  std::uint32_t layers() const noexcept { return image_.info().array_layers; }
+
+ private:
+  TextureArray() = default;
+  Context* context_ = nullptr;
+  Image image_;
+  Buffer staging_;
+  std::uint32_t texel_bytes_ = 0;
+};
+
+}  // namespace carbtf

@@ -1,0 +1,101 @@
+#include "carbtf/engine/texture_array.hpp"
+
+#include <cstring>
+#include <string>
+
+#include "vk_check.hpp"
+
+namespace carbtf {
+
+Status TextureArray::create(Context& context, std::uint32_t width, std::uint32_t height, std::uint32_t layers,
+                            VkFormat format, std::unique_ptr<TextureArray>& out) noexcept {
+  try {
+    std::uint32_t texel_bytes = 0;
+    switch (format) {
+      case VK_FORMAT_R8G8B8A8_SRGB:
+      case VK_FORMAT_R8G8B8A8_UNORM:
+        texel_bytes = 4;
+        break;
+      case VK_FORMAT_R32G32B32A32_SFLOAT:
+        texel_bytes = 16;
+        break;
+      default:
+        return {ErrorCode::invalid_argument, "a texture array holds RGBA8 (sRGB or UNORM) or RGBA32F texels"};
+    }
+    const DeviceInfo& device = context.device_info();
+    if (width == 0 || height == 0 || layers == 0 || width > device.max_image_dimension_2d ||
+        height > device.max_image_dimension_2d || layers > device.max_image_array_layers) {
+      return {ErrorCode::invalid_argument, "a texture array of " + std::to_string(width) + "x" +
+                                               std::to_string(height) + "x" + std::to_string(layers) +
+                                               " is beyond this device's image limits"};
+    }
+    std::unique_ptr<TextureArray> array(new TextureArray());
+    array->context_ = &context;
+    array->texel_bytes_ = texel_bytes;
+    ImageCreateInfo info;
+    info.width = width;
+    info.height = height;
+    info.array_layers = layers;
+    info.format = format;
+    info.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    info.debug_name = "carbtf texture array";
+    CARBTF_TRY(Image::create(context, info, array->image_));
+    CARBTF_TRY(
+        Buffer::create(context,
+                       {VkDeviceSize{width} * height * layers * texel_bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                        MemoryUsage::host_upload, "carbtf texture array staging"},
+                       array->staging_));
+    out = std::move(array);
+    return {};
+  } catch (const std::bad_alloc&) {
+    return {ErrorCode::out_of_host_memory, "out of host memory while creating a texture array"};
+  }
+}
+
+TextureArray::~TextureArray() = default;
+
+Status TextureArray::set_layer(std::uint32_t layer, std::span<const std::uint8_t> texels) noexcept {
+  const std::size_t layer_bytes = std::size_t{width()} * height() * texel_bytes_;
+  if (layer >= layers() || texels.size() != layer_bytes) {
+    return {ErrorCode::invalid_argument, "texture array layer " + std::to_string(layer) + " needs " +
+                                             std::to_string(layer_bytes) + " bytes, got " +
+                                             std::to_string(texels.size())};
+  }
+  std::memcpy(static_cast<std::uint8_t*>(staging_.mapped()) + layer * layer_bytes, texels.data(),
+              layer_bytes);
+  return {};
+}
+
+void TextureArray::record_upload(VkCommandBuffer cb) const noexcept {
+  const VulkanFunctions& vk = context_->vk();
+  auto barrier = vk_struct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
+  barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  barrier.image = image_.handle();
+  barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers()};
+  barrier.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  barrier.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+  barrier.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  vk.vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0,
+                          nullptr, 0, nullptr, 1, &barrier);
+  VkBufferImageCopy copy{};
+  copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, layers()};
+  copy.imageExtent = {width(), height(), 1};
+  vk.vkCmdCopyBufferToImage(cb, staging_.handle(), image_.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                            &copy);
+  barrier.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+  barrier.newLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+  barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
+  vk.vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                          VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0,
+                          nullptr, 0, nullptr, 1, &barrier);
+}
+
+Status TextureArray::upload_and_wait() noexcept {
+  return context_->submit_and_wait([this](VkCommandBuffer cb) {
+    record_upload(cb);
+    return Status{};
+  });
+}
+
+}  // namespace carbtf
