@@ -287,7 +287,19 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
       std::ofstream file(obj);
       file << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
     }
+    auto write_obj = [&](const std::string& name, const std::string& text) {
+      std::ofstream(folder / name, std::ios::binary) << text;
+      return (folder / name).string();
+    };
+    const std::string far_index = write_obj("far.obj", "v 0 0 0\nvt 0 0\nf 1/1 2/1 -9/1\n");
+    const std::string not_a_number = write_obj("inf.obj", "v 1e999 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1\n");
+    const std::string empty = write_obj("empty.obj", "");
+    const std::string garbage = write_obj("garbage.obj", std::string("\x7f\x45\x4c\x46\x02\x01\x00\xff", 8));
     for (const auto& [arguments, expected] : std::vector<std::pair<std::string, std::string>>{
+             {"--mesh " + far_index, "does not exist"},
+             {"--mesh " + not_a_number, "non-finite"},
+             {"--mesh " + empty, "no faces"},
+             {"--mesh " + garbage, "no faces"},
              {"--mesh " + obj.string(), "no texture coordinates"},
              {"--mesh " + (folder / "missing.obj").string(), "no such mesh file"},
              {"--mesh cube", "expected plane, sphere"},
