@@ -28,6 +28,7 @@
 #include "commands/commands.hpp"
 #include "report/analysis_report.hpp"
 #include "report/html_report.hpp"
+#include "report/pictures.hpp"
 
 namespace carbtf::cli {
 
@@ -50,11 +51,6 @@ std::string format(const char* pattern, double value) {
   return buffer;
 }
 
-std::string two_digits(std::size_t s) {
-  const std::string digits = std::to_string(s);
-  return digits.size() < 2 ? "0" + digits : digits;
-}
-
 void step(int index, const char* text) {
   std::printf("[%d/6] %s\n", index, text);
   std::fflush(stdout);
@@ -63,26 +59,6 @@ void step(int index, const char* text) {
 std::array<float, 3> vector_of(const Direction& d) {
   const auto v = d.vector();
   return {static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2])};
-}
-
-std::vector<float> rgb_of(const RenderedImage& frame) {
-  std::vector<float> rgb(std::size_t{frame.width} * frame.height * 3);
-  const auto* rgba = reinterpret_cast<const float*>(frame.bytes.data());
-  for (std::size_t p = 0; p < std::size_t{frame.width} * frame.height; ++p) {
-    for (int k = 0; k < 3; ++k) rgb[3 * p + k] = rgba[4 * p + k];
-  }
-  return rgb;
-}
-
-// Model channels to RGB for a picture (grey repeated, missing channels zero).
-std::vector<float> subspace_rgb(const std::vector<float>& values, std::uint32_t channels,
-                                std::size_t pixels) {
-  std::vector<float> rgb(pixels * 3);
-  for (std::size_t p = 0; p < pixels; ++p) {
-    for (std::uint32_t c = 0; c < 3; ++c)
-      rgb[p * 3 + c] = channels == 1 ? values[p] : c < channels ? values[p * channels + c] : 0.0f;
-  }
-  return rgb;
 }
 
 struct Comparison {
@@ -165,7 +141,7 @@ void run_demo(const DemoOptions& options) {
   }
   for (std::size_t s = 0; s < images.images.size(); ++s) {
     write_rgb_image(folder / ("synthesized_" + two_digits(s) + ".png"),
-                    subspace_rgb(images.images[s], images.channels[s], std::size_t{n} * n), n, n);
+                    channels_to_rgb(images.images[s], images.channels[s], std::size_t{n} * n), n, n);
   }
 
   // 4. The render pass on a plane, beside the measurement, at measured (light, view) pairs.
@@ -204,7 +180,7 @@ void run_demo(const DemoOptions& options) {
     start = std::chrono::steady_clock::now();
     check(plane_renderer->render(scene, frame), "rendering the plane failed");
     plane_ms += seconds_since(start) * 1e3;
-    const std::vector<float> model = rgb_of(frame);
+    const std::vector<float> model = rendered_rgb(frame);
     dataset.linear_rgb({c.light, c.view}, measured);
     c.error = fidelity_error(model, plane_size, plane_size, measured, dataset.width(), dataset.height());
     const std::string stem = "plane_l" + std::to_string(c.light) + "_v" + std::to_string(c.view);
@@ -233,7 +209,7 @@ void run_demo(const DemoOptions& options) {
   start = std::chrono::steady_clock::now();
   check(sphere_renderer->render(sphere_scene, sphere), "rendering the sphere failed");
   timed("render, sphere 960x640 (wall)", seconds_since(start));
-  write_rgb_image(folder / "sphere.png", rgb_of(sphere), sphere.width, sphere.height);
+  write_rgb_image(folder / "sphere.png", rendered_rgb(sphere), sphere.width, sphere.height);
   check_validation(*context);
 
   // 6. The report.

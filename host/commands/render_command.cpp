@@ -18,6 +18,7 @@
 #include "carbtf/engine/texture_array.hpp"
 #include "cli/cli_support.hpp"
 #include "commands/commands.hpp"
+#include "report/pictures.hpp"
 #include "scene/obj_mesh.hpp"
 
 namespace carbtf::cli {
@@ -182,15 +183,6 @@ RenderedImage render_measured(Context& context, const Material& material, const 
   return frame;
 }
 
-std::vector<float> rgb_of(const RenderedImage& frame) {
-  std::vector<float> rgb(std::size_t{frame.width} * frame.height * 3);
-  const auto* rgba = reinterpret_cast<const float*>(frame.bytes.data());
-  for (std::size_t p = 0; p < std::size_t{frame.width} * frame.height; ++p) {
-    for (int k = 0; k < 3; ++k) rgb[3 * p + k] = rgba[4 * p + k];
-  }
-  return rgb;
-}
-
 void run_render(const RenderOptions& options) {
   std::uint32_t width = 0, height = 0;
   parse_size(options.size, width, height);
@@ -282,7 +274,7 @@ void run_render(const RenderOptions& options) {
   const double render_ms = seconds_since(start) * 1e3;
   check_validation(*context);
 
-  const std::vector<float> rgb = rgb_of(frame);
+  const std::vector<float> rgb = rendered_rgb(frame);
   const fs::path out = options.out;
   if (out.has_parent_path()) create_folder(out.parent_path());
   write_rgb_image(out, rgb, width, height, true);
@@ -290,7 +282,7 @@ void run_render(const RenderOptions& options) {
     std::printf("rendering the measured BTF (%zu of its images) on the same mesh\n", needs.pairs.size());
     std::fflush(stdout);
     const std::vector<float> other =
-        rgb_of(render_measured(*context, material, *measured, needs, mesh, scene, target));
+        rendered_rgb(render_measured(*context, material, *measured, needs, mesh, scene, target));
     check_validation(*context);
     const fs::path measured_path =
         fs::path(out).replace_filename(out.stem().string() + "_measured" + out.extension().string());

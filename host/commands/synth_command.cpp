@@ -14,6 +14,7 @@
 #include "carbtf/engine/subspace_synthesizer.hpp"
 #include "cli/cli_support.hpp"
 #include "commands/commands.hpp"
+#include "report/pictures.hpp"
 
 namespace carbtf::cli {
 namespace {
@@ -59,28 +60,11 @@ Interpolation plan_interpolation(const Material& material, const SynthOptions& o
   return result;
 }
 
-// Model channels to display RGB: grey is repeated, a third channel of zeros pads two, extra are dropped.
-std::vector<float> to_rgb(const std::vector<float>& values, std::uint32_t channels, std::size_t pixels) {
-  std::vector<float> rgb(pixels * 3);
-  for (std::size_t p = 0; p < pixels; ++p) {
-    for (std::uint32_t c = 0; c < 3; ++c) {
-      rgb[p * 3 + c] = channels == 1 ? values[p] : c < channels ? values[p * channels + c] : 0.0f;
-    }
-  }
-  return rgb;
-}
-
 void write_image_pair(const fs::path& folder, const std::string& stem, const std::vector<float>& values, std::uint32_t channels,
                       std::uint32_t width, std::uint32_t height) {
-  const std::vector<float> rgb = to_rgb(values, channels, std::size_t{width} * height);
+  const std::vector<float> rgb = channels_to_rgb(values, channels, std::size_t{width} * height);
   write_rgb_image(folder / (stem + ".png"), rgb, width, height, true);
   write_rgb_image(folder / (stem + ".exr"), rgb, width, height, true);
-}
-
-std::string two_digits(std::uint32_t s) {
-  char text[16];
-  std::snprintf(text, sizeof text, "%02u", s);
-  return text;
 }
 
 void run_synth(const SynthOptions& options) {

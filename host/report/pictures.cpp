@@ -1,0 +1,34 @@
+#include "report/pictures.hpp"
+
+#include <cstring>
+
+namespace carbtf::cli {
+
+std::vector<float> channels_to_rgb(const std::vector<float>& values, std::uint32_t channels,
+                                   std::size_t pixels) {
+  std::vector<float> rgb(pixels * 3);
+  for (std::size_t p = 0; p < pixels; ++p) {
+    for (std::uint32_t c = 0; c < 3; ++c) {
+      rgb[p * 3 + c] = channels == 1 ? values[p] : c < channels ? values[p * channels + c] : 0.0f;
+    }
+  }
+  return rgb;
+}
+
+std::vector<float> rendered_rgb(const RenderedImage& frame) {
+  const std::size_t pixels = std::size_t{frame.width} * frame.height;
+  std::vector<float> rgba(pixels * 4);
+  std::memcpy(rgba.data(), frame.bytes.data(), std::min(frame.bytes.size(), rgba.size() * sizeof(float)));
+  std::vector<float> rgb(pixels * 3);
+  for (std::size_t p = 0; p < pixels; ++p) {
+    for (int k = 0; k < 3; ++k) rgb[3 * p + k] = rgba[4 * p + k];
+  }
+  return rgb;
+}
+
+std::string two_digits(std::size_t value) {
+  const std::string digits = std::to_string(value);
+  return digits.size() < 2 ? "0" + digits : digits;
+}
+
+}  // namespace carbtf::cli

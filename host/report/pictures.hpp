@@ -1,0 +1,22 @@
+// Engine outputs as RGB pictures for files and reports.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "carbtf/engine/mesh_renderer.hpp"
+
+namespace carbtf::cli {
+
+// Model channels to display RGB: grey is repeated, a third channel of zeros pads two, extra are dropped.
+std::vector<float> channels_to_rgb(const std::vector<float>& values, std::uint32_t channels,
+                                   std::size_t pixels);
+
+// An RGBA32F frame (MeshRenderer with VK_FORMAT_R32G32B32A32_SFLOAT) as RGB floats.
+std::vector<float> rendered_rgb(const RenderedImage& frame);
+
+// "07" for 7: file names that sort.
+std::string two_digits(std::size_t value);
+
+}  // namespace carbtf::cli
