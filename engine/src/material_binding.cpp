@@ -11,6 +11,7 @@
 #include "carbtf/engine/direction_lookup.hpp"
 #include "carbtf/engine/range_tiles.hpp"
 #include "carbtf/engine/subspace_synthesizer.hpp"
+#include "carbtf/engine/texture_array.hpp"
 #include "vk_check.hpp"
 
 namespace carbtf {
@@ -58,8 +59,7 @@ struct MaterialBinding::Resources {
   std::uint32_t width = 0;
   std::uint32_t height = 0;
   Buffer table_buffer;
-  Buffer range_staging;
-  Image range_image;
+  std::unique_ptr<TextureArray> range_image;  // one R32F layer
   UniqueHandle<VkSampler> sampler;
   UniqueHandle<VkDescriptorSetLayout> set_layout;
   UniqueHandle<VkDescriptorPool> pool;
@@ -142,18 +142,11 @@ Status MaterialBinding::create(Context& context, const Material& material, const
                                MemoryUsage::host_upload, "carbtf material tables"},
                               r.table_buffer));
     std::memcpy(r.table_buffer.mapped(), r.tables.data(), r.tables.size() * 4);
-    CARBTF_TRY(Buffer::create(context,
-                              {r.range_map.size() * 4, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                               MemoryUsage::host_upload, "carbtf range map staging"},
-                              r.range_staging));
-    std::memcpy(r.range_staging.mapped(), r.range_map.data(), r.range_map.size() * 4);
-    ImageCreateInfo image_info;
-    image_info.width = textures.width;
-    image_info.height = textures.height;
-    image_info.format = VK_FORMAT_R32_SFLOAT;
-    image_info.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-    image_info.debug_name = "carbtf range map";
-    CARBTF_TRY(Image::create(context, image_info, r.range_image));
+    CARBTF_TRY(TextureArray::create(context, textures.width, textures.height, 1, VK_FORMAT_R32_SFLOAT,
+                                    r.range_image));
+    CARBTF_TRY(r.range_image->set_layer(
+        0, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(r.range_map.data()),
+                                         r.range_map.size() * 4)));
 
     const VulkanFunctions& vk = context.vk();
     const VkDevice device = context.device();
@@ -200,7 +193,7 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     CARBTF_VK_TRY(vk.vkAllocateDescriptorSets(device, &allocate, &r.set));
 
     const VkDescriptorImageInfo subspaces{sampler, textures.view, textures.layout};
-    const VkDescriptorImageInfo range{sampler, r.range_image.view(),
+    const VkDescriptorImageInfo range{sampler, r.range_image->view(),
                                       VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     const VkDescriptorBufferInfo tables{r.table_buffer.handle(), 0, VK_WHOLE_SIZE};
     VkWriteDescriptorSet writes[3];
@@ -225,29 +218,7 @@ Status MaterialBinding::create(Context& context, const Material& material, const
 MaterialBinding::~MaterialBinding() = default;
 
 void MaterialBinding::record_upload(VkCommandBuffer command_buffer) const noexcept {
-  const VulkanFunctions& vk = context_->vk();
-  const Resources& r = *resources_;
-  auto barrier = vk_struct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
-  barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  barrier.image = r.range_image.handle();
-  barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-  barrier.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  barrier.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-  barrier.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-  vk.vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                          0, 0, nullptr, 0, nullptr, 1, &barrier);
-  VkBufferImageCopy copy{};
-  copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-  copy.imageExtent = {r.width, r.height, 1};
-  vk.vkCmdCopyBufferToImage(command_buffer, r.range_staging.handle(), r.range_image.handle(),
-                            VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
-  barrier.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-  barrier.newLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-  barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-  barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
-  vk.vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                          VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0,
-                          nullptr, 0, nullptr, 1, &barrier);
+  resources_->range_image->record_upload(command_buffer);
 }
 
 Status MaterialBinding::upload_and_wait() noexcept {
