@@ -17,14 +17,18 @@ using Point = std::array<double, 2>;
 
 }  // namespace
 
+bool inside_triangle(const DirectionTriangulation& tri, std::uint32_t triangle, double x, double y) {
+  const auto& t = tri.triangles[triangle];
+  const Point &a = tri.points[t[0]], &b = tri.points[t[1]], &c = tri.points[t[2]];
+  const double area = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
+  const double la = ((b[0] - x) * (c[1] - y) - (b[1] - y) * (c[0] - x)) / area;
+  const double lb = ((x - a[0]) * (c[1] - a[1]) - (y - a[1]) * (c[0] - a[0])) / area;
+  return la >= -1e-12 && lb >= -1e-12 && 1.0 - la - lb >= -1e-12;
+}
+
 bool inside_triangulation(const DirectionTriangulation& tri, double x, double y) {
-  const Point q{x, y};
-  for (const auto& t : tri.triangles) {
-    const Point &a = tri.points[t[0]], &b = tri.points[t[1]], &c = tri.points[t[2]];
-    const double area = (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]);
-    const double la = ((b[0] - q[0]) * (c[1] - q[1]) - (b[1] - q[1]) * (c[0] - q[0])) / area;
-    const double lb = ((q[0] - a[0]) * (c[1] - a[1]) - (q[1] - a[1]) * (c[0] - a[0])) / area;
-    if (la >= -1e-12 && lb >= -1e-12 && 1.0 - la - lb >= -1e-12) return true;
+  for (std::uint32_t t = 0; t < tri.triangles.size(); ++t) {
+    if (inside_triangle(tri, t, x, y)) return true;
   }
   return false;
 }

@@ -66,6 +66,12 @@ struct MaterialBinding::Resources {
   VkDescriptorSet set = VK_NULL_HANDLE;  // freed with the pool
 };
 
+float relight_floor(const Material& material) {
+  float largest_theta = 0.0f;
+  for (const auto& d : material.lights) largest_theta = std::max(largest_theta, d.theta);
+  return std::max(std::cos(largest_theta), 1.0e-3f);
+}
+
 MaterialTextures material_textures(const SubspaceSynthesizer& synthesizer, const Material& material) {
   MaterialTextures textures;
   textures.view = synthesizer.image_view();
@@ -122,9 +128,7 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     header.width = textures.width;
     header.height = textures.height;
     header.parallax_scale = info.parallax_scale;
-    float largest_theta = 0.0f;
-    for (const auto& d : material.lights) largest_theta = std::max(largest_theta, d.theta);
-    header.light_z_floor = std::max(std::cos(largest_theta), 1.0e-3f);
+    header.light_z_floor = relight_floor(material);
 
     r.range_map.assign(std::size_t{textures.width} * textures.height, 0.0f);
     if (material.range.tile_size > 0) {

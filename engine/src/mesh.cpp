@@ -92,20 +92,6 @@ Mesh make_torus(std::uint32_t segments, std::uint32_t tube_segments) {
                     });
 }
 
-Mesh make_mesh(MeshShape shape) {
-  switch (shape) {
-    case MeshShape::sphere:
-      return make_sphere();
-    case MeshShape::cylinder:
-      return make_cylinder();
-    case MeshShape::torus:
-      return make_torus();
-    case MeshShape::plane:
-      break;
-  }
-  return make_plane();
-}
-
 void generate_tangents(Mesh& mesh) {
   std::vector<glm::vec3> along_u(mesh.vertices.size(), glm::vec3(0)),
       along_v(mesh.vertices.size(), glm::vec3(0));

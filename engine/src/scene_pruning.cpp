@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <set>
+#include <span>
 
 #include <glm/glm.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -20,6 +21,48 @@ namespace {
 struct DirectionSet {
   DirectionTriangulation triangulation;
   DirectionLookupGrid grid;
+  std::vector<std::array<glm::vec2, 2>> boxes;  // per triangle: its bounding box (lo, hi)
+
+  Status build(std::span<const MaterialDirection> directions, std::uint32_t grid_size) {
+    CARBTF_TRY(build_direction_triangulation(directions, triangulation));
+    grid = build_direction_lookup(triangulation, grid_size);
+    for (const auto& t : triangulation.triangles) {
+      glm::vec2 a(1e30f), b(-1e30f);
+      for (std::uint32_t k : t) {
+        const glm::vec2 p(static_cast<float>(triangulation.points[k][0]),
+                          static_cast<float>(triangulation.points[k][1]));
+        a = glm::min(a, p);
+        b = glm::max(b, p);
+      }
+      boxes.push_back({a, b});
+    }
+    return {};
+  }
+
+  // Calls f(triangle) for the triangles listed in the grid cells that [lo, hi] meets (with repeats):
+  // every triangle whose bounding box meets [lo, hi] is among them.
+  template <typename F>
+  void for_candidates(glm::vec2 lo, glm::vec2 hi, F f) const {
+    const int g = static_cast<int>(grid.grid_size);
+    auto cell = [g](float x) {
+      return std::clamp(static_cast<int>(std::floor((x * 0.5f + 0.5f) * static_cast<float>(g))), 0, g - 1);
+    };
+    for (int y = cell(lo.y); y <= cell(hi.y); ++y) {
+      for (int x = cell(lo.x); x <= cell(hi.x); ++x) {
+        const std::size_t c = static_cast<std::size_t>(y) * grid.grid_size + static_cast<std::size_t>(x);
+        for (std::uint32_t e = grid.cell_starts[c]; e < grid.cell_starts[c + 1]; ++e) {
+          if ((grid.entries[e] & gpu::CARBTF_LOOKUP_EDGE_BIT) == 0) f(grid.entries[e]);
+        }
+      }
+    }
+  }
+
+  bool inside(glm::vec2 p) const {
+    bool found = false;
+    for_candidates(p, p,
+                   [&](std::uint32_t t) { found = found || inside_triangle(triangulation, t, p.x, p.y); });
+    return found;
+  }
 };
 
 // As the fragment stage projects (carbtf_project_direction).
@@ -37,23 +80,18 @@ void directions_in_box(const DirectionSet& set, glm::vec2 lo, glm::vec2 hi, std:
   hi += widen;
   const auto& tri = set.triangulation;
   bool any = false;
-  for (const auto& t : tri.triangles) {
-    glm::vec2 a(1e30f), b(-1e30f);
-    for (std::uint32_t k : t) {
-      const glm::vec2 p(static_cast<float>(tri.points[k][0]), static_cast<float>(tri.points[k][1]));
-      a = glm::min(a, p);
-      b = glm::max(b, p);
-    }
+  set.for_candidates(lo, hi, [&](std::uint32_t t) {
+    const auto& [a, b] = set.boxes[t];
     if (a.x <= hi.x && b.x >= lo.x && a.y <= hi.y && b.y >= lo.y) {
-      out.insert(t.begin(), t.end());
+      out.insert(tri.triangles[t].begin(), tri.triangles[t].end());
       any = true;
     }
-  }
+  });
   // Where the box reaches beyond the triangulation, points take the nearest boundary point, as in the
   // fragment stage: every boundary edge that can be nearest to a point of the box counts.
   bool partly_outside = !any;
   for (const glm::vec2 corner : {lo, hi, glm::vec2(lo.x, hi.y), glm::vec2(hi.x, lo.y)}) {
-    partly_outside = partly_outside || !inside_triangulation(tri, corner.x, corner.y);
+    partly_outside = partly_outside || !set.inside(corner);
   }
   if (partly_outside && !tri.boundary.empty()) {
     const glm::vec2 centre = 0.5f * (lo + hi);
@@ -82,18 +120,42 @@ void exact_directions(const DirectionSet& set, glm::vec2 p, std::set<std::uint32
 
 }  // namespace
 
-Status scene_needs(const Material& material, const Mesh& mesh, const RenderScene& scene,
-                   std::uint32_t frame_width, std::uint32_t frame_height, const PruningOptions& options,
-                   SceneNeeds& out) noexcept {
+struct ScenePruner::Lookups {
+  DirectionSet lights, views;
+  std::vector<std::uint8_t> subspace_index;
+  std::size_t view_count = 0;
+  PruningOptions options;
+};
+
+Status ScenePruner::create(const Material& material, const PruningOptions& options,
+                           std::unique_ptr<ScenePruner>& out) noexcept {
+  try {
+    std::unique_ptr<ScenePruner> pruner(new ScenePruner());
+    pruner->lookups_ = std::make_unique<Lookups>();
+    Lookups& l = *pruner->lookups_;
+    CARBTF_TRY(l.lights.build(material.lights, options.lookup_grid_size));
+    CARBTF_TRY(l.views.build(material.views, options.lookup_grid_size));
+    l.subspace_index = material.subspace_index;
+    l.view_count = material.views.size();
+    l.options = options;
+    out = std::move(pruner);
+    return {};
+  } catch (const std::bad_alloc&) {
+    return {ErrorCode::out_of_host_memory, "out of host memory while building the scene pruner"};
+  }
+}
+
+ScenePruner::~ScenePruner() = default;
+
+Status ScenePruner::needs(const Mesh& mesh, const RenderScene& scene, std::uint32_t frame_width,
+                          std::uint32_t frame_height, SceneNeeds& out) const noexcept {
   try {
     CARBTF_TRY(validate_mesh(mesh));
     if (frame_width == 0 || frame_height == 0)
       return {ErrorCode::invalid_argument, "the frame has no pixels"};
-    DirectionSet lights, views;
-    CARBTF_TRY(build_direction_triangulation(material.lights, lights.triangulation));
-    CARBTF_TRY(build_direction_triangulation(material.views, views.triangulation));
-    lights.grid = build_direction_lookup(lights.triangulation, options.lookup_grid_size);
-    views.grid = build_direction_lookup(views.triangulation, options.lookup_grid_size);
+    const DirectionSet& lights = lookups_->lights;
+    const DirectionSet& views = lookups_->views;
+    const PruningOptions& options = lookups_->options;
 
     glm::mat4 model, clip;
     std::copy(scene.model.begin(), scene.model.end(), glm::value_ptr(model));
@@ -109,6 +171,10 @@ Status scene_needs(const Material& material, const Mesh& mesh, const RenderScene
     std::vector<std::pair<double, double>> densities;  // (pixels per unit of uv area, pixels) per triangle
     std::uint32_t visible = 0;
     const std::uint32_t n = std::max(options.samples_per_edge, 1u);
+    // Per triangle, reused: the projected directions over it and the measured directions they reach.
+    std::vector<glm::vec2> view_points;
+    std::vector<std::vector<glm::vec2>> light_points(light_count);
+    std::set<std::uint32_t> view_set, light_set;
     for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
       const MeshVertex* v[3] = {&mesh.vertices[mesh.indices[i]], &mesh.vertices[mesh.indices[i + 1]],
                                 &mesh.vertices[mesh.indices[i + 2]]};
@@ -151,8 +217,8 @@ Status scene_needs(const Material& material, const Mesh& mesh, const RenderScene
       }
 
       // Directions over the triangle, interpolated as the rasterizer does (linearly at this scale).
-      std::vector<glm::vec2> view_points;
-      std::vector<std::vector<glm::vec2>> light_points(light_count);
+      view_points.clear();
+      for (auto& points : light_points) points.clear();
       for (std::uint32_t a = 0; a <= n; ++a) {
         for (std::uint32_t b = 0; a + b <= n; ++b) {
           const float wa = static_cast<float>(a) / n, wb = static_cast<float>(b) / n, wc = 1.0f - wa - wb;
@@ -189,11 +255,11 @@ Status scene_needs(const Material& material, const Mesh& mesh, const RenderScene
           directions_in_box(set, lo, hi, found);
         }
       };
-      std::set<std::uint32_t> view_set;
+      view_set.clear();
       gather(views, view_points, view_set);
       for (std::size_t l = 0; l < light_count; ++l) {
         if (light_points[l].empty()) continue;
-        std::set<std::uint32_t> light_set;
+        light_set.clear();
         gather(lights, light_points[l], light_set);
         for (std::uint32_t a : light_set) {
           for (std::uint32_t b : view_set) pairs.insert({a, b});
@@ -203,9 +269,10 @@ Status scene_needs(const Material& material, const Mesh& mesh, const RenderScene
 
     SceneNeeds needs;
     std::set<std::uint32_t> subspaces;
-    for (const auto& [light, view] : pairs) subspaces.insert(subspace_of(material, light, view));
+    for (const auto& [light, view] : pairs) {
+      subspaces.insert(lookups_->subspace_index[std::size_t{light} * lookups_->view_count + view]);
+    }
     needs.subspaces.assign(subspaces.begin(), subspaces.end());
-    needs.light_view_pairs = static_cast<std::uint32_t>(pairs.size());
     needs.pairs.assign(pairs.begin(), pairs.end());
     needs.visible_triangles = visible;
     // The density that 90% of the covered pixels need at most: a mesh's uv-degenerate corners (a sphere's

@@ -14,10 +14,7 @@
 
 #include "carbtf/analysis/analyze.hpp"
 #include "carbtf/analysis/btf/btf_reader.hpp"
-#include "carbtf/analysis/btf/directions.hpp"
-#include "carbtf/analysis/btf/ubo2003_writer.hpp"
 #include "carbtf/analysis/image_io.hpp"
-#include "carbtf/analysis/sample/height_field_renderer.hpp"
 #include "carbtf/analysis/sample/sample_materials.hpp"
 #include "carbtf/engine/gpu_timer.hpp"
 #include "carbtf/engine/material_binding.hpp"
@@ -26,7 +23,10 @@
 #include "carbtf/engine/scene_pruning.hpp"
 #include "carbtf/engine/subspace_synthesizer.hpp"
 #include "cli/cli_support.hpp"
+#include "cli/sample_btf.hpp"
 #include "commands/commands.hpp"
+#include "scene/orbit.hpp"
+#include "scene/scene_mesh.hpp"
 
 namespace carbtf::cli {
 namespace {
@@ -63,15 +63,7 @@ Material bench_material(const FrameBenchOptions& options, const fs::path& out) {
   std::fflush(stdout);
   const Surface surface = make_sample_surface("leather", 64, 1);
   const fs::path btf = out / "leather_btf";
-  {
-    Ubo2003Writer writer(btf, ".png", false);
-    const auto& directions = ubo2003_directions();
-    render_btf(surface, directions, directions, {},
-               [&](std::uint32_t l, std::uint32_t v, std::span<const float> image) {
-                 writer.write(l, v, image, surface.size, surface.size);
-               });
-    writer.finish();
-  }
+  write_sample_btf(surface, btf, ".png", false);
   std::vector<std::string> warnings;
   AnalysisOptions analysis;
   analysis.progress = false;
@@ -81,29 +73,12 @@ Material bench_material(const FrameBenchOptions& options, const fs::path& out) {
   return material;
 }
 
-Mesh bench_mesh(const std::string& name) {
-  if (name == "plane") return make_plane(8);
-  if (name == "cylinder") return make_cylinder();
-  if (name == "torus") return make_torus();
-  if (name == "sphere") return make_sphere();
-  throw CommandError("--mesh " + name + ": expected plane, sphere, cylinder or torus");
-}
-
 // Frame i of n: the camera orbits at 60 degrees from the pole, the light the other way at 40.
 RenderScene orbit_scene(std::uint32_t i, std::uint32_t n) {
-  constexpr double kDegree = std::numbers::pi / 180.0;
   const double turn = 360.0 * i / std::max(n, 1u);
   RenderScene scene;
-  const double camera_phi = (35.0 + turn) * kDegree, camera_theta = 60.0 * kDegree, distance = 3.6;
-  scene.camera.eye = {static_cast<float>(distance * std::sin(camera_theta) * std::cos(camera_phi)),
-                      static_cast<float>(distance * std::sin(camera_theta) * std::sin(camera_phi)),
-                      static_cast<float>(distance * std::cos(camera_theta))};
-  const double light_phi = (120.0 - turn) * kDegree, light_theta = 40.0 * kDegree;
-  scene.lights = {{false,
-                   {static_cast<float>(std::sin(light_theta) * std::cos(light_phi)),
-                    static_cast<float>(std::sin(light_theta) * std::sin(light_phi)),
-                    static_cast<float>(std::cos(light_theta))},
-                   {1, 1, 1}}};
+  scene.camera = orbit_camera(60.0, 35.0 + turn, 3.6f);
+  scene.lights = {{false, unit_vector_degrees(40.0, 120.0 - turn), {1, 1, 1}}};
   return scene;
 }
 
@@ -111,7 +86,7 @@ void run_bench_frame(const FrameBenchOptions& options) {
   const fs::path out = options.out;
   create_folder(out);
   const Material material = bench_material(options, out);
-  const Mesh mesh = bench_mesh(options.mesh);
+  const Mesh mesh = load_mesh(options.mesh);
   auto context = make_context(options.device);
   if (context->device_info().timestamp_valid_bits == 0) {
     throw CommandError(context->device_info().name +
@@ -134,14 +109,15 @@ void run_bench_frame(const FrameBenchOptions& options) {
               options.frames, options.width, options.height, options.mesh.c_str(), material.subspaces.size(),
               context->device_info().name.c_str());
   std::fflush(stdout);
+  PruningOptions pruning;
+  pruning.max_texture_size = 1024;
+  std::unique_ptr<ScenePruner> pruner;
+  check(ScenePruner::create(material, pruning, pruner), "cannot prune scenes of this material");
   for (std::uint32_t i = 0; i < options.frames; ++i) {
     const RenderScene scene = orbit_scene(i, options.frames);
     const auto start = std::chrono::steady_clock::now();
     SceneNeeds needs;
-    PruningOptions pruning;
-    pruning.max_texture_size = 1024;
-    check(scene_needs(material, mesh, scene, options.width, options.height, pruning, needs),
-          "cannot prune the scene");
+    check(pruner->needs(mesh, scene, options.width, options.height, needs), "cannot prune the scene");
     if (texture_size == 0) texture_size = needs.texture_size;
     FrameRecord record;
     record.frame = i;
@@ -155,7 +131,8 @@ void run_bench_frame(const FrameBenchOptions& options) {
       request.seed = 1;
       request.width = request.height = texture_size;
       request.subspaces.assign(resident.begin(), resident.end());
-      record.synthesized = resident.size() - before;
+      // An empty list asks for every subspace image (a first frame that sees nothing).
+      record.synthesized = request.subspaces.empty() ? material.subspaces.size() : request.subspaces.size();
       renderer.reset();
       binding.reset();
       check(synthesizer->prepare(material, request), "cannot plan the synthesis");
@@ -196,8 +173,8 @@ void run_bench_frame(const FrameBenchOptions& options) {
   std::vector<double> render_gpu, render_wall, synthesis_gpu, synthesis_wall;
   for (const FrameRecord& r : records) {
     render_gpu.push_back(r.render_gpu_ms);
-    (r.synthesized > 0 || r.frame == 0 ? synthesis_wall : render_wall).push_back(r.wall_ms);
-    if (r.synthesized > 0 || r.frame == 0) synthesis_gpu.push_back(r.synthesis_gpu_ms);
+    (r.synthesized > 0 ? synthesis_wall : render_wall).push_back(r.wall_ms);
+    if (r.synthesized > 0) synthesis_gpu.push_back(r.synthesis_gpu_ms);
   }
   char line[256];
   std::string table = "| what | frames | median ms | p95 ms |\n|---|---|---|---|\n";
@@ -234,7 +211,10 @@ void register_bench_frame_command(CLI::App& bench) {
                            "render pass, CPU wall time per frame, as median and p95, in a table and a CSV");
   command->add_option("--material", options->material,
                       "Material file (default: the leather sample, analysed at 64^2 into the output folder)");
-  command->add_option("--mesh", options->mesh, "plane, sphere, cylinder or torus")->capture_default_str();
+  command
+      ->add_option("--mesh", options->mesh,
+                   "plane, sphere, cylinder, torus, or an OBJ file with texture coordinates")
+      ->capture_default_str();
   command->add_option("--frames", options->frames, "Frames to render")
       ->check(CLI::Range(1u, 100000u))
       ->capture_default_str();

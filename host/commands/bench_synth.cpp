@@ -12,7 +12,6 @@
 #include <sstream>
 #include <thread>
 
-#include "carbtf/analysis/btf/btf_reader.hpp"
 #include "carbtf/analysis/image_io.hpp"
 #include "carbtf/analysis/quality/fidelity.hpp"
 #include "carbtf/analysis/reference/conformance.hpp"
@@ -22,6 +21,7 @@
 #include "carbtf/engine/material_file.hpp"
 #include "carbtf/engine/subspace_synthesizer.hpp"
 #include "cli/cli_support.hpp"
+#include "cli/measurement.hpp"
 #include "commands/commands.hpp"
 
 namespace carbtf::cli {
@@ -80,22 +80,7 @@ struct MeasuredStatistics {
 };
 
 MeasuredStatistics measure_dataset(const std::string& path, const Material& material) {
-  std::vector<std::string> warnings;
-  const BtfDataset dataset = load_btf(path, {}, warnings);
-  auto same = [](const std::vector<Direction>& a, const std::vector<MaterialDirection>& b) {
-    if (a.size() != b.size()) return false;
-    for (std::size_t i = 0; i < a.size(); ++i) {
-      if (std::abs(a[i].theta - b[i].theta) > 1e-4 || std::abs(a[i].phi - b[i].phi) > 1e-4) return false;
-    }
-    return true;
-  };
-  if (!same(dataset.lights(), material.lights) || !same(dataset.views(), material.views)) {
-    throw CommandError(
-        path + ": its light and view directions are not the material's (" +
-        std::to_string(dataset.lights().size()) + " x " + std::to_string(dataset.views().size()) +
-        " against " + std::to_string(material.lights.size()) + " x " + std::to_string(material.views.size()) +
-        "); give the BTF the material was analysed from");
-  }
+  const BtfDataset dataset = load_measurement_of(material, path, "--btf");
   MeasuredStatistics measured;
   measured.pairs = dataset.present_pairs();
   std::printf("fidelity: analysing %zu measured images of %s\n", measured.pairs.size(), path.c_str());
@@ -230,7 +215,8 @@ void write_tables(const std::filesystem::path& out, const std::vector<BenchRow>&
         "mean (worst): CIE76 delta E of the mean Lab colour, relative error of the Lab std, L1 distance of "
         "the normalised "
         "log10 radial power spectra of L*, Wasserstein-1 distance of the Lab histograms in Lab units.\n\n"
-     << "| sweep | size | levels | neighbours | subspaces | scheme | GPU ms | frames | CAR with noise | collapse | "
+     << "| sweep | size | levels | neighbours | subspaces | scheme | GPU ms | frames | CAR with noise | "
+        "collapse | "
         "colour | GPU wall ms | "
         "CPU f32 ms | CPU f64 ms | GPU max err/std | GPU RMS err/std | CPU f32 max err/std | delta E | std "
         "rel. | spectrum L1 | "

@@ -14,21 +14,21 @@
 #include "carbtf/analysis/analyze.hpp"
 #include "carbtf/analysis/btf/btf_reader.hpp"
 #include "carbtf/analysis/btf/directions.hpp"
-#include "carbtf/analysis/btf/ubo2003_writer.hpp"
 #include "carbtf/analysis/image_io.hpp"
 #include "carbtf/analysis/quality/fidelity.hpp"
 #include "carbtf/analysis/reference/subspace_synthesis.hpp"
-#include "carbtf/analysis/sample/height_field_renderer.hpp"
 #include "carbtf/analysis/sample/sample_materials.hpp"
 #include "carbtf/engine/material_binding.hpp"
 #include "carbtf/engine/material_file.hpp"
 #include "carbtf/engine/mesh_renderer.hpp"
 #include "carbtf/engine/subspace_synthesizer.hpp"
 #include "cli/cli_support.hpp"
+#include "cli/sample_btf.hpp"
 #include "commands/commands.hpp"
 #include "report/analysis_report.hpp"
 #include "report/html_report.hpp"
 #include "report/pictures.hpp"
+#include "scene/orbit.hpp"
 
 namespace carbtf::cli {
 
@@ -56,11 +56,6 @@ void step(int index, const char* text) {
   std::fflush(stdout);
 }
 
-std::array<float, 3> vector_of(const Direction& d) {
-  const auto v = d.vector();
-  return {static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2])};
-}
-
 struct Comparison {
   std::string name;
   std::uint32_t light = 0;  // UBO2003 indices
@@ -83,15 +78,7 @@ void run_demo(const DemoOptions& options) {
   auto start = std::chrono::steady_clock::now();
   const Surface surface = make_sample_surface(options.material, options.size, options.seed);
   const fs::path btf_folder = folder / "btf";
-  {
-    Ubo2003Writer writer(btf_folder, ".png", false);
-    const auto& directions = ubo2003_directions();
-    render_btf(surface, directions, directions, {},
-               [&](std::uint32_t light, std::uint32_t view, std::span<const float> image) {
-                 writer.write(light, view, image, surface.size, surface.size);
-               });
-    writer.finish();
-  }
+  write_sample_btf(surface, btf_folder, ".png", false);
   timed("sample BTF rendering (81 x 81 images)", seconds_since(start));
 
   // 2. Analysis into a material file.
@@ -175,7 +162,10 @@ void run_demo(const DemoOptions& options) {
     scene.camera.up = {0, 1, 0};
     scene.camera.fov_y_degrees = 0.0f;
     scene.camera.ortho_height = 2.0f * static_cast<float>(plane_size) / static_cast<float>(n);
-    scene.lights = {{false, vector_of(dataset.lights()[c.light]), {1, 1, 1}}};
+    scene.lights = {{false,
+                     unit_vector_degrees(dataset.lights()[c.light].theta_degrees(),
+                                         dataset.lights()[c.light].phi_degrees()),
+                     {1, 1, 1}}};
     RenderedImage frame;
     start = std::chrono::steady_clock::now();
     check(plane_renderer->render(scene, frame), "rendering the plane failed");
@@ -203,8 +193,8 @@ void run_demo(const DemoOptions& options) {
   check(sphere_renderer->set_mesh(make_sphere()), "cannot upload the sphere");
   RenderScene sphere_scene;
   sphere_scene.camera.eye = {2.6f, 1.8f, 1.5f};
-  sphere_scene.lights = {{false, vector_of(Direction::from_degrees(50, 80)), {1, 1, 1}},
-                         {false, vector_of(Direction::from_degrees(70, 250)), {0.25f, 0.25f, 0.3f}}};
+  sphere_scene.lights = {{false, unit_vector_degrees(50, 80), {1, 1, 1}},
+                         {false, unit_vector_degrees(70, 250), {0.25f, 0.25f, 0.3f}}};
   RenderedImage sphere;
   start = std::chrono::steady_clock::now();
   check(sphere_renderer->render(sphere_scene, sphere), "rendering the sphere failed");

@@ -8,7 +8,6 @@
 #include <optional>
 
 #include "carbtf/analysis/btf/btf_dataset.hpp"
-#include "carbtf/analysis/btf/btf_reader.hpp"
 #include "carbtf/analysis/image_io.hpp"
 #include "carbtf/engine/material_binding.hpp"
 #include "carbtf/engine/material_file.hpp"
@@ -17,9 +16,11 @@
 #include "carbtf/engine/subspace_synthesizer.hpp"
 #include "carbtf/engine/texture_array.hpp"
 #include "cli/cli_support.hpp"
+#include "cli/measurement.hpp"
 #include "commands/commands.hpp"
 #include "report/pictures.hpp"
-#include "scene/obj_mesh.hpp"
+#include "scene/orbit.hpp"
+#include "scene/scene_mesh.hpp"
 
 namespace carbtf::cli {
 namespace {
@@ -44,22 +45,6 @@ struct RenderOptions {
   std::string compare;  // a measured BTF to render beside the model
 };
 
-std::array<float, 3> direction_of(double theta_degrees, double phi_degrees) {
-  constexpr double kDegree = std::numbers::pi / 180.0;
-  const double t = theta_degrees * kDegree, p = phi_degrees * kDegree;
-  return {static_cast<float>(std::sin(t) * std::cos(p)), static_cast<float>(std::sin(t) * std::sin(p)),
-          static_cast<float>(std::cos(t))};
-}
-
-Mesh load_mesh(const std::string& spec) {
-  if (spec == "plane") return make_plane(8);
-  if (spec == "sphere") return make_sphere();
-  if (spec == "cylinder") return make_cylinder();
-  if (spec == "torus") return make_torus();
-  if (fs::path(spec).extension() == ".obj") return load_obj_mesh(spec);
-  throw CommandError("--mesh " + spec + ": expected plane, sphere, cylinder, torus or a .obj file");
-}
-
 void parse_size(const std::string& text, std::uint32_t& width, std::uint32_t& height) {
   unsigned w = 0, h = 0;
   char x = 0, extra = 0;
@@ -73,19 +58,13 @@ void parse_size(const std::string& text, std::uint32_t& width, std::uint32_t& he
 
 RenderScene make_scene(const RenderOptions& options) {
   RenderScene scene;
-  const auto towards = direction_of(options.camera[0], options.camera[1]);
   const float distance = options.camera.size() > 2 ? static_cast<float>(options.camera[2]) : 3.6f;
   if (!(distance > 0.0f)) throw CommandError("--camera: the distance must be above 0");
-  scene.camera.eye = {distance * towards[0], distance * towards[1], distance * towards[2]};
-  // Looking straight down the z axis, "up" cannot be z.
-  scene.camera.up =
-      std::abs(towards[2]) > 0.999f ? std::array<float, 3>{0, 1, 0} : std::array<float, 3>{0, 0, 1};
-  scene.camera.fov_y_degrees = options.fov;
-  scene.camera.ortho_height = 2.4f;
-  scene.camera.far_plane = distance + 10.0f;
+  scene.camera = orbit_camera(options.camera[0], options.camera[1], distance, options.fov);
   for (const auto& light : options.lights) {
     const float intensity = light.size() > 2 ? static_cast<float>(light[2]) : 1.0f;
-    scene.lights.push_back({false, direction_of(light[0], light[1]), {intensity, intensity, intensity}});
+    scene.lights.push_back(
+        {false, unit_vector_degrees(light[0], light[1]), {intensity, intensity, intensity}});
   }
   for (const auto& light : options.point_lights) {
     const float intensity = light.size() > 3 ? static_cast<float>(light[3]) : 1.0f;
@@ -94,33 +73,12 @@ RenderScene make_scene(const RenderOptions& options) {
          {static_cast<float>(light[0]), static_cast<float>(light[1]), static_cast<float>(light[2])},
          {intensity, intensity, intensity}});
   }
-  if (scene.lights.empty()) scene.lights.push_back({false, direction_of(45.0, 120.0), {1, 1, 1}});
+  if (scene.lights.empty()) scene.lights.push_back({false, unit_vector_degrees(45.0, 120.0), {1, 1, 1}});
   if (scene.lights.size() > kMaxRenderLights) {
     throw CommandError("at most " + std::to_string(kMaxRenderLights) +
                        " lights (--light and --point-light together)");
   }
   return scene;
-}
-
-// The dataset's directions must be the material's (the same measurement), to within 0.06 degrees.
-void check_same_directions(const BtfDataset& dataset, const Material& material, const std::string& name) {
-  auto same = [](const std::vector<Direction>& measured, const std::vector<MaterialDirection>& model) {
-    if (measured.size() != model.size()) return false;
-    for (std::size_t i = 0; i < model.size(); ++i) {
-      if (std::abs(measured[i].theta - model[i].theta) > 1e-3) return false;
-      if (measured[i].theta > 1e-6 &&
-          std::abs(std::remainder(measured[i].phi - model[i].phi, 2 * std::numbers::pi)) > 1e-3) {
-        return false;
-      }
-    }
-    return true;
-  };
-  if (!same(dataset.lights(), material.lights) || !same(dataset.views(), material.views)) {
-    throw CommandError("--compare " + name + ": its " + std::to_string(dataset.lights().size()) + " x " +
-                       std::to_string(dataset.views().size()) + " directions are not the material's " +
-                       std::to_string(material.lights.size()) + " x " +
-                       std::to_string(material.views.size()));
-  }
 }
 
 // The measured images of the pairs a frame needs, drawn through the same render pass: one texture
@@ -192,21 +150,19 @@ void run_render(const RenderOptions& options) {
   const RenderScene scene = make_scene(options);
   std::optional<BtfDataset> measured;
   if (!options.compare.empty()) {
-    std::vector<std::string> warnings;
-    measured = load_btf(options.compare, {}, warnings);
-    for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-    check_same_directions(*measured, material, options.compare);
+    measured = load_measurement_of(material, options.compare, "--compare");
   }
 
   auto context = make_context(options.device);
   // Only what the frame can use: the subspace images its (light, view) pairs fall in, at the texel
-  // density of its most magnified triangle.
-  SceneNeeds needs;
+  // density of most of its pixels.
   PruningOptions pruning;
-  pruning.max_texture_size =
-      1024;  // beyond it only on request (--texture-size): 20 x 2048^2 takes 16 s on lavapipe
-  check(scene_needs(material, mesh, scene, width, height, pruning, needs),
-        "cannot work out what the scene needs");
+  // Beyond 1024 only on request (--texture-size): 20 x 2048^2 takes 16 s on lavapipe.
+  pruning.max_texture_size = 1024;
+  std::unique_ptr<ScenePruner> pruner;
+  check(ScenePruner::create(material, pruning, pruner), "cannot prune scenes of this material");
+  SceneNeeds needs;
+  check(pruner->needs(mesh, scene, width, height, needs), "cannot work out what the scene needs");
   SynthesisRequest request;
   request.seed = options.seed;
   request.width = request.height = options.texture_size ? options.texture_size : needs.texture_size;
@@ -239,8 +195,8 @@ void run_render(const RenderOptions& options) {
   }
   const double synthesis_ms = synthesize(request);
   std::printf(
-      "synthesized %zu of %zu subspace images (%u light-view pairs in view), %.1f Mtexels, in %.1f ms\n",
-      synthesized, material.subspaces.size(), needs.light_view_pairs,
+      "synthesized %zu of %zu subspace images (%zu light-view pairs in view), %.1f Mtexels, in %.1f ms\n",
+      synthesized, material.subspaces.size(), needs.pairs.size(),
       static_cast<double>(synthesized) * request.width * request.height * 1e-6, synthesis_ms);
   if (full_ms > 0.0) {
     std::printf("all %zu would take %.1f ms: pruning saved %.1f ms (%.1fx)\n", material.subspaces.size(),

@@ -6,11 +6,10 @@
 #include <fstream>
 
 #include "carbtf/analysis/btf/directions.hpp"
-#include "carbtf/analysis/btf/ubo2003_writer.hpp"
 #include "carbtf/analysis/image_io.hpp"
-#include "carbtf/analysis/sample/height_field_renderer.hpp"
 #include "carbtf/analysis/sample/sample_materials.hpp"
 #include "cli/cli_support.hpp"
+#include "cli/sample_btf.hpp"
 #include "commands/commands.hpp"
 
 namespace carbtf::cli {
@@ -45,13 +44,7 @@ void run_sample(const SampleOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const Surface surface = make_sample_surface(options.name, options.size, options.seed);
   const std::filesystem::path btf = out / (options.zip ? "btf.zip" : "btf");
-  Ubo2003Writer writer(btf, "." + options.format, options.zip);
-  const auto& directions = ubo2003_directions();
-  render_btf(surface, directions, directions, {},
-             [&](std::uint32_t light, std::uint32_t view, std::span<const float> image) {
-               writer.write(light, view, image, surface.size, surface.size);
-             });
-  writer.finish();
+  write_sample_btf(surface, btf, "." + options.format, options.zip);
   write_ground_truth(surface, out / "ground_truth");
   std::ofstream info(out / "material.json");
   info << "{\n  \"material\": \"" << options.name << "\",\n  \"size\": " << options.size
@@ -60,8 +53,8 @@ void run_sample(const SampleOptions& options) {
        << ",\n  \"gloss\": " << surface.gloss << "\n}\n";
   if (!info) throw CommandError((out / "material.json").string() + ": cannot write");
   std::printf("wrote %s: %zu images of %ux%u (%s) in %.1f s; ground truth in %s\n", btf.c_str(),
-              directions.size() * directions.size(), options.size, options.size, options.format.c_str(),
-              seconds_since(start), (out / "ground_truth").c_str());
+              ubo2003_directions().size() * ubo2003_directions().size(), options.size, options.size,
+              options.format.c_str(), seconds_since(start), (out / "ground_truth").c_str());
 }
 
 }  // namespace
@@ -70,11 +63,14 @@ void register_sample_command(CLI::App& app) {
   auto options = std::make_shared<SampleOptions>();
   std::string names;
   for (const std::string& n : sample_material_names()) names += (names.empty() ? "" : ", ") + n;
-  auto* command = app.add_subcommand(
-      "sample", "Render a sample material as a UBO2003 BTF (81 x 81 images) with its ground truth "
-                "(range map, normals, albedo)");
-  command->add_option("name", options->name, "Material: " + (names.empty() ? std::string("(no recipes found)") : names) +
-                                                 ", or a recipe .json")
+  auto* command =
+      app.add_subcommand("sample",
+                         "Render a sample material as a UBO2003 BTF (81 x 81 images) with its ground truth "
+                         "(range map, normals, albedo)");
+  command
+      ->add_option(
+          "name", options->name,
+          "Material: " + (names.empty() ? std::string("(no recipes found)") : names) + ", or a recipe .json")
       ->required();
   command->add_option("--size", options->size, "Image width and height (64, 128 or 256 are typical)")
       ->check(CLI::Range(16u, 1024u))
@@ -85,7 +81,9 @@ void register_sample_command(CLI::App& app) {
       ->check(CLI::IsMember({"jpg", "png", "exr"}))
       ->capture_default_str();
   command->add_flag("--zip", options->zip, "Write the images into btf.zip instead of a folder");
-  command->add_option("--seed", options->seed, "Seed of the procedural surface")->check(non_negative())->capture_default_str();
+  command->add_option("--seed", options->seed, "Seed of the procedural surface")
+      ->check(non_negative())
+      ->capture_default_str();
   command->callback([options] { run_sample(*options); });
 }
 

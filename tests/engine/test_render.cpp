@@ -265,11 +265,13 @@ TEST_CASE("scene pruning: a scene seen from above needs fewer subspace images an
     scene.camera.eye = {2.4f, 1.5f, 1.2f};
     scene.lights = {{true, {1.5f, -1.0f, 1.6f}, {2, 2, 2}}, {false, {0.2f, 1.0f, 0.05f}, {0.5f, 0.5f, 0.5f}}};
   }
+  std::unique_ptr<ScenePruner> pruner;
+  REQUIRE(ScenePruner::create(m, {}, pruner).ok());
   SceneNeeds needs;
-  const Status status = scene_needs(m, mesh, scene, 96, 96, {}, needs);
+  const Status status = pruner->needs(mesh, scene, 96, 96, needs);
   INFO(status.message());
   REQUIRE(status.ok());
-  INFO("needs " << needs.subspaces.size() << " of 20 subspace images, " << needs.light_view_pairs
+  INFO("needs " << needs.subspaces.size() << " of 20 subspace images, " << needs.pairs.size()
                 << " pairs, texture " << needs.texture_size);
   REQUIRE(!needs.subspaces.empty());
   if (expect_fewer) CHECK(needs.subspaces.size() <= 3);

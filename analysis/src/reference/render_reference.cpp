@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "carbtf/engine/direction_interpolation.hpp"
+#include "carbtf/engine/material_binding.hpp"
 
 namespace carbtf::reference {
 
@@ -80,9 +81,7 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
       !build_direction_triangulation(material.views, views).ok()) {
     throw std::invalid_argument("render_plane: the material's directions cannot be triangulated");
   }
-  float largest_theta = 0.0f;
-  for (const auto& d : material.lights) largest_theta = std::max(largest_theta, d.theta);
-  const float light_z_floor = std::max(std::cos(largest_theta), 1.0e-3f);
+  const float light_z_floor = relight_floor(material);
   // The mean in double, as the binding computes it.
   const double sum = std::accumulate(input.range_map.begin(), input.range_map.end(), 0.0);
   const Sampler sampler{input, tw, th, static_cast<float>(sum / static_cast<double>(input.range_map.size()))};

@@ -19,7 +19,9 @@ struct DirectionLookupGrid {
   std::vector<std::uint32_t> entries;      // triangle index, or CARBTF_LOOKUP_EDGE_BIT | edge index
 };
 
-// Whether projected point (x, y) lies in a triangle of the triangulation (up to 1e-12 barycentric slack).
+// Whether projected point (x, y) lies in triangle `triangle`, or in any triangle of the triangulation
+// (up to 1e-12 barycentric slack).
+bool inside_triangle(const DirectionTriangulation& triangulation, std::uint32_t triangle, double x, double y);
 bool inside_triangulation(const DirectionTriangulation& triangulation, double x, double y);
 // Distance from projected point (x, y) to boundary edge `edge` of the triangulation.
 double boundary_edge_distance(const DirectionTriangulation& triangulation, std::uint32_t edge, double x,

@@ -29,8 +29,6 @@ struct Mesh {
   std::vector<std::uint32_t> indices;  // triangles, counter-clockwise seen from outside
 };
 
-enum class MeshShape { plane, sphere, cylinder, torus };
-
 // The 2 x 2 square z = 0, x and y in [-1, 1], normal +z; u along +x, row 0 at y = +1.
 Mesh make_plane(std::uint32_t subdivisions = 1);
 // Radius 1 about the origin; u around +z from -y, v from the top (z = 1) to the bottom.
@@ -39,7 +37,6 @@ Mesh make_sphere(std::uint32_t segments = 64, std::uint32_t rings = 32);
 Mesh make_cylinder(std::uint32_t segments = 64);
 // Ring radius 1, tube radius 0.4, about +z; u around the ring from -y, v around the tube.
 Mesh make_torus(std::uint32_t segments = 96, std::uint32_t tube_segments = 32);
-Mesh make_mesh(MeshShape shape);
 
 // Recomputes every vertex's tangent (xyz and handedness w) from positions, normals and texture
 // coordinates: per-triangle uv derivatives summed per vertex, made orthogonal to the normal.

@@ -12,10 +12,11 @@
 // The texture size is the power of two that gives at least one texel per pixel to the triangles
 // covering 90% of the frame's mesh pixels (by their pixel-to-uv area ratio; the most magnified tenth,
 // such as a sphere's uv-degenerate poles, does not decide), clamped to the options' range.
-// Thread safety: pure.
+// Thread safety: a pruner is immutable after create(); needs() may run on any thread.
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -34,14 +35,27 @@ struct PruningOptions {
 
 struct SceneNeeds {
   std::vector<std::uint32_t> subspaces;  // ascending
-  std::uint32_t light_view_pairs = 0;    // distinct measured (light, view) pairs that can carry weight
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;  // those pairs, (light, view), ascending
+  // The distinct measured (light, view) pairs that can carry weight, ascending.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
   std::uint32_t texture_size = 0;
   std::uint32_t visible_triangles = 0;
 };
 
-Status scene_needs(const Material& material, const Mesh& mesh, const RenderScene& scene,
-                   std::uint32_t frame_width, std::uint32_t frame_height, const PruningOptions& options,
-                   SceneNeeds& out) noexcept;
+// Built once per material (its direction lookups), then asked once per frame.
+class ScenePruner {
+ public:
+  // invalid_argument when the material's directions cannot be triangulated.
+  static Status create(const Material& material, const PruningOptions& options,
+                       std::unique_ptr<ScenePruner>& out) noexcept;
+  ~ScenePruner();
+
+  Status needs(const Mesh& mesh, const RenderScene& scene, std::uint32_t frame_width,
+               std::uint32_t frame_height, SceneNeeds& out) const noexcept;
+
+ private:
+  ScenePruner() = default;
+  struct Lookups;
+  std::unique_ptr<Lookups> lookups_;
+};
 
 }  // namespace carbtf

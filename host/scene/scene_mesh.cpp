@@ -1,4 +1,4 @@
-#include "scene/obj_mesh.hpp"
+#include "scene/scene_mesh.hpp"
 
 #include <cmath>
 #include <map>
@@ -86,6 +86,15 @@ Mesh load_obj_mesh(const std::filesystem::path& path) {
   if (!valid.ok()) throw CommandError(name + ": " + valid.message());
   generate_tangents(mesh);
   return mesh;
+}
+
+Mesh load_mesh(const std::string& spec) {
+  if (spec == "plane") return make_plane(8);
+  if (spec == "sphere") return make_sphere();
+  if (spec == "cylinder") return make_cylinder();
+  if (spec == "torus") return make_torus();
+  if (std::filesystem::path(spec).extension() == ".obj") return load_obj_mesh(spec);
+  throw CommandError("--mesh " + spec + ": expected plane, sphere, cylinder, torus or a .obj file");
 }
 
 }  // namespace carbtf::cli
