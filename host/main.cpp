@@ -8,6 +8,17 @@
 #include "cli/cli_support.hpp"
 #include "commands/commands.hpp"
 
+namespace {
+
+// Errors end up on one line: a decoder's message can hold line breaks of its own.
+std::string one_line(std::string message) {
+  while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) message.pop_back();
+  for (std::size_t at; (at = message.find('\n')) != std::string::npos;) message.replace(at, 1, "; ");
+  return message;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   CLI::App app{
       "carbtf: extreme BTF compression (Haindl & Filip) with Vulkan synthesis.\n"
@@ -24,6 +35,7 @@ int main(int argc, char** argv) {
   carbtf::cli::register_conform_command(app);
   carbtf::cli::register_render_command(app);
   carbtf::cli::register_bench_command(app);
+  carbtf::cli::check_every_option(app);
   try {
     app.parse(argc, argv);
     if (app.get_subcommands().empty()) {
@@ -40,13 +52,10 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     // One line: what was wrong, and where to look.
-    std::cerr << "carbtf: error: " << e.what() << " (see carbtf --help)\n";
+    std::cerr << "carbtf: error: " << one_line(e.what()) << " (see carbtf --help)\n";
     return 2;
-  } catch (const carbtf::cli::CommandError& e) {
-    std::cerr << "carbtf: error: " << e.what() << "\n";
-    return 1;
   } catch (const std::exception& e) {
-    std::cerr << "carbtf: error: " << e.what() << "\n";
+    std::cerr << "carbtf: error: " << one_line(e.what()) << "\n";
     return 1;
   }
   return 0;

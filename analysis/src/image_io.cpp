@@ -81,12 +81,21 @@ namespace carbtf {
 
 namespace {
 // Larger than any BTF image; guards against hostile headers asking for absurd allocations.
-constexpr std::uint64_t kMaxImagePixels = 1ull << 28;
+// 4096 x 4096: BTF and photometric-stereo images are far smaller, and a header claiming more (a
+// decompression bomb of a few KB) is refused before a pixel is decoded.
+constexpr std::uint64_t kMaxImagePixels = 1ull << 24;
+// As for zip entries: no image file of a dataset comes near this.
+constexpr std::uintmax_t kMaxImageFileBytes = std::uintmax_t{256} << 20;
 }  // namespace
 
 std::vector<std::byte> read_file_bytes(const std::filesystem::path& path) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "not a readable file");
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "not a regular, readable file");
+  const std::uintmax_t file_bytes = std::filesystem::file_size(path, ec);
+  if (!ec && file_bytes > kMaxImageFileBytes) {
+    throw InputError(path, "is " + std::to_string(file_bytes >> 20) + " MiB; image files are read up to " +
+                               std::to_string(kMaxImageFileBytes >> 20) + " MiB");
+  }
   std::ifstream file(path, std::ios::binary);
   if (!file) throw InputError(path, "cannot open");
   file.seekg(0, std::ios::end);
@@ -97,15 +106,17 @@ std::vector<std::byte> read_file_bytes(const std::filesystem::path& path) {
   return bytes;
 }
 
-RgbImage decode_rgb_image(const std::string& name, std::span<const std::byte> bytes) {
+RgbImage decode_rgb_image(const std::string& name, std::span<const std::byte> bytes, const ImageShape* expected) {
   if (bytes.empty()) throw InputError(name, "empty file, not an image");
   // IOMemReader takes a non-const pointer but only reads.
   OIIO::Filesystem::IOMemReader memory(const_cast<std::byte*>(bytes.data()), bytes.size());
   auto input = OIIO::ImageInput::open(name, nullptr, &memory);
   if (!input) throw InputError(name, "not a readable image (" + OIIO::geterror() + ")");
   const OIIO::ImageSpec& spec = input->spec();
-  if (spec.width <= 0 || spec.height <= 0 || std::uint64_t(spec.width) * std::uint64_t(spec.height) > kMaxImagePixels) {
-    throw InputError(name, "implausible image size " + std::to_string(spec.width) + "x" + std::to_string(spec.height));
+  const std::string size_text = std::to_string(spec.width) + "x" + std::to_string(spec.height);
+  if (spec.width <= 0 || spec.height <= 0) throw InputError(name, "implausible image size " + size_text);
+  if (std::uint64_t(spec.width) * std::uint64_t(spec.height) > kMaxImagePixels) {
+    throw InputError(name, "image header claims " + size_text + " pixels; carbtf reads images up to 4096x4096 (16.8 M pixels)");
   }
   if (spec.depth > 1 || spec.nchannels < 1) throw InputError(name, "not a 2D colour or grey image");
   RgbImage image;
@@ -116,6 +127,14 @@ RgbImage decode_rgb_image(const std::string& name, std::span<const std::byte> by
                         base == OIIO::TypeDesc::DOUBLE || base == OIIO::TypeDesc::UINT16 ||
                         base == OIIO::TypeDesc::INT16 || base == OIIO::TypeDesc::UINT32;
   image.linear = is_float;
+  if (expected && (image.width != expected->width || image.height != expected->height)) {
+    throw InputError(name, "image is " + size_text + " but the others are " + std::to_string(expected->width) + "x" +
+                               std::to_string(expected->height));
+  }
+  if (expected && image.linear != expected->linear) {
+    throw InputError(name, std::string("holds ") + (image.linear ? "linear float" : "8-bit sRGB") + " pixels but the others hold " +
+                               (expected->linear ? "linear float" : "8-bit sRGB"));
+  }
   const std::size_t pixels = std::size_t{image.width} * image.height;
   // Colour images give RGB (alpha dropped); grey (+ alpha) images give their first channel, copied.
   const int channels = spec.nchannels >= 3 ? 3 : 1;

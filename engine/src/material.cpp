@@ -3,16 +3,23 @@
 #include <cmath>
 #include <string>
 
+#include "carbtf/engine/car_stability.hpp"
+#include "carbtf/engine/direction_interpolation.hpp"
+
 namespace carbtf {
 namespace {
 
 Status invalid(const std::string& message) { return {ErrorCode::invalid_material, message}; }
 
+std::string magnitude_text() { return std::to_string(static_cast<long long>(kMaxModelMagnitude)); }
+
 bool finite(float value) { return std::isfinite(value); }
 
-bool all_finite(const std::vector<float>& values) {
+bool bounded(float value) { return std::isfinite(value) && std::fabs(value) <= kMaxModelMagnitude; }
+
+bool all_bounded(const std::vector<float>& values) {
   for (float v : values) {
-    if (!finite(v)) return false;
+    if (!bounded(v)) return false;
   }
   return true;
 }
@@ -29,6 +36,10 @@ Status validate_directions(const std::vector<MaterialDirection>& directions, con
       return invalid(std::string(what) + " " + std::to_string(i) + " is not on the upper hemisphere");
     }
   }
+  // The render pass interpolates over this triangulation: a set it cannot triangulate (two equal
+  // directions, all on one great circle) is refused here rather than at the first frame.
+  DirectionTriangulation triangulation;
+  if (Status s = build_direction_triangulation(directions, triangulation); !s.ok()) return invalid(std::string(what) + "s: " + s.message());
   return {};
 }
 
@@ -46,9 +57,15 @@ Status validate_band(const CarBandModel& band, const std::string& where) {
       if (band.neighbourhood[j] == n) return invalid(where + " lists neighbour " + std::to_string(k) + " twice");
     }
   }
-  if (!all_finite(band.gamma) || !finite(band.sigma) || !finite(band.mean) || !finite(band.band_std) ||
+  if (!all_bounded(band.gamma) || !bounded(band.sigma) || !bounded(band.mean) || !bounded(band.band_std) ||
       band.sigma < 0.0f || band.band_std < 0.0f) {
-    return invalid(where + " has a non-finite or negative parameter");
+    return invalid(where + " has a parameter that is not finite, negative or beyond +-" + magnitude_text());
+  }
+  const std::vector<double> gamma(band.gamma.begin(), band.gamma.end());
+  if (!car_roots_within(band.neighbourhood, gamma, 1.0 - kCarStabilityMargin)) {
+    return invalid(where + " is an unstable recursion: a characteristic root has modulus >= " +
+                   std::to_string(1.0 - kCarStabilityMargin) + " (spectral radius " +
+                   std::to_string(car_spectral_radius(band.neighbourhood, gamma)) + "), so its synthesis would diverge");
   }
   return {};
 }
@@ -60,10 +77,11 @@ Status validate_subspace(const SubspaceModel& s, std::size_t index, const Materi
   if (s.channels == 0 || s.channels > kMaxChannels) return invalid(where + " has " + std::to_string(s.channels) + " channels");
   if (s.levels == 0 || s.levels > kMaxPyramidLevels) return invalid(where + " has " + std::to_string(s.levels) + " pyramid levels");
   if (s.colour_mean.size() != s.channels || s.colour_transform.size() != std::size_t{s.channels} * s.channels) return invalid(where + " has a colour transform of the wrong size");
-  if (!all_finite(s.colour_mean) || !all_finite(s.colour_transform)) return invalid(where + " has a non-finite colour transform");
+  if (!all_bounded(s.colour_mean) || !all_bounded(s.colour_transform)) return invalid(where + " has a colour mean or transform entry that is not finite or beyond +-" + magnitude_text());
   if (s.bands.size() != std::size_t{s.levels} * s.channels) return invalid(where + " has " + std::to_string(s.bands.size()) + " bands, not levels x channels");
   for (std::size_t b = 0; b < s.bands.size(); ++b) {
-    if (Status status = validate_band(s.bands[b], where + " band " + std::to_string(b)); !status.ok()) return status;
+    const std::string band = where + " level " + std::to_string(b / s.channels) + " band " + std::to_string(b % s.channels);
+    if (Status status = validate_band(s.bands[b], band); !status.ok()) return status;
   }
   return {};
 }
@@ -75,7 +93,11 @@ Status validate_range(const RangeTiles& r) {
   }
   if (r.tile_size % 2 != 0 || r.tile_size < 4 || r.tile_size > kMaxTileSize) return invalid("range map: tile size " + std::to_string(r.tile_size) + " is not even within 4.." + std::to_string(kMaxTileSize));
   if (r.edge_colours == 0 || r.edge_colours > kMaxEdgeColours) return invalid("range map: " + std::to_string(r.edge_colours) + " edge colours");
-  if (!finite(r.height_offset) || !finite(r.height_scale)) return invalid("range map: non-finite height scale");
+  if (!bounded(r.height_offset) || !bounded(r.height_scale) ||
+      std::fabs(r.height_offset) + 65535.0 * std::fabs(r.height_scale) > kMaxModelMagnitude) {
+    return invalid("range map: heights (offset " + std::to_string(r.height_offset) + ", scale " + std::to_string(r.height_scale) +
+                   ") are not finite or reach beyond +-" + magnitude_text() + " texels");
+  }
   const std::size_t texels = std::size_t{r.tile_size} * r.tile_size;
   const std::size_t c = r.edge_colours;
   if (r.patches.size() != 2 * c * texels) return invalid("range map: patch data has the wrong size");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string_view>
@@ -329,6 +330,12 @@ Status list_material_chunks(std::span<const std::uint8_t> bytes, std::vector<Mat
 }
 
 Status read_material_file_bytes(const std::string& path, std::vector<std::uint8_t>& bytes) {
+  // A folder, FIFO or device is refused before it is opened: opening a FIFO would wait for a writer.
+  std::error_code error;
+  const std::filesystem::file_status status = std::filesystem::status(path, error);
+  if (error || !std::filesystem::exists(status)) return {ErrorCode::file_error, path + ": no such material file"};
+  if (std::filesystem::is_directory(status)) return {ErrorCode::file_error, path + ": is a folder, not a material file (.cbtf)"};
+  if (!std::filesystem::is_regular_file(status)) return {ErrorCode::file_error, path + ": is not a regular file (a pipe or device?), so it is not read as a material"};
   std::ifstream file(path, std::ios::binary);
   if (!file) return {ErrorCode::file_error, path + ": cannot open the material file"};
   file.seekg(0, std::ios::end);

@@ -156,6 +156,12 @@ Status validate_mesh(const Mesh& mesh) {
       if (!std::isfinite(x))
         return {ErrorCode::invalid_argument, "the mesh has a non-finite texture coordinate"};
     }
+    // The vertex stage normalizes the normal: a zero or non-finite one would light the pixel with NaN.
+    const float length2 = v.normal[0] * v.normal[0] + v.normal[1] * v.normal[1] + v.normal[2] * v.normal[2];
+    if (!std::isfinite(length2) || !(length2 > 1e-24f)) {
+      return {ErrorCode::invalid_argument, "the mesh has a zero or non-finite normal at vertex " +
+                                               std::to_string(&v - mesh.vertices.data())};
+    }
   }
   return {};
 }

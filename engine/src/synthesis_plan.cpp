@@ -48,7 +48,7 @@ Status make_stack(const Material& material, std::uint32_t subspace, std::uint32_
               "subspace " + std::to_string(subspace) + " level " + std::to_string(level) + " channel " +
                   std::to_string(channel) + " has " + std::to_string(band.neighbourhood.size()) +
                   " CAR neighbours; the GPU synthesis supports at most " + std::to_string(kMaxGpuNeighbours) +
-                  " (use the CPU reference)"};
+                  " (the CPU reference, `carbtf synth --device cpu`, has no such limit)"};
     }
     PlannedField field;
     field.subspace = subspace;
@@ -222,7 +222,7 @@ Status plan_synthesis(const Material& material, const SynthesisRequest& request,
       return {ErrorCode::invalid_argument, "subspace " + std::to_string(s) + " has " +
                                                std::to_string(model.channels) +
                                                " channels; the GPU synthesis supports 1 to " +
-                                               std::to_string(kMaxGpuChannels) + " (use the CPU reference)"};
+                                               std::to_string(kMaxGpuChannels) + " (the CPU reference, `carbtf synth --device cpu`, has no such limit)"};
     }
     out.channels.push_back(model.channels);
     const auto regions =

@@ -1,7 +1,14 @@
 #include "cli/cli_support.hpp"
 
+#include "carbtf/analysis/image_io.hpp"
+
 #include <algorithm>
+#include <cerrno>
+#include <filesystem>
+#include <cmath>
+#include <cstdlib>
 #include <iostream>
+#include <limits>
 
 namespace carbtf::cli {
 
@@ -34,6 +41,71 @@ const CLI::Validator& non_negative() {
       [](std::string& value) { return value.find('-') == std::string::npos ? std::string() : "must not be negative"; },
       "NON-NEGATIVE");
   return validator;
+}
+
+namespace {
+
+// The check for one token of a numeric option; an empty string accepts it. Text that is no number is
+// left to CLI11's own conversion, which names the option and the expected type.
+std::string representable_number(const std::string& token, bool real) {
+  if (token.empty()) return {};
+  errno = 0;
+  char* end = nullptr;
+  if (real) {
+    const double value = std::strtod(token.c_str(), &end);
+    if (end != token.c_str() + token.size()) return {};
+    // Underflow to 0 is harmless; overflow past float would become infinity on the device.
+    if (!std::isfinite(value) || std::fabs(value) > std::numeric_limits<float>::max()) {
+      return token + " is not a finite number within +-3.4e38";
+    }
+    return {};
+  }
+  const bool negative = token.find('-') != std::string::npos;
+  if (negative) {
+    std::strtoll(token.c_str(), &end, 0);
+  } else {
+    std::strtoull(token.c_str(), &end, 0);
+  }
+  if (end == token.c_str() + token.size() && errno == ERANGE) return token + " does not fit a 64-bit integer";
+  return {};
+}
+
+}  // namespace
+
+void check_every_option(CLI::App& app) {
+  for (CLI::Option* option : app.get_options()) {
+    if (option->check_name("--out") || option->check_name("--report")) {
+      // An empty path would write into the current folder under names like "/subspace_00.png".
+      option->check(CLI::Validator([](std::string& path) { return path.empty() ? std::string("the path is empty") : std::string(); }, ""));
+      continue;
+    }
+    const std::string type = option->get_type_name();
+    const bool real = type.find("FLOAT") != std::string::npos;
+    const bool integer = type.find("INT") != std::string::npos;
+    if (!real && !integer) continue;
+    option->check(CLI::Validator([real](std::string& token) { return representable_number(token, real); }, ""));
+  }
+  for (CLI::App* command : app.get_subcommands({})) check_every_option(*command);
+}
+
+
+void require_finite(std::span<const float> values, const std::string& what) {
+  const auto bad = static_cast<std::size_t>(std::count_if(values.begin(), values.end(), [](float v) { return !std::isfinite(v); }));
+  if (bad == 0) return;
+  throw CommandError(what + ": " + std::to_string(bad) + " of " + std::to_string(values.size()) +
+                     " values are not finite (NaN or infinity); nothing was written. This is a defect of carbtf or of "
+                     "the material: please report it with the material file");
+}
+
+void check_image_output_path(const std::string& path, const std::string& option) {
+  if (path.empty()) throw CommandError(option + ": the output path is empty");
+  if (std::filesystem::is_directory(path)) {
+    throw CommandError(option + " " + path + ": is a folder; give an image file name such as " +
+                       (std::filesystem::path(path) / "frame.png").string());
+  }
+  if (!is_supported_image_extension(path)) {
+    throw CommandError(option + " " + path + ": unknown image type; use .png, .jpg, .bmp (8-bit sRGB) or .exr, .tif, .pfm (float)");
+  }
 }
 
 std::unique_ptr<Context> make_context(const DeviceOptions& options) {

@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <memory>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -32,6 +33,20 @@ void add_car_scheme_option(CLI::App& command, CarScheme& scheme);
 
 // For unsigned options: CLI11 would otherwise wrap "-3" around to a huge value.
 const CLI::Validator& non_negative();
+
+// Adds the checks every command shares to the options of `app` and its subcommands: each number is
+// finite, within float range for real options, and not wrapped or saturated for integer ones ("nan",
+// "inf", "1e39" and "18446744073709551617" are refused with one line naming the option), and --out
+// and --report are not empty. Call after every command is registered.
+void check_every_option(CLI::App& app);
+
+// Throws CommandError("<what>: N of M values are not finite ...") unless every value is finite: the
+// last guard before a synthesized or rendered image is written.
+void require_finite(std::span<const float> values, const std::string& what);
+
+// Refuses, before any work, an output image path that cannot be written: empty, an existing folder, or
+// an extension with no encoder. `option` names the flag in the message.
+void check_image_output_path(const std::string& path, const std::string& option);
 
 // Creates the context or throws CommandError with the engine's message.
 std::unique_ptr<Context> make_context(const DeviceOptions& options);

@@ -71,7 +71,7 @@ void register_analyze_command(CLI::App& app) {
   command->add_option("--stereo-view", a.stereo_view, "View index for photometric stereo (-1: the view nearest the normal)")
       ->check(CLI::Range(-1, 4095))->capture_default_str();
   command->add_option("--tile-size", a.tiles.tile_size, "Range-map tile size in texels (even)")->check(CLI::Range(4, 1024))->capture_default_str();
-  command->add_option("--threads", a.threads, "Worker threads (0: all cores)")->check(non_negative())->capture_default_str();
+  command->add_option("--threads", a.threads, "Worker threads (0: all cores; at most 256)")->check(CLI::Range(0u, 256u))->capture_default_str();
   command->callback([options] { run_analyze(*options); });
 }
 

@@ -14,6 +14,7 @@
 #include "carbtf/analysis/sample/sample_materials.hpp"
 #include "carbtf/engine/material_file.hpp"
 #include "cli/cli_support.hpp"
+#include "cli/owned_folder.hpp"
 #include "commands/commands.hpp"
 
 namespace carbtf::cli {
@@ -64,12 +65,15 @@ int analyze_child(const fs::path& btf, const fs::path& material_path, const std:
 }
 
 void run_analyze_bench(const AnalyzeBenchOptions& options) {
-  const fs::path out = options.out;
+  OwnedFolder out(options.out);
+  if (options.keep) out.keep();
   const std::vector<std::string> materials = options.materials.empty() ? sample_material_names() : options.materials;
   for (const std::string& material : materials) {
     for (std::uint32_t size : options.sizes) {
       const std::string label = material + " " + std::to_string(size) + "x" + std::to_string(size) + ", 81 x 81 JPEGs";
-      const fs::path btf = out / (material + "_" + std::to_string(size));
+      const std::string stem = material + "_" + std::to_string(size);
+      const fs::path btf = out.claim(stem);
+      const fs::path material_path = out.claim(stem + ".cbtf");
       const auto render_start = std::chrono::steady_clock::now();
       render_jpeg_btf(material, size, btf);
       std::fprintf(stderr, "rendered %s in %.1f s (not part of the analysis)\n", label.c_str(), seconds_since(render_start));
@@ -80,7 +84,7 @@ void run_analyze_bench(const AnalyzeBenchOptions& options) {
       if (child == 0) {
         int status = 1;
         try {
-          status = analyze_child(btf, out / (material + "_" + std::to_string(size) + ".cbtf"), label);
+          status = analyze_child(btf, material_path, label);
         } catch (const std::exception& e) {
           std::fprintf(stderr, "carbtf: error: %s\n", e.what());
         }
@@ -90,10 +94,9 @@ void run_analyze_bench(const AnalyzeBenchOptions& options) {
       int status = 0;
       waitpid(child, &status, 0);
       if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw CommandError("the analysis of " + label + " failed");
-      if (!options.keep) fs::remove_all(btf);
+      if (!options.keep) out.release(btf);
     }
   }
-  if (!options.keep) fs::remove_all(out);
 }
 
 }  // namespace
@@ -104,7 +107,7 @@ void register_bench_analyze_command(CLI::App& bench) {
                                                   "sample material rendered as 81x81 JPEGs");
   command->add_option("--materials", options->materials, "Sample materials (default: all)");
   command->add_option("--sizes", options->sizes, "Image sizes")->check(CLI::Range(16u, 1024u))->capture_default_str();
-  command->add_option("--out", options->out, "Scratch folder for the rendered sets and materials")->capture_default_str();
+  command->add_option("--out", options->out, "Folder for the rendered sets and materials (created if missing; only what the bench creates there is removed)")->capture_default_str();
   command->add_flag("--keep", options->keep, "Keep the rendered images and the material files");
   command->callback([options] { run_analyze_bench(*options); });
 }

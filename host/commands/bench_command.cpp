@@ -16,6 +16,7 @@
 #include "carbtf/analysis/sample/sample_materials.hpp"
 #include "carbtf/engine/noise_generator.hpp"
 #include "cli/cli_support.hpp"
+#include "cli/owned_folder.hpp"
 #include "commands/commands.hpp"
 
 namespace carbtf::cli {
@@ -92,12 +93,13 @@ double peak_rss_mib() { return static_cast<double>(peak_rss_bytes()) / 1048576.0
 
 // Rendering a sample material at two sizes, then loading the full 81 x 81 JPEG set of the larger.
 void run_data_bench(const DataBenchOptions& options) {
-  const std::filesystem::path out = options.out;
+  OwnedFolder out(options.out);
+  if (options.keep) out.keep();
   std::printf("%-44s %10s\n", "step", "seconds");
   for (const std::uint32_t size : {64u, 256u}) {
     const auto start = std::chrono::steady_clock::now();
     const Surface surface = make_sample_surface(options.material, size, 1);
-    Ubo2003Writer writer(out / ("btf" + std::to_string(size)), ".jpg", false);
+    Ubo2003Writer writer(out.claim("btf" + std::to_string(size)), ".jpg", false);
     const auto& directions = ubo2003_directions();
     RenderOptions render;
     std::chrono::steady_clock::duration encoding{};
@@ -117,12 +119,11 @@ void run_data_bench(const DataBenchOptions& options) {
   const double rss_before = peak_rss_mib();
   const auto start = std::chrono::steady_clock::now();
   std::vector<std::string> warnings;
-  const BtfDataset dataset = load_btf(out / "btf256", {}, warnings);
+  const BtfDataset dataset = load_btf(out.root() / "btf256", {}, warnings);
   const double load_seconds = seconds_since(start);
   std::printf("%-44s %10.2f\n", "load 81x81 256x256 JPEGs", load_seconds);
   std::printf("pixel storage %.0f MiB; process peak RSS %.0f MiB (%.0f MiB before loading)\n",
               dataset.storage_bytes() / 1048576.0, peak_rss_mib(), rss_before);
-  if (!options.keep) std::filesystem::remove_all(out);
 }
 
 }  // namespace
@@ -143,7 +144,7 @@ void register_bench_command(CLI::App& app) {
   auto* data = bench->add_subcommand("data", "Sample rendering at 64 and 256, then load time and peak RSS of the "
                                              "full 81x81 256x256 JPEG material");
   data->add_option("--material", data_options->material, "Sample material to render")->capture_default_str();
-  data->add_option("--out", data_options->out, "Scratch folder for the rendered images")->capture_default_str();
+  data->add_option("--out", data_options->out, "Folder for the rendered images (created if missing; only what the bench creates there is removed)")->capture_default_str();
   data->add_flag("--keep", data_options->keep, "Keep the rendered images instead of deleting them");
   data->callback([data_options] { run_data_bench(*data_options); });
 

@@ -23,6 +23,7 @@
 #include "carbtf/engine/scene_pruning.hpp"
 #include "carbtf/engine/subspace_synthesizer.hpp"
 #include "cli/cli_support.hpp"
+#include "cli/owned_folder.hpp"
 #include "cli/sample_btf.hpp"
 #include "commands/commands.hpp"
 #include "scene/orbit.hpp"
@@ -53,23 +54,23 @@ struct FrameRecord {
   double wall_ms = 0.0;
 };
 
-Material bench_material(const FrameBenchOptions& options, const fs::path& out) {
+Material bench_material(const FrameBenchOptions& options, OwnedFolder& out) {
   Material material;
   if (!options.material.empty()) {
     check(read_material_file(options.material, material), "cannot read the material");
     return material;
   }
-  std::printf("no --material: analysing the leather sample (64^2) into %s\n", (out / "leather.cbtf").c_str());
+  std::printf("no --material: analysing the leather sample (64^2) into %s\n", (out.root() / "leather.cbtf").c_str());
   std::fflush(stdout);
   const Surface surface = make_sample_surface("leather", 64, 1);
-  const fs::path btf = out / "leather_btf";
+  const fs::path btf = out.claim("leather_btf");
   write_sample_btf(surface, btf, ".png", false);
   std::vector<std::string> warnings;
   AnalysisOptions analysis;
   analysis.progress = false;
   material = analyze_btf(load_btf(btf, {}, warnings), analysis).material;
-  check(write_material_file(out / "leather.cbtf", material), "cannot write the material");
-  fs::remove_all(btf);
+  check(write_material_file(out.root() / "leather.cbtf", material), "cannot write the material");
+  out.release(btf);
   return material;
 }
 
@@ -83,9 +84,10 @@ RenderScene orbit_scene(std::uint32_t i, std::uint32_t n) {
 }
 
 void run_bench_frame(const FrameBenchOptions& options) {
-  const fs::path out = options.out;
-  create_folder(out);
-  const Material material = bench_material(options, out);
+  OwnedFolder folder(options.out);
+  folder.keep();  // the results stay; only the scratch BTF is released
+  const fs::path out = folder.root();
+  const Material material = bench_material(options, folder);
   const Mesh mesh = load_mesh(options.mesh);
   auto context = make_context(options.device);
   if (context->device_info().timestamp_valid_bits == 0) {

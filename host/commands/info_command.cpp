@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <set>
 
@@ -24,14 +25,25 @@ std::string describe_directions(const std::vector<Direction>& directions) {
   return std::to_string(directions.size()) + " (theta " + list + " degrees)";
 }
 
+// The value as printable text: a hostile settings chunk must not send control bytes to the terminal.
 std::string setting(const Material& m, const std::string& key) {
   for (const auto& [k, v] : m.settings) {
-    if (k == key) return v;
+    if (k != key) continue;
+    std::string text = v;
+    for (char& c : text) {
+      const auto byte = static_cast<unsigned char>(c);
+      if (byte < 0x20 || byte == 0x7f) c = '?';
+    }
+    return text;
   }
   return "?";
 }
 
+// By name, or by signature for a regular file: opening a FIFO to peek would wait for a writer.
 bool is_material_file(const std::string& path) {
+  if (std::filesystem::path(path).extension() == ".cbtf") return true;
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) return false;
   std::ifstream file(path, std::ios::binary);
   char magic[4] = {};
   return file.read(magic, 4) && std::equal(magic, magic + 4, "CBTF");

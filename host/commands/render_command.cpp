@@ -46,10 +46,16 @@ struct RenderOptions {
 };
 
 void parse_size(const std::string& text, std::uint32_t& width, std::uint32_t& height) {
-  unsigned w = 0, h = 0;
-  char x = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w == 0 ||
-      h == 0 || w > 16384 || h > 16384) {
+  // Digits only, at most 5 each: sscanf's %u would wrap 4294967297 to 1 and accept a sign.
+  const std::size_t x = text.find_first_of("xX");
+  const auto digits = [](std::string_view part) {
+    return !part.empty() && part.size() <= 5 && part.find_first_not_of("0123456789") == std::string_view::npos;
+  };
+  const std::string_view all(text);
+  const bool shaped = x != std::string::npos && digits(all.substr(0, x)) && digits(all.substr(x + 1));
+  const unsigned w = shaped ? static_cast<unsigned>(std::stoul(text.substr(0, x))) : 0;
+  const unsigned h = shaped ? static_cast<unsigned>(std::stoul(text.substr(x + 1))) : 0;
+  if (!shaped || w == 0 || h == 0 || w > 16384 || h > 16384) {
     throw CommandError("--size " + text + ": expected WIDTHxHEIGHT, each 1 to 16384 (e.g. 1920x1080)");
   }
   width = w;
@@ -144,6 +150,7 @@ RenderedImage render_measured(Context& context, const Material& material, const 
 void run_render(const RenderOptions& options) {
   std::uint32_t width = 0, height = 0;
   parse_size(options.size, width, height);
+  check_image_output_path(options.out, "--out");
   Material material;
   check(read_material_file(options.material, material), "cannot read the material");
   Mesh mesh = load_mesh(options.mesh);
@@ -231,6 +238,7 @@ void run_render(const RenderOptions& options) {
   check_validation(*context);
 
   const std::vector<float> rgb = rendered_rgb(frame);
+  require_finite(rgb, options.material + ": rendered frame");
   const fs::path out = options.out;
   if (out.has_parent_path()) create_folder(out.parent_path());
   write_rgb_image(out, rgb, width, height, true);

@@ -147,6 +147,8 @@ void run_synth(const SynthOptions& options) {
     where = context->device_info().name + " (" + car_scheme_name(synthesizer->scheme()) + " CAR scheme)";
   }
   const double seconds = seconds_since(start);
+  for (std::uint32_t s : listed) require_finite(images[s], options.material + ": synthesized subspace image " + std::to_string(s));
+  require_finite(interpolated, options.material + ": interpolated image");
 
   for (std::uint32_t s : listed) {
     write_image_pair(out, "subspace_" + two_digits(s), images[s], material.subspaces[s].channels, request.width, request.height);

@@ -2,7 +2,10 @@
 // input, each checking that the error names the file and the problem.
 #include <catch2/catch.hpp>
 
+#include <sys/stat.h>
 #include <zip.h>
+
+#include <cstring>
 
 #include <cmath>
 #include <filesystem>
@@ -19,6 +22,7 @@
 #include "carbtf/analysis/input_error.hpp"
 #include "carbtf/analysis/sample/height_field_renderer.hpp"
 #include "carbtf/analysis/sample/sample_materials.hpp"
+#include "carbtf/engine/material_file.hpp"  // crc32, the PNG chunk checksum too
 
 using namespace carbtf;
 namespace fs = std::filesystem;
@@ -443,4 +447,64 @@ TEST_CASE("sample materials are deterministic for a seed and differ between seed
     }
   }
   CHECK_THROWS_AS(make_sample_surface("velvet", 32, 1), InputError);
+}
+
+namespace {
+
+// Runs `action`, which must throw an InputError whose message holds every fragment.
+template <typename Action>
+void check_input_error(Action&& action, const std::string& name, const std::string& problem) {
+  try {
+    action();
+    FAIL("no error for " << name);
+  } catch (const InputError& e) {
+    INFO("message: " << e.what());
+    CHECK_THAT(std::string(e.what()), Catch::Contains(name) && Catch::Contains(problem));
+  }
+}
+
+// A PNG of a few dozen bytes whose header claims `width` x `height` 16-bit RGB pixels: a decompression
+// bomb, as far as a reader that trusts the header is concerned.
+std::vector<std::byte> png_claiming(std::uint32_t width, std::uint32_t height) {
+  std::vector<std::uint8_t> png{0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  auto chunk = [&](const char* tag, std::vector<std::uint8_t> data) {
+    const auto size = static_cast<std::uint32_t>(data.size());
+    for (int shift = 24; shift >= 0; shift -= 8) png.push_back(static_cast<std::uint8_t>(size >> shift));
+    std::vector<std::uint8_t> tagged(tag, tag + 4);
+    tagged.insert(tagged.end(), data.begin(), data.end());
+    png.insert(png.end(), tagged.begin(), tagged.end());
+    const std::uint32_t crc = crc32(tagged);
+    for (int shift = 24; shift >= 0; shift -= 8) png.push_back(static_cast<std::uint8_t>(crc >> shift));
+  };
+  std::vector<std::uint8_t> header;
+  for (std::uint32_t v : {width, height}) {
+    for (int shift = 24; shift >= 0; shift -= 8) header.push_back(static_cast<std::uint8_t>(v >> shift));
+  }
+  header.insert(header.end(), {16, 2, 0, 0, 0});  // 16-bit, RGB, deflate, adaptive filter, no interlace
+  chunk("IHDR", header);
+  chunk("IDAT", {0x78, 0x9c, 0x03, 0x00, 0x00, 0x00, 0x00, 0x01});
+  chunk("IEND", {});
+  std::vector<std::byte> bytes(png.size());
+  std::memcpy(bytes.data(), png.data(), png.size());
+  return bytes;
+}
+
+}  // namespace
+
+TEST_CASE("bad input: an image header claiming 16384x16384 is refused before any pixel is decoded", "[btf][bad-input]") {
+  // Decoding would take 16384^2 x 3 floats (3 GiB); the check reads the header only.
+  const std::vector<std::byte> bomb = png_claiming(16384, 16384);
+  CHECK(bomb.size() < 100);
+  check_input_error([&] { decode_rgb_image("bomb.png", bomb); }, "bomb.png", "claims 16384x16384 pixels");
+  // Within the cap but not the dataset's size: refused from the header too.
+  const ImageShape first{64, 64, true};
+  check_input_error([&] { decode_rgb_image("other.png", png_claiming(4000, 4000), &first); }, "other.png", "but the others are 64x64");
+}
+
+TEST_CASE("bad input: a FIFO in a dataset folder is refused, not waited on", "[btf][bad-input]") {
+  const fs::path folder = scratch_folder("fifo");
+  const fs::path fifo = folder / "image.png";
+  REQUIRE(mkfifo(fifo.c_str(), 0600) == 0);
+  check_input_error([&] { read_file_bytes(fifo); }, fifo.string(), "not a regular");
+  fs::remove_all(folder);
 }

@@ -10,6 +10,7 @@
 
 #include "carbtf/analysis/image_io.hpp"
 
+#include "cli_run.hpp"
 #include "scratch_folder.hpp"
 #include <string>
 
@@ -18,30 +19,10 @@ using namespace carbtf;
 
 namespace {
 
-struct Run {
-  int status = -1;
-  std::string output;  // stdout and stderr together
-};
-
-Run run(const std::string& arguments, const std::string& environment = "") {
-  const std::string command = environment + " \"" CARBTF_CLI_PATH "\" " + arguments + " 2>&1";
-  Run result;
-  FILE* pipe = popen(command.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  std::array<char, 4096> buffer{};
-  while (std::fgets(buffer.data(), buffer.size(), pipe)) result.output += buffer.data();
-  const int raw = pclose(pipe);
-  result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
-  return result;
-}
-
+using test::line_count;
+using test::run;
+using test::Run;
 using test::scratch_folder;
-
-std::size_t line_count(const std::string& text) {
-  std::size_t lines = 0;
-  for (char c : text) lines += c == '\n';
-  return lines;
-}
 
 }  // namespace
 

@@ -41,13 +41,17 @@ BtfDataset decode_sources(const std::vector<ImageSource>& sources, std::vector<D
                           std::vector<Direction> views, std::string description, const BtfLoadOptions& options,
                           std::vector<std::string>& warnings, const ImageAdjustment& adjust) {
   if (sources.empty()) throw InputError(description, "no images");
+  ImageShape shape;
+  const ImageShape* expected = nullptr;  // none until the first image is decoded
   auto decode = [&](const ImageSource& source) {
-    RgbImage image = decode_rgb_image(source.name, source.read());
+    RgbImage image = decode_rgb_image(source.name, source.read(), expected);
+    if (!expected) shape = {image.width, image.height, image.linear};  // as stored, before any adjustment
     if (adjust) adjust(source, image);
     return image;
   };
   // The first image fixes the size and encoding every other one must share.
   RgbImage first = decode(sources[0]);
+  expected = &shape;
   BtfDataset dataset(std::move(lights), std::move(views), first.width, first.height,
                      first.linear ? ColorEncoding::linear_half : ColorEncoding::srgb8);
   dataset.source = std::move(description);

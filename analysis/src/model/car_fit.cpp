@@ -1,7 +1,8 @@
 #include "carbtf/analysis/model/car_fit.hpp"
 
+#include "carbtf/engine/car_stability.hpp"
+
 #include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -34,18 +35,6 @@ std::size_t sample_count(const Reach& reach, Eigen::Index rows, Eigen::Index col
 }
 
 std::size_t minimum_samples(std::size_t neighbours) { return 4 * (neighbours + 1) + 8; }
-
-// Largest root modulus of the monic polynomial z^q + c[q-1] z^(q-1) + ... + c[0].
-double max_root_modulus(const std::vector<Complex>& c) {
-  const auto q = static_cast<Eigen::Index>(c.size());
-  if (q == 0) return 0.0;
-  if (q == 1) return std::abs(c[0]);
-  Eigen::MatrixXcd companion = Eigen::MatrixXcd::Zero(q, q);
-  for (Eigen::Index i = 1; i < q; ++i) companion(i, i - 1) = 1.0;
-  for (Eigen::Index i = 0; i < q; ++i) companion(i, q - 1) = -c[static_cast<std::size_t>(i)];
-  Eigen::ComplexEigenSolver<Eigen::MatrixXcd> solver(companion, false);
-  return solver.eigenvalues().cwiseAbs().maxCoeff();
-}
 
 struct CandidateFit {
   bool ok = false;
@@ -108,43 +97,6 @@ const std::vector<std::vector<CarNeighbour>>& car_candidate_neighbourhoods() {
        N{-2, 2}},
   };
   return candidates;
-}
-
-double car_spectral_radius(const std::vector<CarNeighbour>& neighbourhood, const std::vector<double>& gamma, int frequencies) {
-  // Within-row recursion: y[c] = sum_{dr = 0} gamma y[c + dc] + input.
-  const Reach reach = reach_of(neighbourhood);
-  int row_order = 0;
-  for (CarNeighbour n : neighbourhood) {
-    if (n.dr == 0) row_order = std::max(row_order, -int{n.dc});
-  }
-  std::vector<Complex> row_poly(static_cast<std::size_t>(row_order), 0.0);
-  for (std::size_t k = 0; k < neighbourhood.size(); ++k) {
-    if (neighbourhood[k].dr == 0) row_poly[static_cast<std::size_t>(row_order + neighbourhood[k].dc)] -= gamma[k];
-  }
-  double radius = max_root_modulus(row_poly);
-  if (radius >= 1.0) return radius;
-  // Row-to-row recursion of each column frequency: a0(w) Y_r = sum_j a_j(w) Y_{r-j}.
-  const int order = reach.up;
-  if (order == 0) return radius;
-  for (int f = 0; f < frequencies; ++f) {
-    const double w = 2.0 * std::numbers::pi * f / frequencies;
-    Complex a0 = 1.0;
-    std::vector<Complex> a(static_cast<std::size_t>(order) + 1, 0.0);
-    for (std::size_t k = 0; k < neighbourhood.size(); ++k) {
-      const Complex term = gamma[k] * std::polar(1.0, w * neighbourhood[k].dc);
-      if (neighbourhood[k].dr == 0) {
-        a0 -= term;
-      } else {
-        a[static_cast<std::size_t>(-neighbourhood[k].dr)] += term;
-      }
-    }
-    if (std::abs(a0) < 1e-12) return std::numeric_limits<double>::infinity();
-    // z^q - sum_j (a_j / a0) z^(q - j): coefficient of z^(q - j) is -a_j / a0.
-    std::vector<Complex> monic(static_cast<std::size_t>(order));
-    for (int j = 1; j <= order; ++j) monic[static_cast<std::size_t>(order - j)] = -a[static_cast<std::size_t>(j)] / a0;
-    radius = std::max(radius, max_root_modulus(monic));
-  }
-  return radius;
 }
 
 double car_stationary_gain(const std::vector<CarNeighbour>& neighbourhood, const std::vector<double>& gamma, int grid) {
@@ -258,7 +210,7 @@ CarFit fit_car_band(const Plane& band, const CarFitOptions& options) {
       const double s = 0.5 * (stable + unstable);
       std::vector<double> shrunk = gamma;
       for (double& g : shrunk) g *= s;
-      (car_spectral_radius(neighbourhood, shrunk) <= limit ? stable : unstable) = s;
+      (car_roots_within(neighbourhood, shrunk, limit) ? stable : unstable) = s;
     }
     for (double& g : gamma) g *= stable;
     result.shrink = stable;

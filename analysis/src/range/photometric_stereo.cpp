@@ -7,6 +7,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "../btf/image_sources.hpp"
 #include "../parallel_for.hpp"
 
 namespace carbtf {
@@ -151,7 +152,12 @@ NormalMap photometric_stereo(const BtfDataset& dataset, std::uint32_t view, cons
     dataset.linear_rgb({light, view}, storage.back());
     lights.push_back(dataset.lights()[light].vector());
   }
-  if (lights.size() < 3) throw std::invalid_argument("photometric stereo needs images of the view under at least 3 lights, found " + std::to_string(lights.size()));
+  if (lights.size() < 3) {
+    const Direction& d = dataset.views()[view];
+    throw std::invalid_argument(dataset.source + ": photometric stereo needs images of one view under at least 3 lights, but view " +
+                                std::to_string(view) + " (" + detail::describe_direction(d) + ") has " + std::to_string(lights.size()) +
+                                "; choose a view with more lights with --stereo-view");
+  }
   std::vector<std::span<const float>> images(storage.begin(), storage.end());
   return photometric_stereo(images, lights, dataset.width(), dataset.height(), dataset.mask, dataset.views()[view].vector(), options);
 }

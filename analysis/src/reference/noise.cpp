@@ -3,10 +3,11 @@
 #include <algorithm>
 #include <bit>
 #include <cassert>
-#include <thread>
 #include <vector>
 
 #include <carbtf_gpu_shared.h>
+
+#include "../parallel_for.hpp"
 
 namespace carbtf::reference {
 
@@ -96,29 +97,14 @@ float gaussian_noise(std::uint64_t seed, std::uint32_t field_id, std::int32_t ro
 void fill_noise_block(std::uint64_t seed, std::uint32_t field_id, std::int32_t row0, std::int32_t col0,
                       std::uint32_t width, std::uint32_t height, std::span<float> out, unsigned threads) {
   assert(out.size() >= std::size_t{width} * height);
-  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
-  threads = std::min<unsigned>(threads, std::max(1u, height));
   // Rows wrap modulo 2^32 exactly as on the GPU (uint arithmetic there).
-  auto fill_rows = [&](std::uint32_t first, std::uint32_t last) {
-    for (std::uint32_t r = first; r < last; ++r) {
-      const auto row = static_cast<std::int32_t>(static_cast<std::uint32_t>(row0) + r);
-      float* line = out.data() + std::size_t{r} * width;
-      for (std::uint32_t c = 0; c < width; ++c) {
-        line[c] = gaussian_noise(seed, field_id, row, static_cast<std::int32_t>(static_cast<std::uint32_t>(col0) + c));
-      }
+  detail::parallel_for(height, threads, [&](std::size_t r) {
+    const auto row = static_cast<std::int32_t>(static_cast<std::uint32_t>(row0) + static_cast<std::uint32_t>(r));
+    float* line = out.data() + r * width;
+    for (std::uint32_t c = 0; c < width; ++c) {
+      line[c] = gaussian_noise(seed, field_id, row, static_cast<std::int32_t>(static_cast<std::uint32_t>(col0) + c));
     }
-  };
-  if (threads == 1) {
-    fill_rows(0, height);
-    return;
-  }
-  std::vector<std::thread> workers;
-  for (unsigned t = 0; t < threads; ++t) {
-    const auto first = static_cast<std::uint32_t>(std::uint64_t{height} * t / threads);
-    const auto last = static_cast<std::uint32_t>(std::uint64_t{height} * (t + 1) / threads);
-    workers.emplace_back(fill_rows, first, last);
-  }
-  for (std::thread& worker : workers) worker.join();
+  });
 }
 
 }  // namespace carbtf::reference

@@ -40,13 +40,22 @@ struct RgbImage {
   std::vector<float> linear_rgb;       // width * height * 3 when linear
 };
 
+// What an image of a dataset must be, checked from its header before any pixel is decoded.
+struct ImageShape {
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  bool linear = false;  // RgbImage::linear
+};
+
 // Decodes an image held in memory; `name` (a path or an archive entry) names it in errors and its
 // extension picks the decoder. Grey images become RGB; alpha is dropped. Throws InputError for
 // anything that is not a complete, finite image: unknown or non-image content, corrupt or truncated
-// data, NaN or Inf samples, a zero or absurd size.
-RgbImage decode_rgb_image(const std::string& name, std::span<const std::byte> bytes);
+// data, NaN or Inf samples, a zero size or more than 4096 x 4096 pixels, or (when `expected` is given)
+// another size or encoding; sizes are checked from the header, before the pixels are decoded.
+RgbImage decode_rgb_image(const std::string& name, std::span<const std::byte> bytes, const ImageShape* expected = nullptr);
 
-// Reads a whole file into memory; throws InputError naming the file when it cannot.
+// Reads a whole regular file of at most 256 MiB into memory; throws InputError naming the file when it
+// cannot.
 std::vector<std::byte> read_file_bytes(const std::filesystem::path& path);
 
 // Encodes RGB (width * height * 3 floats) for a file named `name`: 8-bit for .jpg/.png (JPEG quality

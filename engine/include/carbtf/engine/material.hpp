@@ -106,14 +106,21 @@ inline constexpr std::uint32_t kMaxTileSize = 1024;
 inline constexpr std::uint32_t kMaxEdgeColours = 4;
 inline constexpr std::uint32_t kMaxSettings = 256;
 inline constexpr std::uint32_t kMaxSettingLength = 4096;
+// Every model number (colour mean and transform, band mean, std, sigma, gamma, range heights in
+// texels) lies within +-kMaxModelMagnitude: linear colour is of order 1, so this is far beyond any fit,
+// and with the stability margin below it keeps every synthesized value finite in float32.
+inline constexpr float kMaxModelMagnitude = 1e6f;
 
 // The subspace index of (light, view); the caller keeps both in range.
 inline std::uint32_t subspace_of(const Material& material, std::uint32_t light, std::uint32_t view) {
   return material.subspace_index[std::size_t{light} * material.views.size() + view];
 }
 
-// Checks every structural invariant above (sizes agree, indices in range, neighbours causal and within
-// reach, numbers finite, sigma >= 0). The message names the first offending element.
+// Checks that the material is safe to synthesize and render: sizes agree, indices are in range,
+// neighbours are causal and within reach, every number is finite and within kMaxModelMagnitude,
+// sigma >= 0, every CAR band is stable with the margin of car_stability.hpp (the analysis's own test),
+// and each direction set can be triangulated (no two equal directions). The message names the first
+// offending element: the subspace, level and band, and the rule.
 Status validate_material(const Material& material);
 
 }  // namespace carbtf

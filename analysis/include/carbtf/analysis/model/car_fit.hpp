@@ -14,7 +14,7 @@
 //          + ln Gamma(beta/2) - ln Gamma(beta0/2).
 // - Stability: the recursion is stable when the within-row recursion and, for every column frequency,
 //   the row-to-row recursion have all characteristic roots inside the unit circle (Ekstrom & Woods'
-//   condition for non-symmetric half-plane filters); car_spectral_radius() gives the largest root
+//   condition for non-symmetric half-plane filters; engine/car_stability.hpp); car_spectral_radius() gives the largest root
 //   modulus. If it exceeds 1 - stability_margin (unstable, or so close to a unit root that synthesis
 //   would drift), gamma is repaired by shrinking it towards zero, gamma *= s with the largest s (found
 //   by bisection) that meets the margin, and sigma is rescaled so the model's stationary variance
@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "carbtf/analysis/model/plane.hpp"
+#include "carbtf/engine/car_stability.hpp"  // car_spectral_radius, car_roots_within
 #include "carbtf/engine/material.hpp"
 
 namespace carbtf {
@@ -57,10 +58,6 @@ struct CarFit {
 };
 
 CarFit fit_car_band(const Plane& band, const CarFitOptions& options = {});
-
-// The largest characteristic root modulus of the recursion (< 1: stable). `frequencies` column
-// frequencies are checked.
-double car_spectral_radius(const std::vector<CarNeighbour>& neighbourhood, const std::vector<double>& gamma, int frequencies = 256);
 
 // Stationary variance of the recursion driven by unit-variance white noise: the mean of 1 / |A|^2 over
 // a grid of `grid` x `grid` frequencies (finite only for a stable recursion).
