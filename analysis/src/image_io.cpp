@@ -90,7 +90,10 @@ constexpr std::uintmax_t kMaxImageFileBytes = std::uintmax_t{256} << 20;
 
 std::vector<std::byte> read_file_bytes(const std::filesystem::path& path) {
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "not a regular, readable file");
+  const std::filesystem::file_status status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status)) throw InputError(path, "not a readable file (no such file)");
+  // A FIFO would block the reader until a writer came; a folder or device is no image either.
+  if (!std::filesystem::is_regular_file(status)) throw InputError(path, "is not a regular file (a folder, pipe or device), so it is not read");
   const std::uintmax_t file_bytes = std::filesystem::file_size(path, ec);
   if (!ec && file_bytes > kMaxImageFileBytes) {
     throw InputError(path, "is " + std::to_string(file_bytes >> 20) + " MiB; image files are read up to " +

@@ -41,7 +41,7 @@ void check_obj_numbers(const std::filesystem::path& path) {
         char* end = nullptr;
         const double value = std::strtod(token.c_str(), &end);
         if (end != token.c_str() + token.size() || !std::isfinite(value) || std::fabs(value) > 1e30) {
-          throw CommandError(where + "'" + token + "' is not a finite coordinate");
+          throw CommandError(where + "'" + token + "' is a non-finite or malformed coordinate");
         }
         continue;
       }

@@ -505,6 +505,6 @@ TEST_CASE("bad input: a FIFO in a dataset folder is refused, not waited on", "[b
   const fs::path folder = scratch_folder("fifo");
   const fs::path fifo = folder / "image.png";
   REQUIRE(mkfifo(fifo.c_str(), 0600) == 0);
-  check_input_error([&] { read_file_bytes(fifo); }, fifo.string(), "not a regular");
+  check_input_error([&] { read_file_bytes(fifo); }, fifo.string(), "is not a regular file");
   fs::remove_all(folder);
 }

@@ -121,8 +121,8 @@ TEST_CASE("hostile OBJ meshes: zero normals are recomputed, bad numbers refused,
   }
   SECTION("NaN and infinite coordinates and overflowing indices are refused") {
     for (const auto& [text, expected] : std::vector<std::pair<std::string, std::string>>{
-             {quad + "vn nan 0 1\nf 1/1/1 2/2/1 3/3/1\n", "'nan' is not a finite coordinate"},
-             {"v nan 0 0\n" + quad + "f 2/1 3/2 4/3\n", ":1: 'nan' is not a finite coordinate"},
+             {quad + "vn nan 0 1\nf 1/1/1 2/2/1 3/3/1\n", "'nan' is a non-finite or malformed coordinate"},
+             {"v nan 0 0\n" + quad + "f 2/1 3/2 4/3\n", ":1: 'nan' is a non-finite or malformed coordinate"},
              {quad + "f 1/1 2/2 99999999999999999999/3\n", "face index '99999999999999999999'"}}) {
       check_refused(run(render + (folder / "bad.png").string() + " --mesh " + write_text(folder / "bad.obj", text)), expected);
     }

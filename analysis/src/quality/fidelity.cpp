@@ -6,12 +6,14 @@
 #include <stdexcept>
 #include <vector>
 
-#include <unsupported/Eigen/FFT>
 
 #include "carbtf/analysis/segmentation/lab_histogram.hpp"
+#include "fourier_2d.hpp"
 
 namespace carbtf {
 namespace {
+
+using detail::ComplexField;
 
 struct LabImage {
   std::vector<double> channel[3];
@@ -43,31 +45,17 @@ LabImage to_lab(std::span<const float> rgb, std::uint32_t width, std::uint32_t h
 // ring of normalised frequency |f| in [0, 0.5] (the DC term left out).
 std::vector<double> log_radial_spectrum(const std::vector<double>& field, double mean, std::uint32_t width,
                                         std::uint32_t height, std::uint32_t bins) {
-  Eigen::FFT<double> fft;
-  std::vector<std::complex<double>> data(field.size());
+  ComplexField data(field.size());
   for (std::size_t i = 0; i < field.size(); ++i) data[i] = field[i] - mean;
-  std::vector<std::complex<double>> line, transformed;
-  for (std::uint32_t r = 0; r < height; ++r) {
-    line.assign(data.begin() + static_cast<std::ptrdiff_t>(std::size_t{r} * width),
-                data.begin() + static_cast<std::ptrdiff_t>(std::size_t{r + 1} * width));
-    fft.fwd(transformed, line);
-    std::copy(transformed.begin(), transformed.end(),
-              data.begin() + static_cast<std::ptrdiff_t>(std::size_t{r} * width));
-  }
-  line.resize(height);
-  for (std::uint32_t c = 0; c < width; ++c) {
-    for (std::uint32_t r = 0; r < height; ++r) line[r] = data[std::size_t{r} * width + c];
-    fft.fwd(transformed, line);
-    for (std::uint32_t r = 0; r < height; ++r) data[std::size_t{r} * width + c] = transformed[r];
-  }
+  detail::fourier_2d(data, width, height);
   std::vector<double> power(bins, 0.0);
   std::vector<double> count(bins, 0.0);
   double total = 0.0;
   for (std::uint32_t r = 0; r < height; ++r) {
-    const double fy = (r <= height / 2 ? double(r) : double(r) - height) / height;
+    const double fy = detail::signed_frequency(r, height);
     for (std::uint32_t c = 0; c < width; ++c) {
       if (r == 0 && c == 0) continue;
-      const double fx = (c <= width / 2 ? double(c) : double(c) - width) / width;
+      const double fx = detail::signed_frequency(c, width);
       const double radius = std::sqrt(fx * fx + fy * fy);
       if (radius > 0.5) continue;  // the corners: not every direction reaches them
       const auto bin = std::min<std::uint32_t>(bins - 1, static_cast<std::uint32_t>(radius / 0.5 * bins));

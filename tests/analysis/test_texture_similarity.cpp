@@ -1,0 +1,148 @@
+// The texture-similarity measure (analysis/quality/texture_similarity) must rank as a person would, on
+// each sample material: another region of the same image below its phase-randomised version (same
+// power spectrum, no structure), that below blurred, hue-shifted and rotated versions, and those below
+// white noise. A test that can fail: each comparison is a CHECK on measured distances.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "carbtf/analysis/image_io.hpp"
+#include "carbtf/analysis/quality/texture_similarity.hpp"
+#include "carbtf/analysis/sample/height_field_renderer.hpp"
+#include "carbtf/analysis/sample/sample_materials.hpp"
+
+namespace carbtf {
+namespace {
+
+constexpr std::uint32_t kSize = 192;
+
+// One rendered image of a sample material: top view, light at `theta` degrees from azimuth 30.
+RgbField rendered_sample(const std::string& name, double theta) {
+  const Surface surface = make_sample_surface(name, kSize, 1);
+  RgbField image{std::vector<float>(std::size_t{kSize} * kSize * 3), kSize, kSize};
+  RenderOptions options;
+  options.progress = false;
+  render_btf(surface, {Direction::from_degrees(theta, 30.0)}, {Direction::from_degrees(0.0, 0.0)}, options,
+             [&](std::uint32_t, std::uint32_t, std::span<const float> rgb) { std::copy(rgb.begin(), rgb.end(), image.rgb.begin()); });
+  return image;
+}
+
+// Separable Gaussian blur, clamped at the borders.
+RgbField blurred(const RgbField& in, double sigma) {
+  const int radius = static_cast<int>(std::ceil(3.0 * sigma));
+  std::vector<double> kernel;
+  double total = 0.0;
+  for (int i = -radius; i <= radius; ++i) total += kernel.emplace_back(std::exp(-0.5 * i * i / (sigma * sigma)));
+  RgbField tmp = in, out = in;
+  const int w = static_cast<int>(in.width), h = static_cast<int>(in.height);
+  auto at = [&](const RgbField& f, int r, int c, int ch) {
+    return f.rgb[(std::size_t(std::clamp(r, 0, h - 1)) * in.width + std::size_t(std::clamp(c, 0, w - 1))) * 3 + std::size_t(ch)];
+  };
+  for (int pass = 0; pass < 2; ++pass) {
+    const RgbField& src = pass == 0 ? in : tmp;
+    RgbField& dst = pass == 0 ? tmp : out;
+    for (int r = 0; r < h; ++r)
+      for (int c = 0; c < w; ++c)
+        for (int ch = 0; ch < 3; ++ch) {
+          double sum = 0.0;
+          for (int i = -radius; i <= radius; ++i) sum += kernel[std::size_t(i + radius)] * (pass == 0 ? at(src, r, c + i, ch) : at(src, r + i, c, ch));
+          dst.rgb[(std::size_t(r) * in.width + std::size_t(c)) * 3 + std::size_t(ch)] = static_cast<float>(sum / total);
+        }
+  }
+  return out;
+}
+
+// Hue rotation by `degrees` about the grey axis of linear RGB (Rodrigues), clamped at 0.
+RgbField hue_shifted(const RgbField& in, double degrees) {
+  const double a = degrees * std::numbers::pi / 180.0, cs = std::cos(a), sn = std::sin(a), k = (1.0 - cs) / 3.0, s3 = sn / std::sqrt(3.0);
+  const double m[3][3] = {{cs + k, k - s3, k + s3}, {k + s3, cs + k, k - s3}, {k - s3, k + s3, cs + k}};
+  RgbField out = in;
+  for (std::size_t p = 0; p < in.rgb.size() / 3; ++p) {
+    for (int i = 0; i < 3; ++i) {
+      double v = 0.0;
+      for (int j = 0; j < 3; ++j) v += m[i][j] * in.rgb[p * 3 + std::size_t(j)];
+      out.rgb[p * 3 + std::size_t(i)] = std::max(0.0f, static_cast<float>(v));
+    }
+  }
+  return out;
+}
+
+// A quarter turn clockwise.
+RgbField rotated(const RgbField& in) {
+  RgbField out{std::vector<float>(in.rgb.size()), in.height, in.width};
+  for (std::uint32_t r = 0; r < in.height; ++r)
+    for (std::uint32_t c = 0; c < in.width; ++c)
+      for (int ch = 0; ch < 3; ++ch)
+        out.rgb[(std::size_t(c) * out.width + (in.height - 1 - r)) * 3 + std::size_t(ch)] = in.rgb[(std::size_t(r) * in.width + c) * 3 + std::size_t(ch)];
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("texture similarity ranks crop < phase-randomised < blurred, hue-shifted, rotated < white noise", "[quality]") {
+  const std::string name = GENERATE(as<std::string>{}, "leather", "fabric", "coast_sand_rocks");
+  const double theta = GENERATE(45.0, 75.0);
+  const RgbField image = rendered_sample(name, theta);
+  // Reference: the left half; the others are made from the right half.
+  const std::uint32_t w = kSize / 2, h = kSize;
+  const RgbField a = crop(image, 0, 0, w, h), b = crop(image, 0, w, w, h);
+  const TextureStatistics reference = texture_statistics(a.rgb, w, h);
+  auto d = [&](const RgbField& x) { return texture_distance(texture_statistics(x.rgb, x.width, x.height), reference).total; };
+  const double same = d(b);
+  const double gaussian = d(phase_randomised(b, 3));
+  const double blur = d(blurred(b, 1.0));
+  const double hue = d(hue_shifted(b, 60.0));
+  const double turned = d(crop(rotated(image), 0, w, w, h));
+  const double noise = d(white_noise_like(b, 3));
+  if (std::getenv("CARBTF_DEBUG_GROUPS")) {
+    for (const auto& [label, x] : std::vector<std::pair<std::string, RgbField>>{{"gaussian", phase_randomised(b, 3)}, {"blur", blurred(b, 1.0)}, {"hue", hue_shifted(b, 60.0)}, {"rotated", crop(rotated(image), 0, w, w, h)}, {"noise", white_noise_like(b, 3)}}) {
+      const TextureDistance t = texture_distance(texture_statistics(x.rgb, x.width, x.height), reference);
+      std::printf("   %-9s", label.c_str());
+      write_rgb_image("/tmp/ts_" + name + "_" + std::to_string(int(theta)) + "_" + label + ".png", x.rgb, x.width, x.height);
+      for (double v : t.groups) std::printf(" %.2f", v);
+      const TextureStatistics q = texture_statistics(x.rgb, x.width, x.height);
+      std::printf("   dev %.2f %.2f %.2f (ref %.2f %.2f %.2f) local %.2f (ref %.2f)", q.deviation[0], q.deviation[1], q.deviation[2], reference.deviation[0], reference.deviation[1], reference.deviation[2], q.local_contrast[0], reference.local_contrast[0]);
+      std::printf("\n");
+    }
+  }
+  std::printf("%-18s light %2.0f: crop %.3f  gaussian %.3f  blurred %.3f  hue %.3f  rotated %.3f  noise %.3f\n", name.c_str(), theta, same,
+              gaussian, blur, hue, turned, noise);
+  INFO(name << " at light " << theta << ": crop " << same << ", phase-randomised " << gaussian << ", blurred " << blur << ", hue-shifted " << hue
+            << ", rotated " << turned << ", white noise " << noise);
+  CHECK(same < gaussian);
+  CHECK(gaussian < blur);
+  CHECK(gaussian < hue);
+  CHECK(gaussian < turned);
+  CHECK(blur < noise);
+  CHECK(hue < noise);
+  CHECK(turned < noise);
+}
+
+TEST_CASE("texture similarity is zero for an image against itself and needs images of one size class", "[quality]") {
+  const RgbField image = rendered_sample("leather", 45.0);
+  const TextureStatistics s = texture_statistics(image.rgb, image.width, image.height);
+  CHECK(texture_distance(s, s).total == 0.0);
+  const RgbField small = crop(image, 0, 0, 20, 20);
+  CHECK_THROWS_AS(texture_distance(texture_statistics(small.rgb, 20, 20), s), std::invalid_argument);
+  CHECK_THROWS_AS(texture_statistics(image.rgb, 8, 8), std::invalid_argument);
+}
+
+TEST_CASE("calibrated fidelity puts the measurement near 0 and white noise near 1", "[quality]") {
+  const RgbField image = rendered_sample("fabric", 45.0);
+  const CalibratedFidelity itself = calibrated_fidelity(image, image);
+  INFO("floor " << itself.floor << ", ceiling " << itself.ceiling << ", gaussian " << itself.gaussian << ", model " << itself.model);
+  CHECK(itself.floor < itself.gaussian);
+  CHECK(itself.gaussian < itself.ceiling);
+  CHECK(std::abs(itself.rel) < 0.1);  // the model crop is the centre of the measurement
+  CHECK(itself.gaussian_rel > 0.0);
+  CHECK(itself.gaussian_rel < 1.0);
+  const CalibratedFidelity noise = calibrated_fidelity(white_noise_like(image, 9), image);
+  CHECK(noise.rel == Approx(1.0).margin(0.2));
+}
+
+}  // namespace carbtf
