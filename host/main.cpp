@@ -34,6 +34,7 @@ int main(int argc, char** argv) {
   carbtf::cli::register_synth_command(app);
   carbtf::cli::register_conform_command(app);
   carbtf::cli::register_render_command(app);
+  carbtf::cli::register_fidelity_command(app);
   carbtf::cli::register_bench_command(app);
   carbtf::cli::check_every_option(app);
   try {

@@ -19,5 +19,6 @@ void register_normals_command(CLI::App& app);
 void register_synth_command(CLI::App& app);
 void register_conform_command(CLI::App& app);
 void register_render_command(CLI::App& app);
+void register_fidelity_command(CLI::App& app);
 
 }  // namespace carbtf::cli

@@ -19,6 +19,7 @@
 #include "cli/measurement.hpp"
 #include "commands/commands.hpp"
 #include "report/pictures.hpp"
+#include "scene/measured_render.hpp"
 #include "scene/orbit.hpp"
 #include "scene/scene_mesh.hpp"
 
@@ -85,66 +86,6 @@ RenderScene make_scene(const RenderOptions& options) {
                        " lights (--light and --point-light together)");
   }
   return scene;
-}
-
-// The measured images of the pairs a frame needs, drawn through the same render pass: one texture
-// layer per pair, a flat range map (the relief is in the photographs already), no parallax.
-RenderedImage render_measured(Context& context, const Material& material, const BtfDataset& dataset,
-                              const SceneNeeds& needs, const Mesh& mesh, const RenderScene& scene,
-                              const RenderTargetInfo& target) {
-  const std::uint32_t w = dataset.width(), h = dataset.height();
-  const double bytes = static_cast<double>(needs.pairs.size()) * w * h * 4;
-  if (bytes > 1.5 * 1024 * 1024 * 1024) {
-    throw CommandError("--compare: the frame needs " + std::to_string(needs.pairs.size()) +
-                       " measured images, more than 1.5 GiB; use a smaller view of the mesh");
-  }
-  const std::uint32_t layer_limit = context.device_info().max_image_array_layers;
-  if (needs.pairs.size() > layer_limit) {
-    throw CommandError("--compare: the frame can use " + std::to_string(needs.pairs.size()) +
-                       " measured (light, view) pairs, more than the " + std::to_string(layer_limit) +
-                       " layers a texture array holds on " + context.device_info().name +
-                       "; compare on a plane or a narrower view (--fov), which use fewer pairs");
-  }
-  std::unique_ptr<TextureArray> array;
-  check(TextureArray::create(context, w, h,
-                             static_cast<std::uint32_t>(std::max<std::size_t>(needs.pairs.size(), 1)),
-                             VK_FORMAT_R8G8B8A8_SRGB, array),
-        "cannot hold the measured images");
-  MaterialTextures textures;
-  textures.view = array->view();
-  textures.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-  textures.width = w;
-  textures.height = h;
-  textures.pair_layers.assign(material.lights.size() * material.views.size(), UINT32_MAX);
-  std::vector<float> linear(std::size_t{w} * h * 3);
-  std::vector<std::uint8_t> texels(std::size_t{w} * h * 4, 255);
-  std::uint32_t layer = 0;
-  for (const auto& [light, view] : needs.pairs) {
-    if (!dataset.has_image({light, view})) continue;
-    dataset.linear_rgb({light, view}, linear);
-    for (std::size_t p = 0; p < std::size_t{w} * h; ++p) {
-      for (int k = 0; k < 3; ++k) {
-        texels[4 * p + k] = static_cast<std::uint8_t>(
-            std::lround(255.0f * linear_to_srgb(std::clamp(linear[3 * p + k], 0.0f, 1.0f))));
-      }
-    }
-    check(array->set_layer(layer, texels), "cannot stage a measured image");
-    textures.pair_layers[std::size_t{light} * material.views.size() + view] = layer++;
-  }
-  check(array->upload_and_wait(), "cannot upload the measured images");
-  Material flat = material;
-  flat.range = {};
-  MaterialBindingInfo info;
-  info.parallax_scale = 0.0f;
-  std::unique_ptr<MaterialBinding> binding;
-  check(MaterialBinding::create(context, flat, textures, info, binding), "cannot bind the measured images");
-  check(binding->upload_and_wait(), "cannot upload the flat range map");
-  std::unique_ptr<MeshRenderer> renderer;
-  check(MeshRenderer::create(context, *binding, target, renderer), "cannot build the render pass");
-  check(renderer->set_mesh(mesh), "cannot upload the mesh");
-  RenderedImage frame;
-  check(renderer->render(scene, frame), "rendering the measured BTF failed");
-  return frame;
 }
 
 void run_render(const RenderOptions& options) {
@@ -246,7 +187,7 @@ void run_render(const RenderOptions& options) {
     std::printf("rendering the measured BTF (%zu of its images) on the same mesh\n", needs.pairs.size());
     std::fflush(stdout);
     const std::vector<float> other =
-        rendered_rgb(render_measured(*context, material, *measured, needs, mesh, scene, target));
+        rendered_rgb(render_measured(*context, material, *measured, needs.pairs, mesh, scene, target));
     check_validation(*context);
     const fs::path measured_path =
         fs::path(out).replace_filename(out.stem().string() + "_measured" + out.extension().string());

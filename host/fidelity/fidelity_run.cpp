@@ -1,0 +1,236 @@
+#include "fidelity/fidelity_run.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <numbers>
+#include <sstream>
+
+#include "carbtf/engine/material_binding.hpp"
+#include "carbtf/engine/mesh.hpp"
+#include "carbtf/engine/mesh_renderer.hpp"
+#include "carbtf/engine/subspace_synthesizer.hpp"
+#include "cli/cli_support.hpp"
+#include "scene/measured_render.hpp"
+#include "scene/orbit.hpp"
+
+namespace carbtf::cli {
+namespace {
+
+constexpr double kDegrees = 180.0 / std::numbers::pi;
+
+std::uint32_t nearest(const std::vector<MaterialDirection>& set, double theta_degrees, double phi_degrees) {
+  const auto wanted = unit_vector_degrees(theta_degrees, phi_degrees);
+  std::uint32_t best = 0;
+  double best_dot = -2.0;
+  for (std::uint32_t i = 0; i < set.size(); ++i) {
+    const auto v = unit_vector_degrees(set[i].theta * kDegrees, set[i].phi * kDegrees);
+    const double dot = double{v[0]} * wanted[0] + double{v[1]} * wanted[1] + double{v[2]} * wanted[2];
+    if (dot > best_dot) best_dot = dot, best = i;
+  }
+  return best;
+}
+
+std::string degrees_text(const MaterialDirection& d) {
+  char text[48];
+  std::snprintf(text, sizeof text, "(%.0f, %.0f)", d.theta * kDegrees, d.phi * kDegrees);
+  return text;
+}
+
+// The largest centred axis-aligned rectangle where the plane covers every pixel (alpha 1): an
+// orthographic view of the plane from an azimuth that is a multiple of 90 degrees is a rectangle, and
+// any other a parallelogram whose inner rectangle this finds.
+struct Rectangle {
+  std::uint32_t row0 = 0, col0 = 0, width = 0, height = 0;
+};
+
+Rectangle covered_rectangle(const std::vector<float>& rgba, std::uint32_t width, std::uint32_t height) {
+  auto covered = [&](std::uint32_t r, std::uint32_t c) { return rgba[(std::size_t{r} * width + c) * 4 + 3] > 0.999f; };
+  Rectangle best;
+  const std::uint32_t cr = height / 2, cc = width / 2;
+  // Grow rows outwards from the centre; for each row span, the common column span.
+  std::uint32_t left = 0, right = width;  // [left, right)
+  for (std::uint32_t half = 0; cr >= half && cr + half < height; ++half) {
+    for (const std::uint32_t r : {cr - half, cr + half}) {
+      if (!covered(r, cc)) return best;
+      std::uint32_t l = cc, rr = cc + 1;
+      while (l > 0 && covered(r, l - 1)) --l;
+      while (rr < width && covered(r, rr)) ++rr;
+      left = std::max(left, l);
+      right = std::min(right, rr);
+    }
+    const Rectangle candidate{cr - half, left, right - left, 2 * half + 1};
+    if (std::uint64_t{candidate.width} * candidate.height >= std::uint64_t{best.width} * best.height) best = candidate;
+  }
+  return best;
+}
+
+RgbField crop_rgba(const std::vector<float>& rgba, std::uint32_t width, const Rectangle& rect) {
+  RgbField out{std::vector<float>(std::size_t{rect.width} * rect.height * 3), rect.width, rect.height};
+  for (std::uint32_t r = 0; r < rect.height; ++r) {
+    for (std::uint32_t c = 0; c < rect.width; ++c) {
+      for (int k = 0; k < 3; ++k) {
+        out.rgb[(std::size_t{r} * rect.width + c) * 3 + k] = rgba[((std::size_t{rect.row0 + r}) * width + rect.col0 + c) * 4 + k];
+      }
+    }
+  }
+  return out;
+}
+
+std::vector<float> rgba_floats(const RenderedImage& frame) {
+  std::vector<float> values(frame.bytes.size() / sizeof(float));
+  std::memcpy(values.data(), frame.bytes.data(), values.size() * sizeof(float));
+  return values;
+}
+
+}  // namespace
+
+std::vector<FidelityPair> default_fidelity_pairs(const Material& material) {
+  struct Wanted {
+    double light_theta, light_phi, view_theta, view_phi;
+  };
+  const Wanted wanted[] = {{15, 0, 0, 0}, {45, 0, 0, 0}, {75, 90, 0, 0}, {45, 180, 45, 0}, {45, 0, 60, 90}};
+  std::vector<FidelityPair> pairs;
+  for (const Wanted& w : wanted) {
+    FidelityPair p;
+    p.light = nearest(material.lights, w.light_theta, w.light_phi);
+    p.view = nearest(material.views, w.view_theta, w.view_phi);
+    p.label = "light " + degrees_text(material.lights[p.light]) + " view " + degrees_text(material.views[p.view]);
+    const bool duplicate = std::any_of(pairs.begin(), pairs.end(), [&](const FidelityPair& q) { return q.light == p.light && q.view == p.view; });
+    if (!duplicate) pairs.push_back(p);
+  }
+  return pairs;
+}
+
+std::vector<PairFidelity> run_fidelity(Context& context, const Material& material, const BtfDataset& dataset,
+                                       const std::vector<FidelityPair>& pairs, const FidelityRunOptions& options) {
+  for (const FidelityPair& p : pairs) {
+    if (p.light >= material.lights.size() || p.view >= material.views.size() || !dataset.has_image({p.light, p.view})) {
+      throw CommandError("fidelity: the measurement has no image of " + p.label);
+    }
+  }
+  // The model at the measurement's scale: one texel per measured pixel, the 2 x 2 plane filling the
+  // frame when seen from the top.
+  const std::uint32_t width = dataset.width(), height = dataset.height();
+  std::unique_ptr<SubspaceSynthesizer> synthesizer;
+  check(SubspaceSynthesizer::create(context, synthesizer), "cannot build the synthesis pipelines");
+  SynthesisRequest request;
+  request.seed = options.seed;
+  request.width = width;
+  request.height = height;
+  check(synthesizer->prepare(material, request), "cannot plan the synthesis");
+  check(context.submit_and_wait([&](VkCommandBuffer cb) { return synthesizer->record(cb); }), "synthesis failed");
+  MaterialBindingInfo binding_info;
+  binding_info.seed = options.seed;
+  binding_info.parallax_scale = options.parallax_scale;
+  std::unique_ptr<MaterialBinding> binding;
+  check(MaterialBinding::create(context, material, material_textures(*synthesizer, material), binding_info, binding),
+        "cannot bind the material");
+  check(binding->upload_and_wait(), "cannot upload the range map");
+  RenderTargetInfo target;
+  target.width = width;
+  target.height = height;
+  target.colour_format = VK_FORMAT_R32G32B32A32_SFLOAT;
+  std::unique_ptr<MeshRenderer> renderer;
+  check(MeshRenderer::create(context, *binding, target, renderer), "cannot build the render pass");
+  const Mesh plane = make_plane();
+  check(renderer->set_mesh(plane), "cannot upload the plane");
+
+  std::vector<PairFidelity> results;
+  for (const FidelityPair& p : pairs) {
+    const MaterialDirection& light = material.lights[p.light];
+    const MaterialDirection& view = material.views[p.view];
+    RenderScene scene;
+    scene.camera.eye = unit_vector_degrees(view.theta * kDegrees, view.phi * kDegrees);
+    for (float& x : scene.camera.eye) x *= 3.0f;
+    scene.camera.up = {0, 1, 0};
+    scene.camera.fov_y_degrees = 0.0f;
+    scene.camera.ortho_height = 2.0f;  // the plane's height: one texel per pixel from the top
+    scene.lights = {{false, unit_vector_degrees(light.theta * kDegrees, light.phi * kDegrees), {1, 1, 1}}};
+    RenderedImage model_frame;
+    check(renderer->render(scene, model_frame), "rendering the model failed");
+    const RenderedImage measured_frame = render_measured(context, material, dataset, {{p.light, p.view}}, plane, scene, target);
+    const std::vector<float> model_rgba = rgba_floats(model_frame), measured_rgba = rgba_floats(measured_frame);
+    const Rectangle rect = covered_rectangle(measured_rgba, width, height);
+    if (std::min(rect.width, rect.height) < 16 || std::max(rect.width, rect.height) < 32) throw CommandError("fidelity: the plane covers too little of the frame at " + p.label);
+    PairFidelity result;
+    result.pair = p;
+    result.model = crop_rgba(model_rgba, width, rect);
+    result.measured = crop_rgba(measured_rgba, width, rect);
+    require_finite(result.model.rgb, "fidelity: the rendered model at " + p.label);
+    result.result = calibrated_fidelity(result.model, result.measured, options.seed);
+    result.gaussian = phase_randomised(result.measured, options.seed);
+    if (options.progress) {
+      std::printf("  %-40s rel %6.3f   Gaussian reference %6.3f%s\n", p.label.c_str(), result.result.rel, result.result.gaussian_rel,
+                  result.result.rel < result.result.gaussian_rel ? "" : "   (the model does not beat it)");
+      std::fflush(stdout);
+    }
+    results.push_back(std::move(result));
+  }
+  return results;
+}
+
+FidelitySummaryLine summarize(const std::vector<PairFidelity>& results) {
+  FidelitySummaryLine s;
+  for (const PairFidelity& r : results) {
+    s.mean_rel += r.result.rel;
+    s.mean_gaussian_rel += r.result.gaussian_rel;
+    s.worst_rel = s.pairs == 0 ? r.result.rel : std::max(s.worst_rel, r.result.rel);
+    s.beats_gaussian += r.result.rel < r.result.gaussian_rel;
+    ++s.pairs;
+  }
+  if (s.pairs) {
+    s.mean_rel /= static_cast<double>(s.pairs);
+    s.mean_gaussian_rel /= static_cast<double>(s.pairs);
+  }
+  return s;
+}
+
+RgbField fidelity_grid(const std::vector<PairFidelity>& results) {
+  std::uint32_t cell_w = 0, cell_h = 0;
+  for (const PairFidelity& r : results) {
+    cell_w = std::max(cell_w, r.measured.width);
+    cell_h = std::max(cell_h, r.measured.height);
+  }
+  constexpr std::uint32_t gap = 4;
+  RgbField grid;
+  grid.width = 3 * cell_w + 2 * gap;
+  grid.height = static_cast<std::uint32_t>(results.size()) * (cell_h + gap);
+  grid.rgb.assign(std::size_t{grid.width} * grid.height * 3, 1.0f);
+  for (std::size_t row = 0; row < results.size(); ++row) {
+    const RgbField* cells[3] = {&results[row].model, &results[row].measured, &results[row].gaussian};
+    for (std::uint32_t column = 0; column < 3; ++column) {
+      const RgbField& cell = *cells[column];
+      for (std::uint32_t y = 0; y < cell.height; ++y) {
+        for (std::uint32_t x = 0; x < cell.width; ++x) {
+          const std::size_t to = (std::size_t(row * (cell_h + gap) + y) * grid.width + column * (cell_w + gap) + x) * 3;
+          for (int k = 0; k < 3; ++k) {
+            grid.rgb[to + k] = linear_to_srgb(std::clamp(cell.rgb[(std::size_t{y} * cell.width + x) * 3 + k], 0.0f, 1.0f));
+          }
+        }
+      }
+    }
+  }
+  return grid;
+}
+
+std::string fidelity_csv(const std::vector<PairFidelity>& results, const Material& material) {
+  std::ostringstream csv;
+  csv << "light,view,light_theta,light_phi,view_theta,view_phi,rel,gaussian_rel,floor,ceiling,model_distance";
+  for (const char* name : TextureDistance::kGroupNames) csv << ',' << name;
+  csv << '\n';
+  for (const PairFidelity& r : results) {
+    const MaterialDirection& l = material.lights[r.pair.light];
+    const MaterialDirection& v = material.views[r.pair.view];
+    csv << r.pair.light << ',' << r.pair.view << ',' << l.theta * kDegrees << ',' << l.phi * kDegrees << ',' << v.theta * kDegrees << ','
+        << v.phi * kDegrees << ',' << r.result.rel << ',' << r.result.gaussian_rel << ',' << r.result.floor << ',' << r.result.ceiling
+        << ',' << r.result.model;
+    for (double g : r.result.parts.groups) csv << ',' << g;
+    csv << '\n';
+  }
+  return csv.str();
+}
+
+}  // namespace carbtf::cli

@@ -1,0 +1,64 @@
+// Fidelity of a material against the measured BTF it models, as a person would judge it (DESIGN.md 5,
+// issue 13): the model and the measured images are drawn through the same render pass (a plane,
+// orthographic, the measured view and light), and the calibrated texture-similarity measure
+// (analysis/quality/texture_similarity) compares them, beside the best stationary Gaussian texture.
+// Serves `carbtf fidelity` and the demo.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "carbtf/analysis/btf/btf_dataset.hpp"
+#include "carbtf/analysis/quality/texture_similarity.hpp"
+#include "carbtf/engine/context.hpp"
+#include "carbtf/engine/material.hpp"
+
+namespace carbtf::cli {
+
+struct FidelityPair {
+  std::uint32_t light = 0;  // indices into the material's (and the dataset's) direction sets
+  std::uint32_t view = 0;
+  std::string label;
+};
+
+// The default spread over a material's directions: the top view under lights at 15, 45 and 75 degrees
+// (the grazing one), and two oblique views (45 and 60 degrees) under a 45-degree light; each the
+// measured direction nearest the wanted one.
+std::vector<FidelityPair> default_fidelity_pairs(const Material& material);
+
+struct PairFidelity {
+  FidelityPair pair;
+  CalibratedFidelity result;
+  RgbField model;     // the rendered model, cropped to where the plane covers the frame
+  RgbField measured;  // the rendered measurement, same crop
+  RgbField gaussian;  // the phase-randomised measurement: the best a Gaussian field alone can do
+};
+
+struct FidelityRunOptions {
+  std::uint64_t seed = 1;        // synthesis and reference noise
+  float parallax_scale = 1.0f;
+  bool progress = true;          // a line per pair on stdout
+};
+
+// Synthesizes every subspace image at the measurement's size and scores each pair. Throws
+// CommandError on engine failures and when a pair's image is missing from the dataset.
+std::vector<PairFidelity> run_fidelity(Context& context, const Material& material, const BtfDataset& dataset,
+                                       const std::vector<FidelityPair>& pairs, const FidelityRunOptions& options = {});
+
+// Mean and worst rel over the pairs, and how many pairs the model beats the Gaussian reference on.
+struct FidelitySummaryLine {
+  double mean_rel = 0.0, worst_rel = 0.0, mean_gaussian_rel = 0.0;
+  std::size_t beats_gaussian = 0, pairs = 0;
+};
+FidelitySummaryLine summarize(const std::vector<PairFidelity>& results);
+
+// One row per pair: model | measured | Gaussian reference, each cell padded to the largest crop,
+// display-encoded (sRGB) RGB for write_rgb_image(..., srgb_encode = false).
+RgbField fidelity_grid(const std::vector<PairFidelity>& results);
+
+// CSV with a header: pair, light and view in degrees, rel, gaussian_rel, floor, ceiling, the model's
+// distance and its groups.
+std::string fidelity_csv(const std::vector<PairFidelity>& results, const Material& material);
+
+}  // namespace carbtf::cli

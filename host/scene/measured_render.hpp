@@ -1,0 +1,24 @@
+// The measured BTF drawn through the render pass, the same way as a model: so that a model and its
+// measurement are compared on the same mesh, view and lights (render --compare, fidelity).
+#pragma once
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "carbtf/analysis/btf/btf_dataset.hpp"
+#include "carbtf/engine/context.hpp"
+#include "carbtf/engine/material.hpp"
+#include "carbtf/engine/mesh.hpp"
+#include "carbtf/engine/mesh_renderer.hpp"
+
+namespace carbtf::cli {
+
+// The measured images of `pairs` (light, view indices; those the frame can use) as texture layers, a
+// flat range map (the relief is in the photographs already) and no parallax, rendered once. Throws
+// CommandError when the images exceed 1.5 GiB or the device's array layers.
+RenderedImage render_measured(Context& context, const Material& material, const BtfDataset& dataset,
+                              const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs, const Mesh& mesh,
+                              const RenderScene& scene, const RenderTargetInfo& target);
+
+}  // namespace carbtf::cli
