@@ -220,6 +220,7 @@ std::string fidelity_csv(const std::vector<PairFidelity>& results, const Materia
   std::ostringstream csv;
   csv << "light,view,light_theta,light_phi,view_theta,view_phi,rel,gaussian_rel,floor,ceiling,model_distance";
   for (const char* name : TextureDistance::kGroupNames) csv << ',' << name;
+  for (const char* name : TextureDistance::kGroupNames) csv << ",gaussian_" << name;
   csv << '\n';
   for (const PairFidelity& r : results) {
     const MaterialDirection& l = material.lights[r.pair.light];
@@ -228,6 +229,7 @@ std::string fidelity_csv(const std::vector<PairFidelity>& results, const Materia
         << v.phi * kDegrees << ',' << r.result.rel << ',' << r.result.gaussian_rel << ',' << r.result.floor << ',' << r.result.ceiling
         << ',' << r.result.model;
     for (double g : r.result.parts.groups) csv << ',' << g;
+    for (double g : r.result.gaussian_parts.groups) csv << ',' << g;
     csv << '\n';
   }
   return csv.str();

@@ -89,14 +89,15 @@ TEST_CASE("carbtf demo runs the whole pipeline and writes a report", "[cli]") {
   const Run r = run("demo --size 48 --texture-size 64 --validation --out " + report.string());
   INFO(r.output);
   REQUIRE(r.status == 0);
-  for (const char* stage : {"[1/6] sample", "[2/6] analysis", "[3/6] synthesis", "[4/6] render", "[5/6] render", "[6/6] report"}) {
+  for (const char* stage : {"[1/6] sample", "[2/6] analysis", "[3/6] synthesis", "[4/6] fidelity", "[5/6] render", "[6/6] report"}) {
     CHECK_THAT(r.output, Catch::Contains(stage));
   }
   CHECK_THAT(r.output, Catch::Contains("report: " + (report / "index.html").string()));
+  CHECK_THAT(r.output, Catch::Contains("fidelity (rel: 0 = the measurement itself, 1 = white noise): mean "));
   // The GPU synthesis equals the CPU reference: "bit-identical to the CPU on N of N values".
   CHECK_THAT(r.output, Catch::Contains("bit-identical to the CPU on 245760 of 245760 values"));
   for (const char* file : {"index.html", "leather.cbtf", "sphere.png", "synthesized_00.png", "analysis/index_table.png",
-                           "analysis/eigenvalues.png", "plane_l19_v0_model.png", "plane_l19_v0_measured.png"}) {
+                           "analysis/eigenvalues.png", "fidelity_grid.png", "fidelity.csv"}) {
     CHECK(fs::exists(report / file));
   }
   const RgbImage sphere = decode_rgb_image((report / "sphere.png").string(), read_file_bytes(report / "sphere.png"));
@@ -108,7 +109,7 @@ TEST_CASE("carbtf demo runs the whole pipeline and writes a report", "[cli]") {
 
 TEST_CASE("--help answers for every command", "[cli]") {
   for (const std::string command : {"", "noise", "devices", "demo", "sample", "info", "analyze", "normals",
-                                    "synth", "conform", "render", "bench noise", "bench data", "bench analyze", "bench synth", "bench frame"}) {
+                                    "synth", "conform", "render", "fidelity", "bench noise", "bench data", "bench analyze", "bench synth", "bench frame"}) {
     const Run r = run(command + " --help");
     INFO("carbtf " << command << " --help\n" << r.output);
     CHECK(r.status == 0);

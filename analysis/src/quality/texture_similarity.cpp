@@ -417,7 +417,8 @@ CalibratedFidelity calibrated_fidelity(const RgbField& model, const RgbField& me
   CalibratedFidelity f;
   f.floor = distance(b).total;
   f.ceiling = distance(white_noise_like(b, seed)).total;
-  f.gaussian = distance(phase_randomised(b, seed)).total;
+  f.gaussian_parts = distance(phase_randomised(b, seed));
+  f.gaussian = f.gaussian_parts.total;
   f.parts = distance(crop(model, (model.height - h) / 2, (model.width - w) / 2, w, h));
   f.model = f.parts.total;
   const double range = std::max(f.ceiling - f.floor, 1e-9);

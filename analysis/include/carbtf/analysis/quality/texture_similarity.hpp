@@ -94,7 +94,8 @@ RgbField crop(const RgbField& image, std::uint32_t row0, std::uint32_t col0, std
 struct CalibratedFidelity {
   double floor = 0.0, ceiling = 0.0, model = 0.0, gaussian = 0.0;
   double rel = 0.0, gaussian_rel = 0.0;
-  TextureDistance parts;  // of the model
+  TextureDistance parts;           // of the model
+  TextureDistance gaussian_parts;  // of the Gaussian reference
 };
 CalibratedFidelity calibrated_fidelity(const RgbField& model, const RgbField& measured, std::uint64_t seed = 1,
                                        const TextureSimilarityOptions& options = {});
