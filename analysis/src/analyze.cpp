@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "carbtf/analysis/model/collapse_calibration.hpp"
 #include "carbtf/analysis/model/colour_pca.hpp"
+#include "carbtf/analysis/model/deshade.hpp"
 #include "carbtf/analysis/model/pyramid.hpp"
 #include "carbtf/analysis/progress.hpp"
 #include "carbtf/analysis/range/surface_integration.hpp"
@@ -34,13 +36,17 @@ class StageClock {
 MaterialDirection to_material(const Direction& d) { return {static_cast<float>(d.theta), static_cast<float>(d.phi)}; }
 
 // The model of one subspace image; notes name the band they concern.
-SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const AnalysisOptions& options, std::vector<std::string>& notes) {
+SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plane& range_map, double light_z_floor,
+                           const AnalysisOptions& options, std::vector<std::string>& notes) {
   const std::uint32_t width = dataset.width(), height = dataset.height();
   std::vector<float> rgb(dataset.pixel_count() * 3);
   dataset.linear_rgb(pair, rgb);
   std::vector<Plane> channels(3, Plane(height, width));
   for (std::size_t p = 0; p < dataset.pixel_count(); ++p) {
     for (int k = 0; k < 3; ++k) channels[static_cast<std::size_t>(k)](static_cast<Eigen::Index>(p / width), static_cast<Eigen::Index>(p % width)) = rgb[p * 3 + k];
+  }
+  if (options.deshade_floor > 0.0) {
+    divide_shading(channels, relit_factor(range_map, dataset.lights()[pair.light].vector(), light_z_floor), options.deshade_floor);
   }
   const ColourPca pca = fit_colour_pca(channels);
   const std::vector<Plane> bands = to_bands(pca, channels);
@@ -64,6 +70,7 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Anal
       if (!fit.note.empty()) notes.push_back("level " + std::to_string(level) + " band " + std::to_string(channel) + ": " + fit.note);
     }
   }
+  if (options.calibrate_collapse) calibrate_collapse_variance(model, bands, pyramids);
   return model;
 }
 
@@ -116,8 +123,11 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
     std::vector<std::vector<std::string>> notes(representatives.size());
     result.material.subspaces.resize(representatives.size());
     Progress progress("subspace models", representatives.size(), options.progress);
+    for (const Direction& d : dataset.lights()) result.material.lights.push_back(to_material(d));
+    for (const Direction& d : dataset.views()) result.material.views.push_back(to_material(d));
+    const double z_floor = relight_floor(result.material);  // the render pass's, from the light set
     detail::parallel_for(representatives.size(), options.threads, [&](std::size_t s) {
-      result.material.subspaces[s] = fit_subspace(dataset, representatives[s], options, notes[s]);
+      result.material.subspaces[s] = fit_subspace(dataset, representatives[s], result.range_map, z_floor, options, notes[s]);
       progress.advance();
     });
     for (std::size_t s = 0; s < notes.size(); ++s) {
@@ -129,8 +139,6 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
   }
 
   Material& material = result.material;
-  for (const Direction& d : dataset.lights()) material.lights.push_back(to_material(d));
-  for (const Direction& d : dataset.views()) material.views.push_back(to_material(d));
   material.subspace_index = result.segmentation.index;
   material.settings = {
       {"source", dataset.source},
@@ -142,6 +150,8 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
       {"car_prior_delta", std::to_string(options.car.prior_delta)},
       {"car_prior_beta0", std::to_string(options.car.prior_beta0)},
       {"car_stability_margin", std::to_string(options.car.stability_margin)},
+      {"calibrate_collapse", options.calibrate_collapse ? "yes" : "no"},
+      {"deshade_floor", std::to_string(options.deshade_floor)},
       {"stereo_view", std::to_string(result.stereo_view)},
       {"tile_size", std::to_string(material.range.tile_size)},
       {"edge_colours", std::to_string(material.range.edge_colours)},

@@ -1,5 +1,6 @@
 #include "carbtf/engine/material.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -114,6 +115,12 @@ Status validate_range(const RangeTiles& r) {
 }
 
 }  // namespace
+
+float relight_floor(const Material& material) {
+  float largest_theta = 0.0f;
+  for (const auto& d : material.lights) largest_theta = std::max(largest_theta, d.theta);
+  return std::max(std::cos(largest_theta), 1.0e-3f);
+}
 
 Status validate_material(const Material& material) {
   if (Status s = validate_directions(material.lights, "light direction"); !s.ok()) return s;

@@ -66,12 +66,6 @@ struct MaterialBinding::Resources {
   VkDescriptorSet set = VK_NULL_HANDLE;  // freed with the pool
 };
 
-float relight_floor(const Material& material) {
-  float largest_theta = 0.0f;
-  for (const auto& d : material.lights) largest_theta = std::max(largest_theta, d.theta);
-  return std::max(std::cos(largest_theta), 1.0e-3f);
-}
-
 MaterialTextures material_textures(const SubspaceSynthesizer& synthesizer, const Material& material) {
   MaterialTextures textures;
   textures.view = synthesizer.image_view();

@@ -71,6 +71,14 @@ void register_analyze_command(CLI::App& app) {
   command->add_option("--stereo-view", a.stereo_view, "View index for photometric stereo (-1: the view nearest the normal)")
       ->check(CLI::Range(-1, 4095))->capture_default_str();
   command->add_option("--tile-size", a.tiles.tile_size, "Range-map tile size in texels (even)")->check(CLI::Range(4, 1024))->capture_default_str();
+  command->add_flag("--collapse-calibration", a.calibrate_collapse,
+                    "Rescale each band's sigma so that the collapsed pyramid keeps the measured contrast (the synthesized "
+                    "images otherwise keep 55-80% of the measured variance)");
+  command->add_option("--deshade", a.deshade_floor,
+                      "Divide the representative pair's relit range map out of each subspace image before fitting, the factor "
+                      "floored at this value (0: off)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   command->add_option("--threads", a.threads, "Worker threads (0: all cores; at most 256)")->check(CLI::Range(0u, 256u))->capture_default_str();
   command->callback([options] { run_analyze(*options); });
 }

@@ -26,6 +26,11 @@ struct AnalysisOptions {
   CarFitOptions car;
   PhotometricStereoOptions stereo;
   int stereo_view = -1;              // -1: the view nearest the surface normal
+  // Rescale sigma per level so that the collapsed pyramid keeps the measured contrast
+  // (model/collapse_calibration.hpp). Off by default: it restores the variance, yet lowers the
+  // calibrated fidelity on leather and coast_sand_rocks (issue 13 note).
+  bool calibrate_collapse = false;
+  double deshade_floor = 0.0;        // > 0: divide the relit range map out before fitting, floored here (model/deshade.hpp)
   RangeTileOptions tiles;            // its seed is ignored: the tiles follow segmentation.seed
   unsigned threads = 0;              // 0: all hardware threads
   bool progress = true;

@@ -116,6 +116,11 @@ inline std::uint32_t subspace_of(const Material& material, std::uint32_t light, 
   return material.subspace_index[std::size_t{light} * material.views.size() + view];
 }
 
+// The floor of the render pass's relit factor's denominator (carbtf_material_shade): the cosine of the
+// material's largest measured light elevation, at least 1e-3. The analysis divides the same factor out
+// when it de-shades (analysis/model/deshade.hpp).
+float relight_floor(const Material& material);
+
 // Checks that the material is safe to synthesize and render: sizes agree, indices are in range,
 // neighbours are causal and within reach, every number is finite and within kMaxModelMagnitude,
 // sigma >= 0, every CAR band is stable with the margin of car_stability.hpp (the analysis's own test),

@@ -39,9 +39,6 @@ struct MaterialTextures {
   std::vector<std::uint32_t> pair_layers;
 };
 
-// The floor of the relit factor's denominator (carbtf_material_shade): the cosine of the material's
-// largest measured light elevation, at least 1e-3.
-float relight_floor(const Material& material);
 
 // The textures of a prepared synthesizer.
 MaterialTextures material_textures(const SubspaceSynthesizer& synthesizer, const Material& material);

@@ -1,0 +1,36 @@
+#include "carbtf/analysis/model/deshade.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace carbtf {
+
+Plane relit_factor(const Plane& range_map, const std::array<double, 3>& light, double light_z_floor) {
+  const Eigen::Index rows = range_map.rows(), cols = range_map.cols();
+  Plane factor(rows, cols);
+  auto h = [&](Eigen::Index r, Eigen::Index c) {
+    return range_map(std::clamp<Eigen::Index>(r, 0, rows - 1), std::clamp<Eigen::Index>(c, 0, cols - 1));
+  };
+  const double denominator = std::max(light[2], light_z_floor);
+  for (Eigen::Index r = 0; r < rows; ++r) {
+    for (Eigen::Index c = 0; c < cols; ++c) {
+      // As the shader: x along columns, y up (towards row - 1).
+      const double dx = 0.5 * (h(r, c + 1) - h(r, c - 1));
+      const double dy = 0.5 * (h(r - 1, c) - h(r + 1, c));
+      const double length = std::sqrt(dx * dx + dy * dy + 1.0);
+      const double dot = (-dx * light[0] - dy * light[1] + light[2]) / length;
+      factor(r, c) = std::max(dot, 0.0) / denominator;
+    }
+  }
+  return factor;
+}
+
+void divide_shading(std::vector<Plane>& channels, const Plane& factor, double floor) {
+  for (Plane& channel : channels) {
+    if (channel.rows() != factor.rows() || channel.cols() != factor.cols()) throw std::invalid_argument("divide_shading: sizes differ");
+    channel /= factor.max(floor);
+  }
+}
+
+}  // namespace carbtf
