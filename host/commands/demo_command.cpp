@@ -28,6 +28,7 @@
 #include "report/analysis_report.hpp"
 #include "report/html_report.hpp"
 #include "report/pictures.hpp"
+#include "scene/material_render.hpp"
 #include "scene/orbit.hpp"
 
 namespace carbtf::cli {
@@ -137,31 +138,16 @@ void run_demo(const DemoOptions& options) {
   std::ofstream(folder / "fidelity.csv") << fidelity_csv(fidelity, material);
   timed("fidelity (" + std::to_string(fidelity.size()) + " pairs: synthesis, two renders and the measure each)", seconds_since(start));
 
-  MaterialBindingInfo binding_info;
-  binding_info.seed = options.seed;
-  std::unique_ptr<MaterialBinding> binding;
-  check(MaterialBinding::create(*context, material, material_textures(*synthesizer, material), binding_info,
-                                binding),
-        "cannot bind the material");
-  check(binding->upload_and_wait(), "cannot upload the range map");
-
   // 5. The material on a sphere.
   step(5, "render on a sphere, 960x640");
-  RenderTargetInfo sphere_target;
-  sphere_target.width = 960;
-  sphere_target.height = 640;
-  sphere_target.colour_format = VK_FORMAT_R32G32B32A32_SFLOAT;
-  std::unique_ptr<MeshRenderer> sphere_renderer;
-  check(MeshRenderer::create(*context, *binding, sphere_target, sphere_renderer),
-        "cannot build the render pass");
-  check(sphere_renderer->set_mesh(make_sphere()), "cannot upload the sphere");
+  const MaterialRender sphere_render = prepare_material_render(*context, material, *synthesizer, options.seed, 1.0f, 960, 640, make_sphere());
   RenderScene sphere_scene;
   sphere_scene.camera.eye = {2.6f, 1.8f, 1.5f};
   sphere_scene.lights = {{false, unit_vector_degrees(50, 80), {1, 1, 1}},
                          {false, unit_vector_degrees(70, 250), {0.25f, 0.25f, 0.3f}}};
   RenderedImage sphere;
   start = std::chrono::steady_clock::now();
-  check(sphere_renderer->render(sphere_scene, sphere), "rendering the sphere failed");
+  check(sphere_render.renderer->render(sphere_scene, sphere), "rendering the sphere failed");
   timed("render, sphere 960x640 (wall)", seconds_since(start));
   write_rgb_image(folder / "sphere.png", rendered_rgb(sphere), sphere.width, sphere.height);
   check_validation(*context);

@@ -19,6 +19,7 @@
 #include "cli/measurement.hpp"
 #include "commands/commands.hpp"
 #include "report/pictures.hpp"
+#include "scene/material_render.hpp"
 #include "scene/measured_render.hpp"
 #include "scene/orbit.hpp"
 #include "scene/scene_mesh.hpp"
@@ -153,28 +154,18 @@ void run_render(const RenderOptions& options) {
 
   std::printf("[2/3] range map, lookup tables and render pipeline\n");
   std::fflush(stdout);
-  MaterialBindingInfo binding_info;
-  binding_info.seed = options.seed;
-  binding_info.parallax_scale = options.parallax;
-  std::unique_ptr<MaterialBinding> binding;
-  check(MaterialBinding::create(*context, material, material_textures(*synthesizer, material), binding_info,
-                                binding),
-        "cannot bind the material");
-  check(binding->upload_and_wait(), "cannot upload the range map");
-  RenderTargetInfo target;
+  const MaterialRender model = prepare_material_render(*context, material, *synthesizer, options.seed, options.parallax, width, height, mesh);
+  RenderTargetInfo target;  // the measurement's render (--compare), alike
   target.width = width;
   target.height = height;
   target.colour_format = VK_FORMAT_R32G32B32A32_SFLOAT;
-  std::unique_ptr<MeshRenderer> renderer;
-  check(MeshRenderer::create(*context, *binding, target, renderer), "cannot build the render pass");
-  check(renderer->set_mesh(mesh), "cannot upload the mesh");
 
   std::printf("[3/3] rendering %ux%u, %zu triangles, %zu light(s)\n", width, height, mesh.indices.size() / 3,
               scene.lights.size());
   std::fflush(stdout);
   const auto start = std::chrono::steady_clock::now();
   RenderedImage frame;
-  check(renderer->render(scene, frame), "rendering failed");
+  check(model.renderer->render(scene, frame), "rendering failed");
   const double render_ms = seconds_since(start) * 1e3;
   check_validation(*context);
 

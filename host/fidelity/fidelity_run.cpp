@@ -13,6 +13,7 @@
 #include "carbtf/engine/mesh_renderer.hpp"
 #include "carbtf/engine/subspace_synthesizer.hpp"
 #include "cli/cli_support.hpp"
+#include "scene/material_render.hpp"
 #include "scene/measured_render.hpp"
 #include "scene/orbit.hpp"
 
@@ -122,21 +123,12 @@ std::vector<PairFidelity> run_fidelity(Context& context, const Material& materia
   request.height = height;
   check(synthesizer->prepare(material, request), "cannot plan the synthesis");
   check(context.submit_and_wait([&](VkCommandBuffer cb) { return synthesizer->record(cb); }), "synthesis failed");
-  MaterialBindingInfo binding_info;
-  binding_info.seed = options.seed;
-  binding_info.parallax_scale = options.parallax_scale;
-  std::unique_ptr<MaterialBinding> binding;
-  check(MaterialBinding::create(context, material, material_textures(*synthesizer, material), binding_info, binding),
-        "cannot bind the material");
-  check(binding->upload_and_wait(), "cannot upload the range map");
-  RenderTargetInfo target;
+  const Mesh plane = make_plane();
+  const MaterialRender model = prepare_material_render(context, material, *synthesizer, options.seed, options.parallax_scale, width, height, plane);
+  RenderTargetInfo target;  // the measurement's render, alike
   target.width = width;
   target.height = height;
   target.colour_format = VK_FORMAT_R32G32B32A32_SFLOAT;
-  std::unique_ptr<MeshRenderer> renderer;
-  check(MeshRenderer::create(context, *binding, target, renderer), "cannot build the render pass");
-  const Mesh plane = make_plane();
-  check(renderer->set_mesh(plane), "cannot upload the plane");
 
   std::vector<PairFidelity> results;
   for (const FidelityPair& p : pairs) {
@@ -150,7 +142,7 @@ std::vector<PairFidelity> run_fidelity(Context& context, const Material& materia
     scene.camera.ortho_height = 2.0f;  // the plane's height: one texel per pixel from the top
     scene.lights = {{false, unit_vector_degrees(light.theta * kDegrees, light.phi * kDegrees), {1, 1, 1}}};
     RenderedImage model_frame;
-    check(renderer->render(scene, model_frame), "rendering the model failed");
+    check(model.renderer->render(scene, model_frame), "rendering the model failed");
     const RenderedImage measured_frame = render_measured(context, material, dataset, {{p.light, p.view}}, plane, scene, target);
     const std::vector<float> model_rgba = rgba_floats(model_frame), measured_rgba = rgba_floats(measured_frame);
     const Rectangle rect = covered_rectangle(measured_rgba, width, height);
