@@ -13,8 +13,12 @@ target_compile_options(carbtf_compile_options INTERFACE
 if(CARBTF_WERROR)
   target_compile_options(carbtf_compile_options INTERFACE -Werror)
 endif()
-if(CARBTF_SANITIZE)
+if(CARBTF_SANITIZE OR CARBTF_FUZZ)
   target_compile_options(carbtf_compile_options INTERFACE
     -fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer)
   target_link_options(carbtf_compile_options INTERFACE -fsanitize=address,undefined)
+endif()
+if(CARBTF_FUZZ)
+  # Coverage instrumentation for libFuzzer in every library the targets link.
+  target_compile_options(carbtf_compile_options INTERFACE -fsanitize=fuzzer-no-link)
 endif()

@@ -24,12 +24,13 @@ build_dir="${1:-$repo_root/build}"
 #   libglm-dev                                      vector/matrix maths of the render pass (engine/)
 #   libtinyobjloader-dev                            OBJ meshes for `carbtf render --mesh file.obj` (host/)
 #   catch2                                          tests
+#   clang libclang-rt-14-dev                        libFuzzer and the sanitized test tree (tests/fuzz)
 packages=(
   build-essential cmake pkg-config ninja-build
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
   libeigen3-dev libopenimageio-dev libimath-dev libzip-dev nlohmann-json3-dev
   libcli11-dev libglm-dev libtinyobjloader-dev
-  catch2
+  catch2 clang libclang-rt-14-dev
 )
 
 missing=()
