@@ -6,12 +6,10 @@
 
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <numbers>
 #include <string>
 #include <vector>
 
-#include "carbtf/analysis/image_io.hpp"
 #include "carbtf/analysis/quality/texture_similarity.hpp"
 #include "carbtf/analysis/sample/height_field_renderer.hpp"
 #include "carbtf/analysis/sample/sample_materials.hpp"
@@ -99,17 +97,6 @@ TEST_CASE("texture similarity ranks crop < phase-randomised < blurred, hue-shift
   const double hue = d(hue_shifted(b, 60.0));
   const double turned = d(crop(rotated(image), 0, w, w, h));
   const double noise = d(white_noise_like(b, 3));
-  if (std::getenv("CARBTF_DEBUG_GROUPS")) {
-    for (const auto& [label, x] : std::vector<std::pair<std::string, RgbField>>{{"gaussian", phase_randomised(b, 3)}, {"blur", blurred(b, 1.0)}, {"hue", hue_shifted(b, 60.0)}, {"rotated", crop(rotated(image), 0, w, w, h)}, {"noise", white_noise_like(b, 3)}}) {
-      const TextureDistance t = texture_distance(texture_statistics(x.rgb, x.width, x.height), reference);
-      std::printf("   %-9s", label.c_str());
-      write_rgb_image("/tmp/ts_" + name + "_" + std::to_string(int(theta)) + "_" + label + ".png", x.rgb, x.width, x.height);
-      for (double v : t.groups) std::printf(" %.2f", v);
-      const TextureStatistics q = texture_statistics(x.rgb, x.width, x.height);
-      std::printf("   dev %.2f %.2f %.2f (ref %.2f %.2f %.2f) local %.2f (ref %.2f)", q.deviation[0], q.deviation[1], q.deviation[2], reference.deviation[0], reference.deviation[1], reference.deviation[2], q.local_contrast[0], reference.local_contrast[0]);
-      std::printf("\n");
-    }
-  }
   std::printf("%-18s light %2.0f: crop %.3f  gaussian %.3f  blurred %.3f  hue %.3f  rotated %.3f  noise %.3f\n", name.c_str(), theta, same,
               gaussian, blur, hue, turned, noise);
   INFO(name << " at light " << theta << ": crop " << same << ", phase-randomised " << gaussian << ", blurred " << blur << ", hue-shifted " << hue
