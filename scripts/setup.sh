@@ -19,6 +19,7 @@ build_dir="${1:-$repo_root/build}"
 #   libeigen3-dev libopenimageio-dev                analysis/ (model fitting, image I/O)
 #   libimath-dev                                    half floats for linear BTF images
 #   libzip-dev                                      BTF archives (.zip) read and written by analysis/
+#   zlib1g-dev                                      deflated chunks of the material file (engine/)
 #   nlohmann-json3-dev                              sample-material recipes (assets/materials/*.json)
 #   libcli11-dev                                    command-line parsing
 #   libglm-dev                                      vector/matrix maths of the render pass (engine/)
@@ -28,7 +29,7 @@ build_dir="${1:-$repo_root/build}"
 packages=(
   build-essential cmake pkg-config ninja-build
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
-  libeigen3-dev libopenimageio-dev libimath-dev libzip-dev nlohmann-json3-dev
+  libeigen3-dev libopenimageio-dev libimath-dev libzip-dev zlib1g-dev nlohmann-json3-dev
   libcli11-dev libglm-dev libtinyobjloader-dev
   catch2 clang libclang-rt-14-dev
 )

@@ -9,6 +9,7 @@
 #include "carbtf/analysis/model/colour_pca.hpp"
 #include "carbtf/analysis/model/deshade.hpp"
 #include "carbtf/analysis/model/pyramid.hpp"
+#include "carbtf/analysis/model/relief_tone.hpp"
 #include "carbtf/analysis/progress.hpp"
 #include "carbtf/analysis/range/surface_integration.hpp"
 #include "carbtf/analysis/resource_usage.hpp"
@@ -36,8 +37,8 @@ class StageClock {
 MaterialDirection to_material(const Direction& d) { return {static_cast<float>(d.theta), static_cast<float>(d.phi)}; }
 
 // The model of one subspace image; notes name the band they concern.
-SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plane& range_map, double light_z_floor,
-                           const AnalysisOptions& options, std::vector<std::string>& notes) {
+SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plane& range_map, const Plane& tone,
+                           double light_z_floor, const AnalysisOptions& options, std::vector<std::string>& notes) {
   const std::uint32_t width = dataset.width(), height = dataset.height();
   std::vector<float> rgb(dataset.pixel_count() * 3);
   dataset.linear_rgb(pair, rgb);
@@ -45,6 +46,11 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
   for (std::size_t p = 0; p < dataset.pixel_count(); ++p) {
     for (int k = 0; k < 3; ++k) channels[static_cast<std::size_t>(k)](static_cast<Eigen::Index>(p / width), static_cast<Eigen::Index>(p % width)) = rgb[p * 3 + k];
   }
+  if (tone.size() > 0 || options.deshade_floor > 0.0) {
+    undo_parallax(channels, range_map, dataset.views()[pair.view].vector(), kAnalysisParallaxScale);
+  }
+  if (tone.size() > 0) divide_shading(channels, tone, kReliefToneFloor);
+  if (tone.size() > 0 && options.remainder_clamp > 0.0) clamp_remainder(channels, options.remainder_clamp);
   if (options.deshade_floor > 0.0) {
     divide_shading(channels, relit_factor(range_map, dataset.lights()[pair.light].vector(), light_z_floor), options.deshade_floor);
   }
@@ -114,7 +120,12 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
     result.range_map = integrate_normals(result.normals.normals, dataset.width(), dataset.height());
     RangeTileOptions tiles = options.tiles;
     tiles.seed = options.segmentation.seed;
-    result.material.range = build_range_tiles(result.range_map, tiles);
+    if (options.relief_tone) {
+      std::vector<MaterialDirection> lights;
+      for (const Direction& d : dataset.lights()) lights.push_back(to_material(d));
+      result.tone = relief_tone(dataset, result.stereo_view, result.range_map, relight_floor(Material{lights, {}, {}, {}, {}, {}}));
+    }
+    result.material.range = build_range_tiles(result.range_map, tiles, options.relief_tone ? &result.tone : nullptr);
   }
 
   {
@@ -127,7 +138,7 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
     for (const Direction& d : dataset.views()) result.material.views.push_back(to_material(d));
     const double z_floor = relight_floor(result.material);  // the render pass's, from the light set
     detail::parallel_for(representatives.size(), options.threads, [&](std::size_t s) {
-      result.material.subspaces[s] = fit_subspace(dataset, representatives[s], result.range_map, z_floor, options, notes[s]);
+      result.material.subspaces[s] = fit_subspace(dataset, representatives[s], result.range_map, result.tone, z_floor, options, notes[s]);
       progress.advance();
     });
     for (std::size_t s = 0; s < notes.size(); ++s) {
@@ -151,6 +162,8 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
       {"car_prior_beta0", std::to_string(options.car.prior_beta0)},
       {"car_stability_margin", std::to_string(options.car.stability_margin)},
       {"calibrate_collapse", options.calibrate_collapse ? "yes" : "no"},
+      {"relief_tone", options.relief_tone ? "yes" : "no"},
+      {"remainder_clamp", std::to_string(options.remainder_clamp)},
       {"deshade_floor", std::to_string(options.deshade_floor)},
       {"stereo_view", std::to_string(result.stereo_view)},
       {"tile_size", std::to_string(material.range.tile_size)},

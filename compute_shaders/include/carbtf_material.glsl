@@ -58,14 +58,23 @@ vec3 carbtf_subspace_texel(CarbtfBilinear b, uint layer) {
   return mix(top, bottom, b.f.y);
 }
 
+// The range texture bilinearly at b: r the height in texels, g the relief tone.
+vec2 carbtf_range_texel(CarbtfBilinear b) {
+  vec2 top = mix(texelFetch(carbtf_range, ivec3(b.i0.x, b.i0.y, 0), 0).rg,
+                 texelFetch(carbtf_range, ivec3(b.i1.x, b.i0.y, 0), 0).rg, b.f.x);
+  vec2 bottom = mix(texelFetch(carbtf_range, ivec3(b.i0.x, b.i1.y, 0), 0).rg,
+                    texelFetch(carbtf_range, ivec3(b.i1.x, b.i1.y, 0), 0).rg, b.f.x);
+  return mix(top, bottom, b.f.y);
+}
+
 // The range map's height at uv, in texels, its mean removed.
 float carbtf_height(vec2 uv) {
-  CarbtfBilinear b = carbtf_bilinear(uv);
-  float top = mix(texelFetch(carbtf_range, ivec3(b.i0.x, b.i0.y, 0), 0).r,
-                  texelFetch(carbtf_range, ivec3(b.i1.x, b.i0.y, 0), 0).r, b.f.x);
-  float bottom = mix(texelFetch(carbtf_range, ivec3(b.i0.x, b.i1.y, 0), 0).r,
-                     texelFetch(carbtf_range, ivec3(b.i1.x, b.i1.y, 0), 0).r, b.f.x);
-  return mix(top, bottom, b.f.y) - carbtf_header.range_mean;
+  return carbtf_range_texel(carbtf_bilinear(uv)).r - carbtf_header.range_mean;
+}
+
+// The relief tone at uv: the factor on the smooth texture's colour that follows the relief.
+float carbtf_tone(vec2 uv) {
+  return carbtf_range_texel(carbtf_bilinear(uv)).g;
 }
 
 // Parallax mapping with offset limiting: the texture point seen along `view` (tangent frame, unit,
@@ -181,8 +190,8 @@ vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, vec3 view) {
   return colour;
 }
 
-// The material under one light: the interpolated smooth BTF times the range map relit for the light,
-// max(N.L, 0) / max(L.z, light_z_floor). The measured images already hold the flat surface's cosine
+// The material under one light: the interpolated smooth BTF times the relief tone times the range map
+// relit for the light, max(N.L, 0) / max(L.z, light_z_floor). The measured images already hold the flat surface's cosine
 // falloff (L.z), so the relit factor swaps it for the local facet's and a flat range map changes
 // nothing. Beyond the last measured elevation the interpolation holds that ring's images, whose
 // falloff is the floor's, so the floor keeps the product bounded at grazing light. Directions are
@@ -191,7 +200,7 @@ vec3 carbtf_material_shade(vec2 uv, vec3 light, vec3 view) {
   if (light.z <= 0.0 || view.z <= 0.0) return vec3(0.0);
   vec3 n = carbtf_normal(uv);
   float relit = max(dot(n, light), 0.0) / max(light.z, carbtf_header.light_z_floor);
-  return relit * carbtf_interpolated_btf(uv, light, view);
+  return (relit * carbtf_tone(uv)) * carbtf_interpolated_btf(uv, light, view);
 }
 
 #endif  // CARBTF_MATERIAL_GLSL

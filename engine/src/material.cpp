@@ -89,7 +89,7 @@ Status validate_subspace(const SubspaceModel& s, std::size_t index, const Materi
 
 Status validate_range(const RangeTiles& r) {
   if (r.tile_size == 0) {
-    if (!r.patches.empty() || !r.cuts.empty()) return invalid("range map: tile size 0 but tile data present");
+    if (!r.patches.empty() || !r.cuts.empty() || !r.tone.empty()) return invalid("range map: tile size 0 but tile data present");
     return {};
   }
   if (r.tile_size % 2 != 0 || r.tile_size < 4 || r.tile_size > kMaxTileSize) return invalid("range map: tile size " + std::to_string(r.tile_size) + " is not even within 4.." + std::to_string(kMaxTileSize));
@@ -102,6 +102,15 @@ Status validate_range(const RangeTiles& r) {
   const std::size_t texels = std::size_t{r.tile_size} * r.tile_size;
   const std::size_t c = r.edge_colours;
   if (r.patches.size() != 2 * c * texels) return invalid("range map: patch data has the wrong size");
+  if (!r.tone.empty()) {
+    if (r.tone.size() != r.patches.size()) return invalid("range map: the relief tone has " + std::to_string(r.tone.size()) + " texels, the patches " + std::to_string(r.patches.size()));
+    const double lowest = std::min(r.tone_offset, r.tone_offset + 255.0f * r.tone_scale);
+    const double highest = std::max(r.tone_offset, r.tone_offset + 255.0f * r.tone_scale);
+    if (!std::isfinite(r.tone_offset) || !std::isfinite(r.tone_scale) || lowest < 0.0 || highest > kMaxRangeTone) {
+      return invalid("range map: the relief tone (offset " + std::to_string(r.tone_offset) + ", scale " + std::to_string(r.tone_scale) +
+                     ") is not finite or leaves [0, " + std::to_string(kMaxRangeTone) + "]");
+    }
+  }
   const std::size_t half = r.tile_size / 2;
   if (r.cuts.size() != c * c * c * c * 4 * half) return invalid("range map: cut data has the wrong size");
   for (std::size_t q = 0; q < r.cuts.size() / half; ++q) {

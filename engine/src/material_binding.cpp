@@ -56,10 +56,11 @@ Status append_lookup(std::span<const MaterialDirection> directions, std::uint32_
 struct MaterialBinding::Resources {
   std::vector<std::uint32_t> tables;
   std::vector<float> range_map;
+  std::vector<float> tone_map;
   std::uint32_t width = 0;
   std::uint32_t height = 0;
   Buffer table_buffer;
-  std::unique_ptr<TextureArray> range_image;  // one R32F layer
+  std::unique_ptr<TextureArray> range_image;  // one RG32F layer: height, relief tone
   UniqueHandle<VkSampler> sampler;
   UniqueHandle<VkDescriptorSetLayout> set_layout;
   UniqueHandle<VkDescriptorPool> pool;
@@ -125,9 +126,14 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     header.light_z_floor = relight_floor(material);
 
     r.range_map.assign(std::size_t{textures.width} * textures.height, 0.0f);
+    r.tone_map.assign(r.range_map.size(), 1.0f);
     if (material.range.tile_size > 0) {
       enlarge_range_map(material.range, info.seed, info.row0, info.col0, textures.width, textures.height,
                         r.range_map);
+      if (!material.range.tone.empty()) {
+        enlarge_range_map(material.range, info.seed, info.row0, info.col0, textures.width, textures.height,
+                          r.tone_map, RangeChannel::tone);
+      }
     }
     double sum = 0.0;
     for (float h : r.range_map) sum += h;
@@ -140,11 +146,15 @@ Status MaterialBinding::create(Context& context, const Material& material, const
                                MemoryUsage::host_upload, "carbtf material tables"},
                               r.table_buffer));
     std::memcpy(r.table_buffer.mapped(), r.tables.data(), r.tables.size() * 4);
-    CARBTF_TRY(TextureArray::create(context, textures.width, textures.height, 1, VK_FORMAT_R32_SFLOAT,
+    CARBTF_TRY(TextureArray::create(context, textures.width, textures.height, 1, VK_FORMAT_R32G32_SFLOAT,
                                     r.range_image));
+    std::vector<float> texels(2 * r.range_map.size());
+    for (std::size_t i = 0; i < r.range_map.size(); ++i) {
+      texels[2 * i] = r.range_map[i];
+      texels[2 * i + 1] = r.tone_map[i];
+    }
     CARBTF_TRY(r.range_image->set_layer(
-        0, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(r.range_map.data()),
-                                         r.range_map.size() * 4)));
+        0, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(texels.data()), texels.size() * 4)));
 
     const VulkanFunctions& vk = context.vk();
     const VkDevice device = context.device();
@@ -243,6 +253,9 @@ const std::vector<std::uint32_t>& MaterialBinding::tables() const noexcept {
 }
 const std::vector<float>& MaterialBinding::range_map() const noexcept {
   return resources_->range_map;
+}
+const std::vector<float>& MaterialBinding::tone_map() const noexcept {
+  return resources_->tone_map;
 }
 
 }  // namespace carbtf

@@ -8,6 +8,8 @@
 #include <iterator>
 #include <string_view>
 
+#include <zlib.h>
+
 #include "byte_stream.hpp"
 
 namespace carbtf {
@@ -20,8 +22,73 @@ constexpr std::array<std::uint8_t, 4> kMagic{'C', 'B', 'T', 'F'};
 constexpr std::uint32_t kMaxChunks = 64;
 constexpr std::size_t kChunkOverhead = 12;  // tag, size, CRC
 
-enum class Chunk { settings, directions, index, subspaces, range, count };
-constexpr std::array<std::string_view, static_cast<std::size_t>(Chunk::count)> kChunkTags{"SETT", "DIRS", "INDX", "SUBS", "RNGE"};
+enum class Chunk { settings, directions, index, subspaces, range, tone, count };
+constexpr std::array<std::string_view, static_cast<std::size_t>(Chunk::count)> kChunkTags{"SETT", "DIRS", "INDX", "SUBS", "RNGE", "TONE"};
+
+// A deflated chunk (format 1.1): payload = inner tag (4 bytes), u32 inner payload size, u8 filter
+// stride (0: none; s: each byte stored minus the byte s before it, as PNG's Sub filter, which turns
+// smooth u16 and u8 rasters into small repeated values), then one zlib stream of the filtered payload.
+constexpr std::string_view kDeflatedTag = "DEFL";
+constexpr std::uint32_t kMaxInflatedBytes = 64u << 20;  // far above any valid chunk (material.hpp limits)
+constexpr std::uint8_t kMaxFilterStride = 8;
+
+void apply_sub_filter(std::vector<std::uint8_t>& bytes, std::size_t stride) {
+  for (std::size_t i = bytes.size(); i-- > stride;) bytes[i] = static_cast<std::uint8_t>(bytes[i] - bytes[i - stride]);
+}
+void undo_sub_filter(std::vector<std::uint8_t>& bytes, std::size_t stride) {
+  for (std::size_t i = stride; i < bytes.size(); ++i) bytes[i] = static_cast<std::uint8_t>(bytes[i] + bytes[i - stride]);
+}
+
+// The smallest of the filtered deflations of `payload`, or empty when none is smaller than it.
+std::vector<std::uint8_t> deflate_chunk(std::string_view tag, std::span<const std::uint8_t> payload) {
+  std::vector<std::uint8_t> best;
+  for (std::uint8_t stride : {0, 1, 2}) {
+    std::vector<std::uint8_t> filtered(payload.begin(), payload.end());
+    if (stride > 0) apply_sub_filter(filtered, stride);
+    uLongf packed_size = compressBound(static_cast<uLong>(filtered.size()));
+    std::vector<std::uint8_t> packed(packed_size);
+    if (compress2(packed.data(), &packed_size, filtered.data(), static_cast<uLong>(filtered.size()), Z_BEST_COMPRESSION) != Z_OK) continue;
+    packed.resize(packed_size);
+    std::vector<std::uint8_t> chunk;
+    ByteWriter w(chunk);
+    w.bytes(std::span(reinterpret_cast<const std::uint8_t*>(tag.data()), 4));
+    w.u32(static_cast<std::uint32_t>(payload.size()));
+    w.u8(stride);
+    w.bytes(packed);
+    if (chunk.size() < payload.size() && (best.empty() || chunk.size() < best.size())) best = std::move(chunk);
+  }
+  return best;
+}
+
+// Inflates a DEFL payload into its inner tag and payload; false with `problem` set when it is malformed.
+bool inflate_chunk(std::span<const std::uint8_t> payload, std::array<std::uint8_t, 4>& tag, std::vector<std::uint8_t>& out,
+                   std::string& problem) {
+  ByteReader r(payload);
+  const auto inner = r.bytes(4);
+  const std::uint32_t size = r.u32();
+  const std::uint8_t stride = r.u8();
+  if (r.failed()) {
+    problem = "is truncated";
+    return false;
+  }
+  std::copy(inner.begin(), inner.end(), tag.begin());
+  const std::size_t packed = r.remaining();
+  // zlib expands at most about 1032:1, so a larger claim is a lie; refusing it bounds the allocation.
+  if (size > kMaxInflatedBytes || size > packed * 1100 + 64 || stride > kMaxFilterStride) {
+    problem = "claims " + std::to_string(size) + " inflated bytes from " + std::to_string(packed) + " (or filter " + std::to_string(stride) + ")";
+    return false;
+  }
+  out.assign(size, 0);
+  uLongf inflated = size;
+  const auto stream = r.bytes(packed);
+  const int result = uncompress(out.data(), &inflated, stream.data(), static_cast<uLong>(stream.size()));
+  if (result != Z_OK || inflated != size) {
+    problem = "does not inflate to its " + std::to_string(size) + " bytes (zlib: " + (result == Z_OK ? "short" : std::to_string(result)) + ")";
+    return false;
+  }
+  if (stride > 0) undo_sub_filter(out, stride);
+  return true;
+}
 
 int chunk_number(std::span<const std::uint8_t> tag) {
   const std::string_view text(reinterpret_cast<const char*>(tag.data()), tag.size());
@@ -106,6 +173,15 @@ void encode_range(const Material& m, ByteWriter& w) {
   w.f32(r.height_scale);
   for (std::uint16_t v : r.patches) w.u16(v);
   for (std::uint16_t v : r.cuts) w.u16(v);
+}
+
+// Optional (format 1.1): written only when the material has a relief tone.
+void encode_tone(const Material& m, ByteWriter& w) {
+  const RangeTiles& r = m.range;
+  w.f32(r.tone_offset);
+  w.f32(r.tone_scale);
+  w.u32(static_cast<std::uint32_t>(r.tone.size()));
+  w.bytes(r.tone);
 }
 
 // ---- decoding: each returns false on a short or out-of-limit payload ---------------------------------
@@ -211,6 +287,18 @@ bool decode_range(ByteReader& r, Material& m) {
   return !r.failed();
 }
 
+bool decode_tone(ByteReader& r, Material& m) {
+  RangeTiles& t = m.range;
+  t.tone_offset = r.f32();
+  t.tone_scale = r.f32();
+  const std::uint32_t count = r.u32();
+  constexpr std::size_t kMaxToneTexels = 2 * std::size_t{kMaxEdgeColours} * kMaxTileSize * kMaxTileSize;
+  if (r.failed() || count > kMaxToneTexels || !r.can_read(count, 1)) return false;
+  const auto bytes = r.bytes(count);
+  t.tone.assign(bytes.begin(), bytes.end());
+  return !r.failed();
+}
+
 Status fail(const std::string& name, const std::string& problem) {
   return {ErrorCode::invalid_material, name + ": " + problem};
 }
@@ -262,25 +350,33 @@ std::uint32_t crc32(std::span<const std::uint8_t> bytes, std::uint32_t crc) {
   return ~crc;
 }
 
-Status encode_material(const Material& material, std::vector<std::uint8_t>& out) {
+Status encode_material(const Material& material, std::vector<std::uint8_t>& out, const MaterialEncoding& encoding) {
   if (Status s = validate_material(material); !s.ok()) return {ErrorCode::invalid_argument, "cannot encode material: " + s.message()};
   out.clear();
   ByteWriter w(out);
   w.bytes(kMagic);
   w.u16(kMaterialFormatMajor);
   w.u16(kMaterialFormatMinor);
-  w.u32(static_cast<std::uint32_t>(Chunk::count));
+  const bool has_tone = !material.range.tone.empty();
+  w.u32(static_cast<std::uint32_t>(Chunk::count) - (has_tone ? 0u : 1u));
   using Encoder = void (*)(const Material&, ByteWriter&);
   constexpr std::array<Encoder, static_cast<std::size_t>(Chunk::count)> encoders{encode_settings, encode_directions, encode_index,
-                                                                                encode_subspaces, encode_range};
+                                                                                encode_subspaces, encode_range, encode_tone};
   for (std::size_t c = 0; c < encoders.size(); ++c) {
+    if (static_cast<Chunk>(c) == Chunk::tone && !has_tone) continue;
+    std::vector<std::uint8_t> payload;
+    ByteWriter payload_writer(payload);
+    encoders[c](material, payload_writer);
+    // Settings stay plain text, readable with a hex viewer; the rest is deflated where that is smaller.
+    std::vector<std::uint8_t> deflated;
+    if (encoding.deflate && static_cast<Chunk>(c) != Chunk::settings) deflated = deflate_chunk(kChunkTags[c], payload);
+    const std::string_view tag = deflated.empty() ? kChunkTags[c] : kDeflatedTag;
+    const std::vector<std::uint8_t>& body = deflated.empty() ? payload : deflated;
     const std::size_t start = w.size();
-    w.bytes(std::span(reinterpret_cast<const std::uint8_t*>(kChunkTags[c].data()), 4));
-    w.u32(0);
-    encoders[c](material, w);
-    const auto payload_size = static_cast<std::uint32_t>(w.size() - start - 8);
-    w.patch_u32(start + 4, payload_size);
-    w.u32(crc32(std::span(out).subspan(start, 8 + payload_size)));
+    w.bytes(std::span(reinterpret_cast<const std::uint8_t*>(tag.data()), 4));
+    w.u32(static_cast<std::uint32_t>(body.size()));
+    w.bytes(body);
+    w.u32(crc32(std::span(out).subspan(start, 8 + body.size())));
   }
   return {};
 }
@@ -289,7 +385,18 @@ Status decode_material(std::span<const std::uint8_t> bytes, const std::string& n
   Material m;
   std::array<bool, static_cast<std::size_t>(Chunk::count)> seen{};
   std::uint32_t index_lights = 0, index_views = 0;
-  Status walked = walk_chunks(bytes, name, [&](std::span<const std::uint8_t> tag, std::span<const std::uint8_t> payload) -> Status {
+  Status walked = walk_chunks(bytes, name, [&](std::span<const std::uint8_t> outer_tag, std::span<const std::uint8_t> outer_payload) -> Status {
+    std::span<const std::uint8_t> tag = outer_tag;
+    std::span<const std::uint8_t> payload = outer_payload;
+    std::array<std::uint8_t, 4> inner_tag{};
+    std::vector<std::uint8_t> inflated;
+    if (printable_tag(outer_tag) == kDeflatedTag) {
+      std::string problem;
+      if (!inflate_chunk(outer_payload, inner_tag, inflated, problem)) return fail(name, "deflated chunk " + problem);
+      if (printable_tag(inner_tag) == kDeflatedTag) return fail(name, "a deflated chunk holds another deflated chunk");
+      tag = inner_tag;
+      payload = inflated;
+    }
     const int number = chunk_number(tag);
     if (number < 0) return {};  // a chunk from a newer minor version
     if (seen[number]) return fail(name, "chunk " + printable_tag(tag) + " appears twice");
@@ -302,6 +409,7 @@ Status decode_material(std::span<const std::uint8_t> bytes, const std::string& n
       case Chunk::index: ok = decode_index(r, m, index_lights, index_views); break;
       case Chunk::subspaces: ok = decode_subspaces(r, m); break;
       case Chunk::range: ok = decode_range(r, m); break;
+      case Chunk::tone: ok = decode_tone(r, m); break;
       case Chunk::count: break;
     }
     if (!ok) return fail(name, "chunk " + printable_tag(tag) + " is truncated or has out-of-range counts");
@@ -310,7 +418,8 @@ Status decode_material(std::span<const std::uint8_t> bytes, const std::string& n
   });
   if (!walked.ok()) return walked;
   for (std::size_t c = 0; c < seen.size(); ++c) {
-    if (!seen[c] && static_cast<Chunk>(c) != Chunk::settings) return fail(name, "chunk " + std::string(kChunkTags[c]) + " is missing");
+    const bool optional = static_cast<Chunk>(c) == Chunk::settings || static_cast<Chunk>(c) == Chunk::tone;
+    if (!seen[c] && !optional) return fail(name, "chunk " + std::string(kChunkTags[c]) + " is missing");
   }
   if (index_lights != m.lights.size() || index_views != m.views.size()) {
     return fail(name, "the index table is " + std::to_string(index_lights) + " x " + std::to_string(index_views) + " but there are " +
@@ -324,7 +433,13 @@ Status decode_material(std::span<const std::uint8_t> bytes, const std::string& n
 Status list_material_chunks(std::span<const std::uint8_t> bytes, std::vector<MaterialChunkInfo>& out) {
   out.clear();
   return walk_chunks(bytes, "material", [&](std::span<const std::uint8_t> tag, std::span<const std::uint8_t> payload) -> Status {
-    out.push_back({printable_tag(tag), payload.size() + kChunkOverhead, chunk_number(tag) >= 0});
+    if (printable_tag(tag) == kDeflatedTag && payload.size() >= 9) {
+      const std::uint32_t inflated = static_cast<std::uint32_t>(payload[4]) | static_cast<std::uint32_t>(payload[5]) << 8 |
+                                     static_cast<std::uint32_t>(payload[6]) << 16 | static_cast<std::uint32_t>(payload[7]) << 24;
+      out.push_back({printable_tag(payload.first(4)), payload.size() + kChunkOverhead, chunk_number(payload.first(4)) >= 0, inflated + kChunkOverhead});
+      return {};
+    }
+    out.push_back({printable_tag(tag), payload.size() + kChunkOverhead, chunk_number(tag) >= 0, 0});
     return {};
   });
 }

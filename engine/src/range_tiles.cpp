@@ -38,7 +38,8 @@ QuadrantPatches quadrant_patches(const RangeTiles& tiles, std::uint32_t tile, Ti
   return {};
 }
 
-float patch_height_at_tile_texel(const RangeTiles& tiles, std::uint32_t patch, std::uint32_t x, std::uint32_t y) {
+float patch_value_at_tile_texel(const RangeTiles& tiles, RangeChannel channel, std::uint32_t patch, std::uint32_t x,
+                                std::uint32_t y) {
   const std::uint32_t size = tiles.tile_size;
   const std::uint32_t half = size / 2;
   std::uint32_t row = y;
@@ -48,11 +49,14 @@ float patch_height_at_tile_texel(const RangeTiles& tiles, std::uint32_t patch, s
   } else {
     col = x < half ? x + half : x - half;  // the west role left of the centre, the east role right
   }
-  const std::uint16_t quantized = tiles.patches[(std::size_t{patch} * size + row) * size + col];
-  return tiles.height_offset + tiles.height_scale * static_cast<float>(quantized);
+  const std::size_t texel = (std::size_t{patch} * size + row) * size + col;
+  if (channel == RangeChannel::tone) {
+    return tiles.tone.empty() ? 1.0f : tiles.tone_offset + tiles.tone_scale * static_cast<float>(tiles.tone[texel]);
+  }
+  return tiles.height_offset + tiles.height_scale * static_cast<float>(tiles.patches[texel]);
 }
 
-void compose_range_tile(const RangeTiles& tiles, std::uint32_t tile, std::span<float> out) {
+void compose_range_tile(const RangeTiles& tiles, std::uint32_t tile, std::span<float> out, RangeChannel channel) {
   const std::uint32_t size = tiles.tile_size;
   const std::uint32_t half = size / 2;
   for (std::uint32_t q = 0; q < 4; ++q) {
@@ -65,7 +69,7 @@ void compose_range_tile(const RangeTiles& tiles, std::uint32_t tile, std::span<f
         std::uint32_t y = 0;
         quadrant_to_tile(size, quadrant, u, v, x, y);
         const std::uint32_t patch = u < cut[v] ? patches.b : patches.a;
-        out[std::size_t{y} * size + x] = patch_height_at_tile_texel(tiles, patch, x, y);
+        out[std::size_t{y} * size + x] = patch_value_at_tile_texel(tiles, channel, patch, x, y);
       }
     }
   }
@@ -86,12 +90,12 @@ std::uint32_t range_tile_at(const RangeTiles& tiles, std::uint64_t seed, std::in
 }
 
 void enlarge_range_map(const RangeTiles& tiles, std::uint64_t seed, std::int64_t row0, std::int64_t col0,
-                       std::uint32_t width, std::uint32_t height, std::span<float> out) {
+                       std::uint32_t width, std::uint32_t height, std::span<float> out, RangeChannel channel) {
   const std::uint32_t size = tiles.tile_size;
   const std::size_t texels = std::size_t{size} * size;
   std::vector<float> composed(texels * range_tile_count(tiles));
   for (std::uint32_t t = 0; t < range_tile_count(tiles); ++t) {
-    compose_range_tile(tiles, t, std::span<float>(composed).subspan(t * texels, texels));
+    compose_range_tile(tiles, t, std::span<float>(composed).subspan(t * texels, texels), channel);
   }
   for (std::uint32_t r = 0; r < height; ++r) {
     const std::int64_t row = row0 + r;

@@ -17,12 +17,15 @@ Status TextureArray::create(Context& context, std::uint32_t width, std::uint32_t
       case VK_FORMAT_R32_SFLOAT:
         texel_bytes = 4;
         break;
+      case VK_FORMAT_R32G32_SFLOAT:
+        texel_bytes = 8;
+        break;
       case VK_FORMAT_R32G32B32A32_SFLOAT:
         texel_bytes = 16;
         break;
       default:
         return {ErrorCode::invalid_argument,
-                "a texture array holds RGBA8 (sRGB or UNORM), R32F or RGBA32F texels"};
+                "a texture array holds RGBA8 (sRGB or UNORM), R32F, RG32F or RGBA32F texels"};
     }
     const DeviceInfo& device = context.device_info();
     if (width == 0 || height == 0 || layers == 0 || width > device.max_image_dimension_2d ||

@@ -74,6 +74,15 @@ void register_analyze_command(CLI::App& app) {
   command->add_flag("--collapse-calibration", a.calibrate_collapse,
                     "Rescale each band's sigma so that the collapsed pyramid keeps the measured contrast (the synthesized "
                     "images otherwise keep 55-80% of the measured variance)");
+  command->add_flag("!--no-relief-tone", a.relief_tone,
+                    "Leave out the relief tone: the photometric-stereo albedo stored with the range tiles, which puts the "
+                    "creases' dark colour where the range map puts the creases (on by default)");
+  command->add_option("--remainder-clamp", a.remainder_clamp,
+                      "With the relief tone, clamp each subspace image's smooth remainder to its median +- this many robust "
+                      "standard deviations before the CAR fit, so that relief lines the tone does not explain do not become "
+                      "speckle (0: off)")
+      ->check(CLI::Range(0.0, 100.0))
+      ->capture_default_str();
   command->add_option("--deshade", a.deshade_floor,
                       "Divide the representative pair's relit range map out of each subspace image before fitting, the factor "
                       "floored at this value (0: off)")

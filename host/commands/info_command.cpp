@@ -87,8 +87,10 @@ void run_material_info(const std::string& path) {
   std::printf("  %-6s %10s %7s\n", "chunk", "bytes", "share");
   std::printf("  %-6s %10d %6.1f%%\n", "header", 12, 1200.0 / static_cast<double>(bytes.size()));
   for (const MaterialChunkInfo& c : chunks) {
-    std::printf("  %-6s %10llu %6.1f%%%s\n", c.tag.c_str(), static_cast<unsigned long long>(c.total_bytes),
-                100.0 * static_cast<double>(c.total_bytes) / static_cast<double>(bytes.size()), c.known ? "" : " (unknown, skipped)");
+    const std::string deflated = c.inflated_bytes > 0 ? " (deflated from " + std::to_string(c.inflated_bytes) + ")" : std::string();
+    std::printf("  %-6s %10llu %6.1f%%%s%s\n", c.tag.c_str(), static_cast<unsigned long long>(c.total_bytes),
+                100.0 * static_cast<double>(c.total_bytes) / static_cast<double>(bytes.size()), deflated.c_str(),
+                c.known ? "" : " (unknown, skipped)");
   }
   unsigned width = 0, height = 0;
   if (std::sscanf(setting(material, "image_size").c_str(), "%ux%u", &width, &height) == 2) {

@@ -171,8 +171,45 @@ TEST_CASE("Wang range tiles lay out seamlessly and block by block", "[range]") {
   for (int r = 0; r < 70; ++r)
     for (int c = 0; c < 90; ++c) REQUIRE(block[r * 90 + c] == whole[(r + 63) * 200 + c + 50]);
 
-  // Quantization keeps heights within half a step of the source.
-  CHECK(tiles.height_scale * 65535.0 == Approx(heights.maxCoeff() - heights.minCoeff()).epsilon(1e-5));
+  // Quantization spans the source's range in height_bits levels.
+  const double top_level = static_cast<double>((1u << options.height_bits) - 1u);
+  CHECK(tiles.height_scale * top_level == Approx(heights.maxCoeff() - heights.minCoeff()).epsilon(1e-5));
+}
+
+TEST_CASE("the relief tone is tiled under the heights' layout, texel for texel", "[range][tone]") {
+  // A tone that is a known function of the height: wherever the enlarged map shows a texel of some
+  // patch, the enlarged tone must show the same texel of the same patch, so tone = f(height) holds in
+  // the enlarged maps too (to the two quantizations). A tone cut or laid out on its own would break it.
+  const Surface surface = make_sample_surface("leather", 128, 7);
+  Plane heights(128, 128);
+  for (int i = 0; i < 128 * 128; ++i) heights(i / 128, i % 128) = surface.height[static_cast<std::size_t>(i)];
+  const double low = heights.minCoeff(), high = heights.maxCoeff();
+  auto tone_of = [&](double h) { return 0.2 + 1.6 * (h - low) / (high - low); };
+  const Plane tone = heights.unaryExpr(tone_of);
+  RangeTileOptions options;
+  options.tile_size = 32;
+  options.height_bits = 16;
+  const RangeTiles tiles = build_range_tiles(heights, options, &tone);
+  REQUIRE(tiles.tone.size() == tiles.patches.size());
+
+  const std::uint32_t size = 200;
+  std::vector<float> map(std::size_t{size} * size), toned(map.size());
+  enlarge_range_map(tiles, 5, -13, 7, size, size, map);
+  enlarge_range_map(tiles, 5, -13, 7, size, size, toned, RangeChannel::tone);
+  const double tone_step = tiles.tone_scale;
+  double worst = 0.0;
+  for (std::size_t i = 0; i < map.size(); ++i) worst = std::max(worst, std::abs(toned[i] - tone_of(map[i])));
+  INFO("worst |tone - f(height)| " << worst << ", tone step " << tone_step);
+  CHECK(worst <= 0.5 * tone_step + 1e-4);
+  // The tone varies (the check above is not met by a constant), and its range is the source's.
+  CHECK(*std::max_element(toned.begin(), toned.end()) - *std::min_element(toned.begin(), toned.end()) > 1.0);
+
+  // A material without a tone enlarges to 1 everywhere; a tone of the wrong size is refused.
+  RangeTiles plain = build_range_tiles(heights, options);
+  enlarge_range_map(plain, 5, 0, 0, size, size, toned, RangeChannel::tone);
+  CHECK(std::all_of(toned.begin(), toned.end(), [](float t) { return t == 1.0f; }));
+  const Plane small = Plane::Ones(64, 64);
+  CHECK_THROWS_AS(build_range_tiles(heights, options, &small), std::invalid_argument);
 }
 
 }  // namespace carbtf

@@ -53,14 +53,16 @@ Material sample_material() {
     for (Eigen::Index c = 0; c < heights.cols(); ++c) heights(r, c) = reference::gaussian_noise(1, 0, static_cast<std::int32_t>(r), static_cast<std::int32_t>(c));
   RangeTileOptions tiles;
   tiles.tile_size = 8;
-  m.range = build_range_tiles(heights, tiles);
+  const Plane tone = heights.abs() * 0.5 + 0.5;
+  m.range = build_range_tiles(heights, tiles, &tone);
   m.settings = {{"source", "unit test"}, {"seed", "1"}, {"empty", ""}};
   return m;
 }
 
 std::vector<std::uint8_t> encoded(const Material& m) {
   std::vector<std::uint8_t> bytes;
-  const Status s = encode_material(m, bytes);
+  // Plain chunks: the tests below patch payload bytes in place.
+  const Status s = encode_material(m, bytes, {.deflate = false});
   INFO(s.message());
   REQUIRE(s.ok());
   return bytes;
@@ -91,7 +93,22 @@ TEST_CASE("a material survives encode and decode bit for bit", "[material_file]"
     std::uint64_t total = 12;
     for (const auto& c : chunks) total += c.total_bytes;
     CHECK(total == bytes.size());
-    CHECK(chunks.size() == 5u);
+    std::vector<std::string> tags;
+    for (const auto& c : chunks) tags.push_back(c.tag);
+    CHECK(tags == std::vector<std::string>{"SETT", "DIRS", "INDX", "SUBS", "RNGE", "TONE"});
+    // The file written is deflated; its listing names each inner chunk with its plain size.
+    std::vector<std::uint8_t> on_disk;
+    REQUIRE(read_material_file_bytes(path, on_disk).ok());
+    REQUIRE(list_material_chunks(on_disk, chunks).ok());
+    std::size_t deflated_chunks = 0;
+    for (const auto& c : chunks) {
+      CHECK(c.known);
+      if (c.inflated_bytes > 0) {
+        ++deflated_chunks;
+        CHECK(c.total_bytes < c.inflated_bytes);
+      }
+    }
+    CHECK(deflated_chunks >= 3);
     std::filesystem::remove_all(folder);
   }
 }
@@ -110,7 +127,7 @@ TEST_CASE("material file errors name the file and the problem", "[material_file]
   CHECK_THAT(message({'P', 'K', 3, 4, 0, 0}), Catch::Contains("not a carbtf material file"));
   auto newer = good;
   newer[4] = 2;
-  CHECK_THAT(message(newer), Catch::Contains("format 2.0 is not supported"));
+  CHECK_THAT(message(newer), Catch::Contains("format 2." + std::to_string(kMaterialFormatMinor) + " is not supported"));
   CHECK_THAT(message(std::vector<std::uint8_t>(good.begin(), good.end() - 7)), Catch::Contains("truncated"));
   auto flipped = good;
   flipped[40] ^= 0x10;
@@ -133,8 +150,96 @@ TEST_CASE("material file errors name the file and the problem", "[material_file]
   CHECK_THAT(missing.message(), Catch::Contains("/nonexistent/material.cbtf"));
 }
 
+std::vector<std::uint8_t> deflated(const Material& m) {
+  std::vector<std::uint8_t> bytes;
+  REQUIRE(encode_material(m, bytes).ok());
+  return bytes;
+}
+
+TEST_CASE("deflated chunks read back exactly, and a lying one is refused before it costs", "[material_file][deflate]") {
+  const Material m = sample_material();
+  REQUIRE_FALSE(m.range.tone.empty());
+  const std::vector<std::uint8_t> plain = encoded(m), packed = deflated(m);
+  CHECK(packed.size() < plain.size());
+  const std::string defl = "DEFL";
+  CHECK(std::search(packed.begin(), packed.end(), defl.begin(), defl.end()) != packed.end());
+  CHECK(std::search(plain.begin(), plain.end(), defl.begin(), defl.end()) == plain.end());
+  for (const auto* bytes : {&plain, &packed}) {
+    Material back;
+    REQUIRE(decode_material(*bytes, "x.cbtf", back).ok());
+    CHECK(back == m);
+  }
+
+  auto refused = [](std::vector<std::uint8_t> bytes) {
+    fix_crcs(bytes);
+    Material back;
+    const Status s = decode_material(bytes, "bad.cbtf", back);
+    REQUIRE_FALSE(s.ok());
+    return s.message();
+  };
+  const auto first = static_cast<std::size_t>(std::search(packed.begin(), packed.end(), defl.begin(), defl.end()) - packed.begin());
+  const std::size_t size_at = first + 8 + 4;  // after the tag, the chunk size and the inner tag
+  SECTION("a claimed size far beyond what the stream can hold") {
+    auto bytes = packed;
+    for (int i = 0; i < 4; ++i) bytes[size_at + i] = 0xFF;
+    CHECK_THAT(refused(bytes), Catch::Contains("bad.cbtf: deflated chunk claims 4294967295 inflated bytes"));
+  }
+  SECTION("a claimed size one byte off") {
+    auto bytes = packed;
+    bytes[size_at] = static_cast<std::uint8_t>(bytes[size_at] + 1);
+    CHECK_THAT(refused(bytes), Catch::Contains("does not inflate to its"));
+  }
+  SECTION("a damaged stream behind a valid CRC") {
+    auto bytes = packed;
+    bytes[size_at + 4 + 1 + 3] ^= 0x5A;
+    CHECK_THAT(refused(bytes), Catch::Contains("bad.cbtf: deflated chunk"));
+  }
+  SECTION("a deflated chunk inside a deflated chunk") {
+    auto bytes = packed;
+    std::copy(defl.begin(), defl.end(), bytes.begin() + static_cast<std::ptrdiff_t>(first + 8));
+    CHECK_THAT(refused(bytes), Catch::Contains("holds another deflated chunk"));
+  }
+}
+
+TEST_CASE("a format 1.0 file (plain chunks, no relief tone) still reads", "[material_file][compatibility]") {
+  Material m = sample_material();
+  m.range.tone.clear();
+  m.range.tone_offset = m.range.tone_scale = 0.0f;
+  std::vector<std::uint8_t> bytes = encoded(m);
+  bytes[6] = 0;  // minor version 0: the layout 1.0 wrote, chunk for chunk
+  bytes[7] = 0;
+  const std::string tone_tag = "TONE";
+  REQUIRE(std::search(bytes.begin(), bytes.end(), tone_tag.begin(), tone_tag.end()) == bytes.end());
+  Material back;
+  REQUIRE(decode_material(bytes, "old.cbtf", back).ok());
+  CHECK(back == m);
+}
+
+TEST_CASE("a relief tone outside its range or of the wrong size is refused", "[material_file][tone]") {
+  const Material good = sample_material();
+  auto message = [](const Material& m) {
+    const Status s = validate_material(m);
+    REQUIRE_FALSE(s.ok());
+    return s.message();
+  };
+  Material negative = good;
+  negative.range.tone_offset = -0.5f;
+  CHECK_THAT(message(negative), Catch::Contains("relief tone") && Catch::Contains("leaves [0,"));
+  Material huge = good;
+  huge.range.tone_scale = 1.0f;  // 255 at the top, beyond kMaxRangeTone
+  CHECK_THAT(message(huge), Catch::Contains("relief tone"));
+  Material nan = good;
+  nan.range.tone_scale = std::nanf("");
+  CHECK_THAT(message(nan), Catch::Contains("not finite"));
+  Material short_tone = good;
+  short_tone.range.tone.pop_back();
+  CHECK_THAT(message(short_tone), Catch::Contains("the relief tone has"));
+}
+
 TEST_CASE("10,000 random corruptions and truncations are rejected or read without a crash", "[material_file][fuzz]") {
-  const std::vector<std::uint8_t> good = encoded(sample_material());
+  const bool deflate = GENERATE(false, true);
+  INFO("deflated chunks: " << deflate);
+  const std::vector<std::uint8_t> good = deflate ? deflated(sample_material()) : encoded(sample_material());
   std::mt19937_64 rng(20261122);
   int rejected = 0, accepted = 0;
   for (int trial = 0; trial < 10000; ++trial) {

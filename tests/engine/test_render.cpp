@@ -122,6 +122,7 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
   input.material = &m;
   input.images = &images;
   input.range_map = binding->range_map();
+  input.tone_map = binding->tone_map();
   input.parallax_scale = binding_info.parallax_scale;
 
   auto direction = [](float theta, float phi) {

@@ -33,4 +33,29 @@ void divide_shading(std::vector<Plane>& channels, const Plane& factor, double fl
   }
 }
 
+void undo_parallax(std::vector<Plane>& channels, const Plane& range_map, const std::array<double, 3>& view, double scale) {
+  const Eigen::Index rows = range_map.rows(), cols = range_map.cols();
+  const double mean = range_map.mean();
+  for (Plane& channel : channels) {
+    if (channel.rows() != rows || channel.cols() != cols) throw std::invalid_argument("undo_parallax: sizes differ");
+    const Plane measured = channel;
+    auto at = [&](Eigen::Index r, Eigen::Index c) {
+      return measured(std::clamp<Eigen::Index>(r, 0, rows - 1), std::clamp<Eigen::Index>(c, 0, cols - 1));
+    };
+    for (Eigen::Index r = 0; r < rows; ++r) {
+      for (Eigen::Index c = 0; c < cols; ++c) {
+        const double shift = scale * (range_map(r, c) - mean);
+        const double x = static_cast<double>(c) - shift * view[0];
+        const double y = static_cast<double>(r) + shift * view[1];
+        const double x0 = std::floor(x), y0 = std::floor(y);
+        const double fx = x - x0, fy = y - y0;
+        const auto c0 = static_cast<Eigen::Index>(x0), r0 = static_cast<Eigen::Index>(y0);
+        const double top = (1.0 - fx) * at(r0, c0) + fx * at(r0, c0 + 1);
+        const double bottom = (1.0 - fx) * at(r0 + 1, c0) + fx * at(r0 + 1, c0 + 1);
+        channel(r, c) = (1.0 - fy) * top + fy * bottom;
+      }
+    }
+  }
+}
+
 }  // namespace carbtf

@@ -56,8 +56,11 @@ std::vector<std::uint16_t> best_cut(const RangeTiles& tiles, std::uint32_t tile,
 
 }  // namespace
 
-RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& options) {
+RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& options, const Plane* tone) {
   if (heights.rows() < 4 || heights.cols() < 4) throw std::invalid_argument("a range map needs at least 4 x 4 texels for tiles");
+  if (tone != nullptr && (tone->rows() != heights.rows() || tone->cols() != heights.cols())) {
+    throw std::invalid_argument("the relief tone is not the range map's size");
+  }
   if (options.edge_colours == 0 || options.edge_colours > kMaxEdgeColours) throw std::invalid_argument("edge colours must be within 1..4");
   RangeTiles tiles;
   const auto largest = static_cast<std::uint32_t>(std::min(heights.rows(), heights.cols()));
@@ -66,11 +69,20 @@ RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& optio
   const double low = heights.minCoeff();
   const double high = heights.maxCoeff();
   tiles.height_offset = static_cast<float>(low);
-  tiles.height_scale = static_cast<float>((high - low) / 65535.0);
+  if (options.height_bits < 1 || options.height_bits > 16) throw std::invalid_argument("height bits must be within 1..16");
+  const double top_level = static_cast<double>((1u << options.height_bits) - 1u);
+  tiles.height_scale = static_cast<float>((high - low) / top_level);
   const std::uint32_t size = tiles.tile_size;
   std::mt19937_64 rng(options.seed);
   const std::uint32_t patch_count = 2 * tiles.edge_colours;
   tiles.patches.resize(std::size_t{patch_count} * size * size);
+  double tone_low = 0.0;
+  if (tone != nullptr) {
+    tone_low = tone->minCoeff();
+    tiles.tone_offset = static_cast<float>(tone_low);
+    tiles.tone_scale = static_cast<float>((tone->maxCoeff() - tone_low) / 255.0);
+    tiles.tone.resize(tiles.patches.size());
+  }
   for (std::uint32_t p = 0; p < patch_count; ++p) {
     const auto row0 = static_cast<Eigen::Index>(rng() % (static_cast<std::uint64_t>(heights.rows()) - size + 1));
     const auto col0 = static_cast<Eigen::Index>(rng() % (static_cast<std::uint64_t>(heights.cols()) - size + 1));
@@ -78,7 +90,12 @@ RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& optio
       for (std::uint32_t c = 0; c < size; ++c) {
         const double h = heights(row0 + r, col0 + c);
         const double q = tiles.height_scale > 0.0f ? std::round((h - low) / tiles.height_scale) : 0.0;
-        tiles.patches[(std::size_t{p} * size + r) * size + c] = static_cast<std::uint16_t>(std::clamp(q, 0.0, 65535.0));
+        const std::size_t texel = (std::size_t{p} * size + r) * size + c;
+        tiles.patches[texel] = static_cast<std::uint16_t>(std::clamp(q, 0.0, top_level));
+        if (tone != nullptr) {
+          const double t = tiles.tone_scale > 0.0f ? std::round(((*tone)(row0 + r, col0 + c) - tone_low) / tiles.tone_scale) : 0.0;
+          tiles.tone[texel] = static_cast<std::uint8_t>(std::clamp(t, 0.0, 255.0));
+        }
       }
     }
   }

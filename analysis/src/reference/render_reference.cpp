@@ -36,13 +36,14 @@ struct Sampler {
             t.x - base.x,
             t.y - base.y};
   }
-  float height_at(glm::vec2 uv) const {
-    const Bilinear b = bilinear(uv);
-    auto at = [&](int x, int y) { return input.range_map[static_cast<std::size_t>(y) * width + x]; };
+  static float bilinear_at(std::span<const float> map, std::uint32_t width, const Bilinear& b) {
+    auto at = [&](int x, int y) { return map[static_cast<std::size_t>(y) * width + x]; };
     const float top = glm::mix(at(b.x0, b.y0), at(b.x1, b.y0), b.fx);
     const float bottom = glm::mix(at(b.x0, b.y1), at(b.x1, b.y1), b.fx);
-    return glm::mix(top, bottom, b.fy) - range_mean;
+    return glm::mix(top, bottom, b.fy);
   }
+  float height_at(glm::vec2 uv) const { return bilinear_at(input.range_map, width, bilinear(uv)) - range_mean; }
+  float tone_at(const Bilinear& b) const { return input.tone_map.empty() ? 1.0f : bilinear_at(input.tone_map, width, b); }
   glm::vec3 subspace_at(const Bilinear& b, std::uint32_t subspace) const {
     const auto& image = input.images->images[subspace];
     const std::uint32_t channels = input.images->channels[subspace];
@@ -75,6 +76,9 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
   const std::uint32_t tw = input.images->width, th = input.images->height;
   if (input.range_map.size() != std::size_t{tw} * th) {
     throw std::invalid_argument("render_plane: the range map is not the subspace images' size");
+  }
+  if (!input.tone_map.empty() && input.tone_map.size() != input.range_map.size()) {
+    throw std::invalid_argument("render_plane: the relief tone is not the range map's size");
   }
   DirectionTriangulation lights, views;
   if (!build_direction_triangulation(material.lights, lights).ok() ||
@@ -127,6 +131,7 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
                                sampler.height_at(shifted + glm::vec2(0, texel.y)));
       const glm::vec3 normal = glm::normalize(glm::vec3(-dx, -dy, 1.0f));
       const Sampler::Bilinear bilinear = sampler.bilinear(shifted);
+      const float tone = sampler.tone_at(bilinear);
 
       glm::vec3 colour(0.0f);
       for (std::size_t i = 0; i < std::min<std::size_t>(scene.lights.size(), 4); ++i) {
@@ -148,7 +153,7 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
           btf += w.weight[k] * sampler.subspace_at(bilinear, subspace);
         }
         const float relit = std::max(glm::dot(normal, l), 0.0f) / std::max(l.z, light_z_floor);
-        colour += falloff * glm::vec3(light.colour[0], light.colour[1], light.colour[2]) * relit * btf;
+        colour += falloff * glm::vec3(light.colour[0], light.colour[1], light.colour[2]) * (relit * tone) * btf;
       }
       pixel[0] = colour.r;
       pixel[1] = colour.g;

@@ -30,6 +30,12 @@ struct AnalysisOptions {
   // (model/collapse_calibration.hpp). Off by default: it restores the variance, yet lowers the
   // calibrated fidelity on leather and coast_sand_rocks (issue 13 note).
   bool calibrate_collapse = false;
+  // Store the relief tone (model/relief_tone.hpp) with the range tiles and divide it out of the
+  // subspace images before their fit.
+  bool relief_tone = true;
+  // With the relief tone: clamp the smooth remainder to its median +- this many robust standard
+  // deviations before the fit (model/relief_tone.hpp; 0: off).
+  double remainder_clamp = 1.5;
   double deshade_floor = 0.0;        // > 0: divide the relit range map out before fitting, floored here (model/deshade.hpp)
   RangeTileOptions tiles;            // its seed is ignored: the tiles follow segmentation.seed
   unsigned threads = 0;              // 0: all hardware threads
@@ -47,6 +53,7 @@ struct AnalysisResult {
   Segmentation segmentation;
   NormalMap normals;
   Plane range_map;                   // texel units, mean zero
+  Plane tone;                        // the relief tone (empty without it)
   std::uint32_t stereo_view = 0;
   std::vector<StageReport> stages;
   std::vector<std::string> log;

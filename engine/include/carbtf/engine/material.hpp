@@ -80,6 +80,14 @@ struct RangeTiles {
   // Per tile and per quadrant (top-left, top-right, bottom-right, bottom-left), tile_size / 2 cut
   // positions: see range_tiles.hpp for their meaning.
   std::vector<std::uint16_t> cuts;
+  // Relief tone (optional; empty means 1 everywhere): per texel of every patch, under the same layout
+  // and cuts as the heights, a factor on the smooth texture's colour that follows the relief (dark
+  // creases, bright ridges: albedo and occlusion the relit range map cannot give). The analysis divides
+  // it out of the subspace images before their fit and the render pass multiplies it back, so the CAR
+  // models only the smooth remainder. tone = tone_offset + tone_scale * quantized, mean about 1.
+  float tone_offset = 0.0f;
+  float tone_scale = 0.0f;
+  std::vector<std::uint8_t> tone;  // empty or patches.size()
   bool operator==(const RangeTiles&) const = default;
 };
 
@@ -110,6 +118,9 @@ inline constexpr std::uint32_t kMaxSettingLength = 4096;
 // texels) lies within +-kMaxModelMagnitude: linear colour is of order 1, so this is far beyond any fit,
 // and with the stability margin below it keeps every synthesized value finite in float32.
 inline constexpr float kMaxModelMagnitude = 1e6f;
+// A relief tone lies within [0, kMaxRangeTone]: a factor on colour, so a hostile file cannot scale the
+// render by more than the colour magnitudes above allow.
+inline constexpr float kMaxRangeTone = 16.0f;
 
 // The subspace index of (light, view); the caller keeps both in range.
 inline std::uint32_t subspace_of(const Material& material, std::uint32_t light, std::uint32_t view) {

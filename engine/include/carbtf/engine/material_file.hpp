@@ -12,6 +12,12 @@
 //         f32 sigma, u32 neighbours, (i8 dr, i8 dc) per neighbour, f32 gamma per neighbour
 //   RNGE  u32 tile_size, u32 edge_colours, f32 height_offset, f32 height_scale,
 //         u16 patches[2 * colours * size^2], u16 cuts[colours^4 * 4 * size / 2] (tile_size 0: none)
+//   DEFL  (1.1) any chunk but SETT deflated: 4-byte inner tag, u32 inner payload size, u8 filter stride
+//         (0 none, s: each byte minus the one s before, as PNG's Sub), one zlib stream; the reader
+//         bounds the claimed size (64 MiB, and 1100:1 over the stream) before it allocates
+//   TONE  (1.1, optional) f32 tone_offset, f32 tone_scale, u32 count, u8 tone[count]: the relief tone
+//         per patch texel (count = the patches' texel count). A 1.0 reader skips it and renders the
+//         smooth texture without the crease darkening it carries.
 // A reader of major version 1 rejects any other major version. Every count is bounded (material.hpp)
 // before anything is allocated, every read is bounds-checked, and the decoded material is validated,
 // so a truncated, corrupted or hostile file gives an error, never a crash or an unbounded allocation.
@@ -28,10 +34,16 @@
 namespace carbtf {
 
 inline constexpr std::uint16_t kMaterialFormatMajor = 1;
-inline constexpr std::uint16_t kMaterialFormatMinor = 0;
+inline constexpr std::uint16_t kMaterialFormatMinor = 1;
+
+struct MaterialEncoding {
+  // Deflate every chunk but SETT where that is smaller (format 1.1). Off, every chunk is stored plain:
+  // a file a 1.0 reader can read (without the relief tone) and that a hex viewer or a test can patch.
+  bool deflate = true;
+};
 
 // Encodes a valid material (check it with validate_material first: an invalid one is refused).
-Status encode_material(const Material& material, std::vector<std::uint8_t>& out);
+Status encode_material(const Material& material, std::vector<std::uint8_t>& out, const MaterialEncoding& encoding = {});
 
 // Decodes `bytes`; `name` (a path, say) prefixes every error message.
 Status decode_material(std::span<const std::uint8_t> bytes, const std::string& name, Material& out);
@@ -47,6 +59,7 @@ struct MaterialChunkInfo {
   std::string tag;
   std::uint64_t total_bytes = 0;  // header, payload and CRC
   bool known = false;
+  std::uint64_t inflated_bytes = 0;  // for a deflated chunk (listed under its inner tag): its size stored plain; else 0
 };
 // Lists the chunks of a file that decode_material accepts (call it after a successful decode).
 Status list_material_chunks(std::span<const std::uint8_t> bytes, std::vector<MaterialChunkInfo>& out);

@@ -57,12 +57,21 @@ inline void quadrant_to_tile(std::uint32_t tile_size, TileQuadrant quadrant, std
   y = bottom ? tile_size - 1 - v : v;
 }
 
-// The height (texel units) patch `patch` shows at tile texel (x, y), following the geometry above;
-// the caller passes a patch that covers (x, y).
-float patch_height_at_tile_texel(const RangeTiles& tiles, std::uint32_t patch, std::uint32_t x, std::uint32_t y);
+// What a tile texel holds: the height (texel units), or the relief tone (a factor on colour, 1 where
+// the material has none). Both follow the same patches and cuts, so they stay aligned.
+enum class RangeChannel : std::uint32_t { height = 0, tone = 1 };
 
-// Composes tile `tile` into `out` (tile_size^2 heights, texel units, row-major).
-void compose_range_tile(const RangeTiles& tiles, std::uint32_t tile, std::span<float> out);
+// The value patch `patch` shows at tile texel (x, y), following the geometry above; the caller
+// passes a patch that covers (x, y).
+float patch_value_at_tile_texel(const RangeTiles& tiles, RangeChannel channel, std::uint32_t patch, std::uint32_t x,
+                                std::uint32_t y);
+inline float patch_height_at_tile_texel(const RangeTiles& tiles, std::uint32_t patch, std::uint32_t x, std::uint32_t y) {
+  return patch_value_at_tile_texel(tiles, RangeChannel::height, patch, x, y);
+}
+
+// Composes tile `tile` into `out` (tile_size^2 values, row-major).
+void compose_range_tile(const RangeTiles& tiles, std::uint32_t tile, std::span<float> out,
+                        RangeChannel channel = RangeChannel::height);
 
 // The tile laid at tile coordinates (tile_row, tile_col) of the enlarged map for `seed`.
 std::uint32_t range_tile_at(const RangeTiles& tiles, std::uint64_t seed, std::int32_t tile_row, std::int32_t tile_col);
@@ -70,6 +79,7 @@ std::uint32_t range_tile_at(const RangeTiles& tiles, std::uint64_t seed, std::in
 // Writes the block [row0, row0 + height) x [col0, col0 + width) of the enlarged map for `seed` into
 // `out` (width * height heights, row-major). Requires tile_size > 0.
 void enlarge_range_map(const RangeTiles& tiles, std::uint64_t seed, std::int64_t row0, std::int64_t col0,
-                       std::uint32_t width, std::uint32_t height, std::span<float> out);
+                       std::uint32_t width, std::uint32_t height, std::span<float> out,
+                       RangeChannel channel = RangeChannel::height);
 
 }  // namespace carbtf

@@ -22,4 +22,15 @@ Plane relit_factor(const Plane& range_map, const std::array<double, 3>& light, d
 // Divides every channel by max(factor, floor); the channels and the factor share one size.
 void divide_shading(std::vector<Plane>& channels, const Plane& factor, double floor);
 
+// Undoes the render pass's parallax for a measured image seen from unit direction `view` (tangent
+// frame): the render shows the material's texel u' = u + scale * h(u) * (view.x, -view.y) at u, so the
+// material field that reproduces the image is W(u') = M(u' - scale * h(u') * (view.x, -view.y)),
+// sampled bilinearly with edges clamped (h(u') for h(u): exact where the map is locally flat). The
+// relief tone and the relit factor are defined on u', so an oblique image is brought there before
+// either is divided out.
+// The render pass's default parallax scale (MaterialBindingInfo::parallax_scale), which the analysis
+// assumes when it undoes the parallax of a measured image.
+inline constexpr double kAnalysisParallaxScale = 1.0;
+void undo_parallax(std::vector<Plane>& channels, const Plane& range_map, const std::array<double, 3>& view, double scale);
+
 }  // namespace carbtf

@@ -13,13 +13,22 @@
 namespace carbtf {
 
 struct RangeTileOptions {
-  std::uint32_t tile_size = 64;     // clamped to the largest even size the map holds (at least 4)
+  // Clamped to the largest even size the map holds (at least 4). 128 rather than 64: each tile has
+  // four corner-to-centre cuts, and at 64 texels they cross most cells of a 25-texel relief, drawing
+  // crease fragments (calibrated fidelity, issue 13 note).
+  std::uint32_t tile_size = 128;
   std::uint32_t edge_colours = 2;   // per direction, 1..4: 2 gives 16 tiles from 4 patches
+  // Height quantization, 1..16 bits over the map's range. 12 bits keep a step of 1/4096 of the range
+  // (0.003 texel for a 10-texel relief: slopes to 0.2 degree) and leave the low bits of the smooth
+  // inside of a cell compressible, where 16 bits store noise.
+  std::uint32_t height_bits = 12;
   std::uint64_t seed = 1;
 };
 
-// Heights in texel units are quantized to 16 bits over the map's range. Throws std::invalid_argument
-// for a map smaller than 4 x 4.
-RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& options);
+// Heights in texel units are quantized to height_bits over the map's range (stored in u16). `tone` (optional, the map's
+// size) is the relief tone (model/relief_tone.hpp): its patches are cut from the same places, so it
+// stays aligned with the heights, and it is quantized to 8 bits over its range. Throws
+// std::invalid_argument for a map smaller than 4 x 4 or a tone of another size.
+RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& options, const Plane* tone = nullptr);
 
 }  // namespace carbtf

@@ -19,6 +19,7 @@ struct ReferenceRenderInput {
   const Material* material = nullptr;
   const SynthesizedImages* images = nullptr;  // the subspace images (host copies); unsynthesized ones empty
   std::span<const float> range_map;           // images->width * images->height heights in texels
+  std::span<const float> tone_map;            // the relief tone, the same size, or empty (1 everywhere)
   float parallax_scale = 1.0f;
 };
 

@@ -1,0 +1,39 @@
+// Colour that follows the relief (issue 13, item 3c): the relief tone.
+//
+// The render pass relights the range map, which gives the shading of each facet but not what makes a
+// crease dark in a photograph: a darker albedo there, and the light its walls occlude and shadow. The
+// relief tone is that remainder, measured on the photometric-stereo view under every light l:
+//   tone(x) = sum_l I_l(x) / sum_l m_l relit_l(x),   m_l = mean I_l / mean relit_l
+// (I_l the grey image, relit_l the render pass's relit factor of the range map), so that the render's
+// own product relit * tone reproduces the view's brightness on average over the lights. It is stored
+// under the range map's Wang layout, divided out of every subspace image before the CAR fit and
+// multiplied back per fragment: the CAR then models the smooth remainder, and the creases darken where
+// the range map puts them.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "carbtf/analysis/btf/btf_dataset.hpp"
+#include "carbtf/analysis/model/plane.hpp"
+
+namespace carbtf {
+
+// Tones are kept within [kReliefToneFloor, kReliefToneCeiling]: dividing an image by a tone near
+// zero would turn the noise of a shadowed crease into bright speckle.
+inline constexpr double kReliefToneFloor = 0.1;
+inline constexpr double kReliefToneCeiling = 4.0;
+
+// The relief tone of `view` of `dataset` over `range_map` (heights in texels, the dataset's size),
+// for the render pass's relit factor floor `light_z_floor`. Lights without an image are skipped; with
+// none, the tone is 1 everywhere.
+Plane relief_tone(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor);
+
+// Clamps every channel to its median +- k robust standard deviations (1.4826 x the median absolute
+// deviation). After the tone is divided out, what remains outside that band is relief the tone does
+// not explain at this pair's light and view (a cast shadow, a lit crease wall): thin lines that a CAR
+// model, being Gaussian, can only reproduce as speckle all over the image. The tone and the range
+// map draw the relief; the CAR keeps the smooth texture between.
+void clamp_remainder(std::vector<Plane>& channels, double k);
+
+}  // namespace carbtf
