@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <optional>
+#include <sstream>
 #include <stdexcept>
 
 #include "carbtf/analysis/model/collapse_calibration.hpp"
@@ -11,6 +13,8 @@
 #include "carbtf/analysis/model/pyramid.hpp"
 #include "carbtf/analysis/model/relief_tone.hpp"
 #include "carbtf/analysis/progress.hpp"
+#include "carbtf/analysis/quality/texture_similarity.hpp"
+#include "carbtf/analysis/reference/subspace_synthesis.hpp"
 #include "carbtf/analysis/range/surface_integration.hpp"
 #include "carbtf/analysis/resource_usage.hpp"
 #include "parallel_for.hpp"
@@ -34,33 +38,25 @@ class StageClock {
   std::chrono::steady_clock::time_point start_;
 };
 
+std::string join_numbers(const std::vector<double>& values) {
+  std::ostringstream text;
+  for (std::size_t i = 0; i < values.size(); ++i) text << (i ? "," : "") << values[i];
+  return text.str();
+}
+
 MaterialDirection to_material(const Direction& d) { return {static_cast<float>(d.theta), static_cast<float>(d.phi)}; }
 
-// The model of one subspace image; notes name the band they concern.
-SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plane& range_map, const Plane& tone,
-                           double light_z_floor, const AnalysisOptions& options, std::vector<std::string>& notes) {
-  const std::uint32_t width = dataset.width(), height = dataset.height();
-  std::vector<float> rgb(dataset.pixel_count() * 3);
-  dataset.linear_rgb(pair, rgb);
-  std::vector<Plane> channels(3, Plane(height, width));
-  for (std::size_t p = 0; p < dataset.pixel_count(); ++p) {
-    for (int k = 0; k < 3; ++k) channels[static_cast<std::size_t>(k)](static_cast<Eigen::Index>(p / width), static_cast<Eigen::Index>(p % width)) = rgb[p * 3 + k];
-  }
-  if (tone.size() > 0 || options.deshade_floor > 0.0) {
-    undo_parallax(channels, range_map, dataset.views()[pair.view].vector(), kAnalysisParallaxScale);
-  }
-  if (tone.size() > 0) divide_shading(channels, tone, kReliefToneFloor);
-  if (tone.size() > 0 && options.remainder_clamp > 0.0) clamp_remainder(channels, options.remainder_clamp);
-  if (options.deshade_floor > 0.0) {
-    divide_shading(channels, relit_factor(range_map, dataset.lights()[pair.light].vector(), light_z_floor), options.deshade_floor);
-  }
+// The model of prepared channels (the smooth texture the CAR is to reproduce); notes name the band
+// they concern.
+SubspaceModel fit_channels(const std::vector<Plane>& channels, LightView pair, const AnalysisOptions& options,
+                           std::vector<std::string>& notes) {
   const ColourPca pca = fit_colour_pca(channels);
   const std::vector<Plane> bands = to_bands(pca, channels);
   SubspaceModel model;
   model.light = pair.light;
   model.view = pair.view;
-  model.width = width;
-  model.height = height;
+  model.width = static_cast<std::uint32_t>(channels[0].cols());
+  model.height = static_cast<std::uint32_t>(channels[0].rows());
   model.channels = 3;
   for (int i = 0; i < 3; ++i) {
     model.colour_mean.push_back(static_cast<float>(pca.mean(i)));
@@ -78,6 +74,64 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
   }
   if (options.calibrate_collapse) calibrate_collapse_variance(model, bands, pyramids);
   return model;
+}
+
+// The model of one subspace image; notes name the band they concern.
+SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plane& range_map, const Plane& tone,
+                           double light_z_floor, const AnalysisOptions& options, std::vector<std::string>& notes) {
+  const std::uint32_t width = dataset.width(), height = dataset.height();
+  std::vector<float> rgb(dataset.pixel_count() * 3);
+  dataset.linear_rgb(pair, rgb);
+  std::vector<Plane> channels(3, Plane(height, width));
+  for (std::size_t p = 0; p < dataset.pixel_count(); ++p) {
+    for (int k = 0; k < 3; ++k) channels[static_cast<std::size_t>(k)](static_cast<Eigen::Index>(p / width), static_cast<Eigen::Index>(p % width)) = rgb[p * 3 + k];
+  }
+  const bool toned = tone.size() > 0;
+  if (toned || options.deshade_floor > 0.0) {
+    undo_parallax(channels, range_map, dataset.views()[pair.view].vector(), kAnalysisParallaxScale);
+  }
+  if (toned) divide_shading(channels, tone, kReliefToneFloor);
+  const Plane relit = relit_factor(range_map, dataset.lights()[pair.light].vector(), light_z_floor);
+  if (options.deshade_floor > 0.0) divide_shading(channels, relit, options.deshade_floor);
+  if (!toned || options.remainder_clamps.empty()) return fit_channels(channels, pair, options, notes);
+
+  // Each candidate clamp gives a model; the one whose image, as the render pass composes it (smooth
+  // texture x tone x relit factor), is nearest the measured image by the texture-similarity measure
+  // wins. Every candidate is synthesized from the same noise, so only the model differs.
+  const TextureStatistics measured = texture_statistics(rgb, width, height);
+  std::optional<SubspaceModel> best;
+  double best_distance = 0.0, best_clamp = 0.0;
+  std::vector<std::string> best_notes;
+  for (const double clamp : options.remainder_clamps) {
+    std::vector<Plane> clamped = channels;
+    if (clamp > 0.0) clamp_remainder(clamped, clamp);
+    std::vector<std::string> candidate_notes;
+    Material single;
+    single.subspaces.push_back(fit_channels(clamped, pair, options, candidate_notes));
+    std::vector<float> image(rgb.size());
+    reference::SubspaceBlock block;  // the default burn-in, as synthesis uses
+    block.seed = options.segmentation.seed;
+    block.width = width;
+    block.height = height;
+    reference::synthesize_subspace(single, 0, block, image);
+    for (std::size_t p = 0; p < dataset.pixel_count(); ++p) {
+      const auto r = static_cast<Eigen::Index>(p / width), c = static_cast<Eigen::Index>(p % width);
+      const auto factor = static_cast<float>(tone(r, c) * relit(r, c));
+      for (int k = 0; k < 3; ++k) image[p * 3 + static_cast<std::size_t>(k)] *= factor;
+    }
+    const double distance = texture_distance(texture_statistics(image, width, height), measured).total;
+    if (!best || distance < best_distance) {
+      best = std::move(single.subspaces[0]);
+      best_distance = distance;
+      best_clamp = clamp;
+      best_notes = std::move(candidate_notes);
+    }
+  }
+  notes = std::move(best_notes);
+  char line[120];
+  std::snprintf(line, sizeof line, "remainder clamp %.2g chosen of %zu (texture distance %.3f)", best_clamp, options.remainder_clamps.size(), best_distance);
+  notes.emplace_back(line);
+  return *best;
 }
 
 }  // namespace
@@ -163,7 +217,7 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
       {"car_stability_margin", std::to_string(options.car.stability_margin)},
       {"calibrate_collapse", options.calibrate_collapse ? "yes" : "no"},
       {"relief_tone", options.relief_tone ? "yes" : "no"},
-      {"remainder_clamp", std::to_string(options.remainder_clamp)},
+      {"remainder_clamps", join_numbers(options.remainder_clamps)},
       {"deshade_floor", std::to_string(options.deshade_floor)},
       {"stereo_view", std::to_string(result.stereo_view)},
       {"tile_size", std::to_string(material.range.tile_size)},

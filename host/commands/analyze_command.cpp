@@ -77,11 +77,13 @@ void register_analyze_command(CLI::App& app) {
   command->add_flag("!--no-relief-tone", a.relief_tone,
                     "Leave out the relief tone: the photometric-stereo albedo stored with the range tiles, which puts the "
                     "creases' dark colour where the range map puts the creases (on by default)");
-  command->add_option("--remainder-clamp", a.remainder_clamp,
-                      "With the relief tone, clamp each subspace image's smooth remainder to its median +- this many robust "
+  command->add_option("--remainder-clamp", a.remainder_clamps,
+                      "With the relief tone, each subspace image's smooth remainder is clamped to its median +- K robust "
                       "standard deviations before the CAR fit, so that relief lines the tone does not explain do not become "
-                      "speckle (0: off)")
+                      "speckle; per subspace the K of this list whose model looks nearest the measurement (texture-similarity "
+                      "measure) is kept. One value fixes it; 0: no clamp")
       ->check(CLI::Range(0.0, 100.0))
+      ->delimiter(',')
       ->capture_default_str();
   command->add_option("--deshade", a.deshade_floor,
                       "Divide the representative pair's relit range map out of each subspace image before fitting, the factor "

@@ -1,5 +1,6 @@
 // `carbtf fidelity`: the calibrated measure through the render pass must see a deliberately broken
-// model as worse than the fitted one, on each sample material (issue 13: the measure can fail).
+// model as worse than the fitted one, on each sample material (issue 13: the measure can fail), and the
+// model without its relief tone as worse too (item 3c).
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -94,5 +95,12 @@ TEST_CASE("carbtf fidelity ranks a deliberately broken model worse than the fitt
     INFO(name << ": fitted rel " << fitted_rel << ", " << label << " rel " << broken_rel);
     CHECK(broken_rel > fitted_rel);
   }
+  // Issue 13 item 3c: the relief tone (on by default) must look nearer the measurement than the same
+  // analysis without it.
+  const fs::path without_tone = folder / "without_tone.cbtf";
+  REQUIRE(run("analyze " + btf.string() + " --no-relief-tone --out " + without_tone.string()).status == 0);
+  const double without_tone_rel = fidelity_of(without_tone, btf, folder / "without_tone");
+  INFO(name << ": fitted rel " << fitted_rel << ", without the relief tone " << without_tone_rel);
+  CHECK(without_tone_rel > fitted_rel);
   fs::remove_all(folder);
 }

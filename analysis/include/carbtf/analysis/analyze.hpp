@@ -33,9 +33,12 @@ struct AnalysisOptions {
   // Store the relief tone (model/relief_tone.hpp) with the range tiles and divide it out of the
   // subspace images before their fit.
   bool relief_tone = true;
-  // With the relief tone: clamp the smooth remainder to its median +- this many robust standard
-  // deviations before the fit (model/relief_tone.hpp; 0: off).
-  double remainder_clamp = 1.5;
+  // With the relief tone: the smooth remainder is clamped to its median +- k robust standard
+  // deviations before the fit (model/relief_tone.hpp; k = 0: not clamped). Per subspace, the k of
+  // this list whose model image (CPU synthesis x tone x relit factor) is nearest the measured image
+  // by the texture-similarity measure is kept: a woven material wants a tight clamp (its remainder
+  // is relief the CAR can only turn into speckle), a stochastic one a loose one. Empty: no clamp.
+  std::vector<double> remainder_clamps = {0.25, 0.5, 1.0, 1.5, 2.0, 3.0};
   double deshade_floor = 0.0;        // > 0: divide the relit range map out before fitting, floored here (model/deshade.hpp)
   RangeTileOptions tiles;            // its seed is ignored: the tiles follow segmentation.seed
   unsigned threads = 0;              // 0: all hardware threads

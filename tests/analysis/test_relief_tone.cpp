@@ -1,0 +1,99 @@
+// The relief tone (issue 13, item 3c): the brightness of the photometric-stereo view that the relit
+// range map does not explain. On a rendered sample whose creases have a darker albedo, the tone must
+// follow that albedo; on the same relief with a uniform albedo it must be far flatter.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <vector>
+
+#include "carbtf/analysis/btf/btf_dataset.hpp"
+#include "carbtf/analysis/btf/directions.hpp"
+#include "carbtf/analysis/model/relief_tone.hpp"
+#include "carbtf/analysis/sample/height_field_renderer.hpp"
+#include "carbtf/analysis/sample/sample_materials.hpp"
+
+namespace carbtf {
+namespace {
+
+// The top view of `surface` under every UBO2003 light.
+BtfDataset top_view_dataset(const Surface& surface) {
+  const std::vector<Direction> views{Direction{}};
+  BtfDataset dataset(ubo2003_directions(), views, surface.size, surface.size, ColorEncoding::linear_half);
+  RenderOptions render;
+  render.progress = false;
+  render_btf(surface, dataset.lights(), views, render,
+             [&](std::uint32_t l, std::uint32_t v, std::span<const float> image) { dataset.set_linear({l, v}, image); });
+  return dataset;
+}
+
+Plane heights_of(const Surface& surface) {
+  const auto n = static_cast<Eigen::Index>(surface.size);
+  Plane heights(n, n);
+  for (Eigen::Index i = 0; i < n * n; ++i) heights(i / n, i % n) = surface.height[static_cast<std::size_t>(i)];
+  return heights - heights.mean();
+}
+
+double correlation(const Plane& a, const Plane& b) {
+  const Plane da = a - a.mean(), db = b - b.mean();
+  return (da * db).sum() / std::sqrt(da.square().sum() * db.square().sum());
+}
+
+double deviation(const Plane& a) { return std::sqrt((a - a.mean()).square().mean()); }
+
+}  // namespace
+
+TEST_CASE("the relief tone follows a crease-darkened albedo and stays flat without one", "[tone]") {
+  constexpr std::uint32_t size = 64;
+  const Surface surface = make_sample_surface("leather", size, 3);
+  const Plane heights = heights_of(surface);
+  const double z_floor = std::max(std::cos(75.0 * M_PI / 180.0), 1e-3);  // the UBO2003 set's largest theta
+  const Plane tone = relief_tone(top_view_dataset(surface), 0, heights, z_floor);
+
+  Plane albedo(size, size);
+  for (std::size_t p = 0; p < std::size_t{size} * size; ++p) {
+    albedo(static_cast<Eigen::Index>(p / size), static_cast<Eigen::Index>(p % size)) =
+        (surface.albedo[3 * p] + surface.albedo[3 * p + 1] + surface.albedo[3 * p + 2]) / 3.0;
+  }
+  REQUIRE(deviation(albedo) > 0.01);  // the sample does darken its creases
+  CHECK(tone.minCoeff() >= kReliefToneFloor);
+  CHECK(tone.maxCoeff() <= kReliefToneCeiling);
+  CHECK(tone.mean() == Approx(1.0).margin(0.15));
+  const double follows = correlation(tone, albedo);
+  INFO("correlation of tone and albedo " << follows);
+  CHECK(follows > 0.5);
+
+  Surface uniform = surface;
+  for (std::size_t p = 0; p < std::size_t{size} * size; ++p) {
+    for (int k = 0; k < 3; ++k) uniform.albedo[3 * p + static_cast<std::size_t>(k)] = 0.5f;
+  }
+  const Plane flat_tone = relief_tone(top_view_dataset(uniform), 0, heights, z_floor);
+  INFO("tone deviation with the crease albedo " << deviation(tone) << ", with a uniform albedo " << deviation(flat_tone));
+  // What is left with a uniform albedo is occlusion and shadow, which the relit factor cannot give;
+  // the darker crease albedo adds to it, and darkens the tone exactly where the albedo is dark.
+  CHECK(deviation(flat_tone) < deviation(tone));
+  const double dark_albedo = albedo.mean();
+  double dark = 0.0, dark_flat = 0.0;
+  int count = 0;
+  for (Eigen::Index i = 0; i < albedo.size(); ++i) {
+    if (albedo(i) >= dark_albedo) continue;
+    dark += tone(i);
+    dark_flat += flat_tone(i);
+    ++count;
+  }
+  INFO("mean tone where the albedo is below its mean: " << dark / count << ", with a uniform albedo " << dark_flat / count);
+  CHECK(dark / count < dark_flat / count - 0.05);
+}
+
+TEST_CASE("clamping the remainder bounds each channel around its median", "[tone]") {
+  std::vector<Plane> channels(2, Plane(8, 8));
+  for (Eigen::Index i = 0; i < 64; ++i) {
+    channels[0](i / 8, i % 8) = static_cast<double>(i % 4);  // upper median 2, MAD 1
+    channels[1](i / 8, i % 8) = i == 5 ? 100.0 : 1.0;         // one spike on a flat field
+  }
+  clamp_remainder(channels, 1.0);
+  CHECK(channels[0].minCoeff() == Approx(2.0 - 1.4826));  // the zeros are raised
+  CHECK(channels[0].maxCoeff() == 3.0);                    // within 2 + 1.4826: untouched
+  CHECK(channels[1].maxCoeff() == 1.0);  // MAD 0: the spike is clamped to the median
+}
+
+}  // namespace carbtf
