@@ -71,6 +71,9 @@ void register_analyze_command(CLI::App& app) {
   command->add_option("--stereo-view", a.stereo_view, "View index for photometric stereo (-1: the view nearest the normal)")
       ->check(CLI::Range(-1, 4095))->capture_default_str();
   command->add_option("--tile-size", a.tiles.tile_size, "Range-map tile size in texels (even)")->check(CLI::Range(4, 1024))->capture_default_str();
+  command->add_option("--height-bits", a.tiles.height_bits, "Range-map height quantization in bits (fewer: a smaller file, coarser slopes)")
+      ->check(CLI::Range(1, 16))
+      ->capture_default_str();
   command->add_flag("--collapse-calibration", a.calibrate_collapse,
                     "Rescale each band's sigma so that the collapsed pyramid keeps the measured contrast (the synthesized "
                     "images otherwise keep 55-80% of the measured variance)");

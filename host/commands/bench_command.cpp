@@ -150,6 +150,7 @@ void register_bench_command(CLI::App& app) {
 
   register_bench_analyze_command(*bench);
   register_bench_synth_command(*bench);
+  register_bench_fidelity_command(*bench);
   register_bench_frame_command(*bench);
 }
 

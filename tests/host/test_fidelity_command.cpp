@@ -104,3 +104,40 @@ TEST_CASE("carbtf fidelity ranks a deliberately broken model worse than the fitt
   CHECK(without_tone_rel > fitted_rel);
   fs::remove_all(folder);
 }
+
+TEST_CASE("carbtf bench fidelity sets each model option's size beside its fidelity", "[cli][fidelity][bench]") {
+  const fs::path folder = test::scratch_folder("bench_fidelity");
+  REQUIRE(run("sample leather --size 64 --out " + (folder / "sample").string()).status == 0);
+  const fs::path btf = folder / "sample" / "btf";
+  const fs::path out = folder / "out";
+  const Run r = run("bench fidelity " + btf.string() + " --variants paper,tone64 --validation --out " + out.string());
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.output, Catch::Contains("paper") && Catch::Contains("tone64") && Catch::Contains("KiB"));
+  CHECK(fs::exists(out / "fidelity_size.png"));
+  std::ifstream csv(out / "fidelity_size.csv");
+  std::string line;
+  std::getline(csv, line);
+  CHECK(line.rfind("variant,description,bytes,mean_rel", 0) == 0);
+  int rows = 0;
+  while (std::getline(csv, line)) {
+    std::stringstream fields(line);
+    std::string variant;
+    std::getline(fields, variant, ',');
+    // The size column is the material file's size on disk.
+    const std::size_t bytes_at = line.find("\",") + 2;
+    const auto bytes = std::stoull(line.substr(bytes_at));
+    CHECK(bytes == fs::file_size(out / (variant + ".cbtf")));
+    ++rows;
+  }
+  CHECK(rows == 2);
+
+  const Run unknown = run("bench fidelity " + btf.string() + " --variants nonsense --out " + (folder / "other").string());
+  CHECK(unknown.status != 0);
+  CHECK_THAT(unknown.output, Catch::Contains("unknown variant 'nonsense'") && Catch::Contains("known: paper"));
+  CHECK_FALSE(fs::exists(folder / "other"));
+  // A second run into the same folder refuses to overwrite the first's files.
+  const Run again = run("bench fidelity " + btf.string() + " --variants paper --out " + out.string());
+  CHECK(again.status != 0);
+  fs::remove_all(folder);
+}
