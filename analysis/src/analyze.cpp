@@ -114,11 +114,7 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
     block.width = width;
     block.height = height;
     reference::synthesize_subspace(single, 0, block, image);
-    for (std::size_t p = 0; p < dataset.pixel_count(); ++p) {
-      const auto r = static_cast<Eigen::Index>(p / width), c = static_cast<Eigen::Index>(p % width);
-      const auto factor = static_cast<float>(tone(r, c) * relit(r, c));
-      for (int k = 0; k < 3; ++k) image[p * 3 + static_cast<std::size_t>(k)] *= factor;
-    }
+    apply_relief(image, tone, relit);
     const double distance = texture_distance(texture_statistics(image, width, height), measured).total;
     if (!best || distance < best_distance) {
       best = std::move(single.subspaces[0]);

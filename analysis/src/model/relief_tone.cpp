@@ -52,4 +52,17 @@ void clamp_remainder(std::vector<Plane>& channels, double k) {
   }
 }
 
+void apply_relief(std::span<float> rgb, const Plane& tone, const Plane& relit) {
+  const auto pixels = static_cast<std::size_t>(tone.size());
+  if (relit.rows() != tone.rows() || relit.cols() != tone.cols() || rgb.size() != pixels * 3) {
+    throw std::invalid_argument("apply_relief: the image, the tone and the relit factor differ in size");
+  }
+  const std::size_t width = static_cast<std::size_t>(tone.cols());
+  for (std::size_t p = 0; p < pixels; ++p) {
+    const auto r = static_cast<Eigen::Index>(p / width), c = static_cast<Eigen::Index>(p % width);
+    const auto factor = static_cast<float>(tone(r, c) * relit(r, c));
+    for (std::size_t k = 0; k < 3; ++k) rgb[p * 3 + k] *= factor;
+  }
+}
+
 }  // namespace carbtf

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "carbtf/analysis/btf/btf_dataset.hpp"
@@ -35,5 +36,10 @@ Plane relief_tone(const BtfDataset& dataset, std::uint32_t view, const Plane& ra
 // model, being Gaussian, can only reproduce as speckle all over the image. The tone and the range
 // map draw the relief; the CAR keeps the smooth texture between.
 void clamp_remainder(std::vector<Plane>& channels, double k);
+
+// The render pass's product for one measured pair, without parallax or direction interpolation:
+// every pixel of `rgb` (interleaved RGB, row-major, the planes' size) times tone x relit. What the
+// analysis scores when it chooses the remainder clamp, and `bench synth` when it scores a synthesis.
+void apply_relief(std::span<float> rgb, const Plane& tone, const Plane& relit);
 
 }  // namespace carbtf
