@@ -104,8 +104,10 @@ Status validate_range(const RangeTiles& r) {
   if (r.patches.size() != 2 * c * texels) return invalid("range map: patch data has the wrong size");
   if (!r.tone.empty()) {
     if (r.tone.size() != r.patches.size()) return invalid("range map: the relief tone has " + std::to_string(r.tone.size()) + " texels, the patches " + std::to_string(r.patches.size()));
-    const double lowest = std::min(r.tone_offset, r.tone_offset + 255.0f * r.tone_scale);
-    const double highest = std::max(r.tone_offset, r.tone_offset + 255.0f * r.tone_scale);
+    // The range the stored values reach (a tone quantized to fewer than 8 bits stays below 255).
+    const auto [low_q, high_q] = std::minmax_element(r.tone.begin(), r.tone.end());
+    const double lowest = std::min(r.tone_offset + double{r.tone_scale} * *low_q, r.tone_offset + double{r.tone_scale} * *high_q);
+    const double highest = std::max(r.tone_offset + double{r.tone_scale} * *low_q, r.tone_offset + double{r.tone_scale} * *high_q);
     if (!std::isfinite(r.tone_offset) || !std::isfinite(r.tone_scale) || lowest < 0.0 || highest > kMaxRangeTone) {
       return invalid("range map: the relief tone (offset " + std::to_string(r.tone_offset) + ", scale " + std::to_string(r.tone_scale) +
                      ") is not finite or leaves [0, " + std::to_string(kMaxRangeTone) + "]");

@@ -74,6 +74,7 @@ void register_analyze_command(CLI::App& app) {
   command->add_option("--height-bits", a.tiles.height_bits, "Range-map height quantization in bits (fewer: a smaller file, coarser slopes)")
       ->check(CLI::Range(1, 16))
       ->capture_default_str();
+  command->add_option("--tone-bits", a.tiles.tone_bits, "Relief-tone quantization in bits")->check(CLI::Range(1, 8))->capture_default_str();
   command->add_flag("--collapse-calibration", a.calibrate_collapse,
                     "Rescale each band's sigma so that the collapsed pyramid keeps the measured contrast (the synthesized "
                     "images otherwise keep 55-80% of the measured variance)");

@@ -41,8 +41,14 @@ const std::vector<ModelVariant>& model_variants() {
       {"tiles128", "no relief tone, 128-texel tiles", [](AnalysisOptions& o) { o.relief_tone = false; }},
       {"tone64", "relief tone, 64-texel tiles", [](AnalysisOptions& o) { o.tiles.tile_size = 64; }},
       {"tone96", "relief tone, 96-texel tiles", [](AnalysisOptions& o) { o.tiles.tile_size = 96; }},
-      {"tone128_9bit", "relief tone, 128-texel tiles, 9-bit heights", [](AnalysisOptions& o) { o.tiles.height_bits = 9; }},
-      {"default", "relief tone, 128-texel tiles, 12-bit heights, remainder clamp chosen per subspace", [](AnalysisOptions&) {}},
+      {"tone128_12bit", "relief tone, 128-texel tiles, 12-bit heights", [](AnalysisOptions& o) { o.tiles.height_bits = 12; }},
+      {"compact", "relief tone, 96-texel tiles, 9-bit heights, 5-bit tone",
+       [](AnalysisOptions& o) {
+         o.tiles.tile_size = 96;
+         o.tiles.height_bits = 9;
+         o.tiles.tone_bits = 5;
+       }},
+      {"default", "relief tone, 128-texel tiles, 9-bit heights, remainder clamp chosen per subspace", [](AnalysisOptions&) {}},
       {"fixed_clamp", "the default with the remainder clamp fixed at 1.5", [](AnalysisOptions& o) { o.remainder_clamps = {1.5}; }},
       {"collapse", "the default with the collapse calibration", [](AnalysisOptions& o) { o.calibrate_collapse = true; }},
       {"deshade", "the default with the relit range map divided out (floor 0.3)", [](AnalysisOptions& o) { o.deshade_floor = 0.3; }},

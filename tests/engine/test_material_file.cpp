@@ -226,7 +226,13 @@ TEST_CASE("a relief tone outside its range or of the wrong size is refused", "[m
   negative.range.tone_offset = -0.5f;
   CHECK_THAT(message(negative), Catch::Contains("relief tone") && Catch::Contains("leaves [0,"));
   Material huge = good;
+  huge.range.tone.front() = 255;
   huge.range.tone_scale = 1.0f;  // 255 at the top, beyond kMaxRangeTone
+  Material few_bits = good;  // a 5-bit tone: its scale may be large, as long as the values it reaches are in range
+  for (std::uint8_t& t : few_bits.range.tone) t = static_cast<std::uint8_t>(t % 32);
+  few_bits.range.tone_offset = 0.1f;
+  few_bits.range.tone_scale = 0.12f;
+  CHECK(validate_material(few_bits).ok());
   CHECK_THAT(message(huge), Catch::Contains("relief tone"));
   Material nan = good;
   nan.range.tone_scale = std::nanf("");

@@ -80,7 +80,8 @@ RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& optio
   if (tone != nullptr) {
     tone_low = tone->minCoeff();
     tiles.tone_offset = static_cast<float>(tone_low);
-    tiles.tone_scale = static_cast<float>((tone->maxCoeff() - tone_low) / 255.0);
+    if (options.tone_bits < 1 || options.tone_bits > 8) throw std::invalid_argument("tone bits must be within 1..8");
+    tiles.tone_scale = static_cast<float>((tone->maxCoeff() - tone_low) / static_cast<double>((1u << options.tone_bits) - 1u));
     tiles.tone.resize(tiles.patches.size());
   }
   for (std::uint32_t p = 0; p < patch_count; ++p) {
@@ -94,7 +95,7 @@ RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& optio
         tiles.patches[texel] = static_cast<std::uint16_t>(std::clamp(q, 0.0, top_level));
         if (tone != nullptr) {
           const double t = tiles.tone_scale > 0.0f ? std::round(((*tone)(row0 + r, col0 + c) - tone_low) / tiles.tone_scale) : 0.0;
-          tiles.tone[texel] = static_cast<std::uint8_t>(std::clamp(t, 0.0, 255.0));
+          tiles.tone[texel] = static_cast<std::uint8_t>(std::clamp(t, 0.0, static_cast<double>((1u << options.tone_bits) - 1u)));
         }
       }
     }
