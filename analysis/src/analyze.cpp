@@ -133,7 +133,7 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
 }  // namespace
 
 AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& options, const std::function<void(const std::string&)>& log) {
-  if (options.pyramid_levels < 1 || options.pyramid_levels > 3) throw std::invalid_argument("pyramid levels must be within 1..3");
+  if (options.pyramid_levels < 1 || options.pyramid_levels > 6) throw std::invalid_argument("pyramid levels must be within 1..6");
   if (dataset.present_pairs().empty()) throw std::invalid_argument("the dataset holds no images");
   AnalysisResult result;
   auto note = [&](const std::string& line) {

@@ -67,7 +67,7 @@ void register_analyze_command(CLI::App& app) {
   command->add_option("--bins", a.segmentation.bins, "Bins per Lab channel of the segmentation feature")
       ->check(CLI::Range(2, 1024))->capture_default_str();
   command->add_option("--seed", a.segmentation.seed, "Seed of k-means++ and of the range tiles")->check(non_negative())->capture_default_str();
-  command->add_option("--levels", a.pyramid_levels, "Gaussian-Laplacian pyramid levels")->check(CLI::Range(1, 3))->capture_default_str();
+  command->add_option("--levels", a.pyramid_levels, "Gaussian-Laplacian pyramid levels (the paper uses up to 3)")->check(CLI::Range(1, 6))->capture_default_str();
   command->add_option("--stereo-view", a.stereo_view, "View index for photometric stereo (-1: the view nearest the normal)")
       ->check(CLI::Range(-1, 4095))->capture_default_str();
   command->add_option("--tile-size", a.tiles.tile_size, "Range-map tile size in texels (even)")->check(CLI::Range(4, 1024))->capture_default_str();

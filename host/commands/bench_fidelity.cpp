@@ -50,6 +50,7 @@ const std::vector<ModelVariant>& model_variants() {
        }},
       {"default", "relief tone, 128-texel tiles, 9-bit heights, remainder clamp chosen per subspace", [](AnalysisOptions&) {}},
       {"fixed_clamp", "the default with the remainder clamp fixed at 1.5", [](AnalysisOptions& o) { o.remainder_clamps = {1.5}; }},
+      {"levels4", "the default with 4 pyramid levels", [](AnalysisOptions& o) { o.pyramid_levels = 4; }},
       {"collapse", "the default with the collapse calibration", [](AnalysisOptions& o) { o.calibrate_collapse = true; }},
       {"deshade", "the default with the relit range map divided out (floor 0.3)", [](AnalysisOptions& o) { o.deshade_floor = 0.3; }},
   };

@@ -22,7 +22,7 @@ namespace carbtf {
 
 struct AnalysisOptions {
   SegmentationOptions segmentation;  // K, bins, seed
-  std::uint32_t pyramid_levels = 3;  // 1..3
+  std::uint32_t pyramid_levels = 3;  // 1..6 (fewer where the image is too small for them)
   CarFitOptions car;
   PhotometricStereoOptions stereo;
   int stereo_view = -1;              // -1: the view nearest the surface normal
