@@ -170,11 +170,9 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
     result.range_map = integrate_normals(result.normals.normals, dataset.width(), dataset.height());
     RangeTileOptions tiles = options.tiles;
     tiles.seed = options.segmentation.seed;
-    if (options.relief_tone) {
-      std::vector<MaterialDirection> lights;
-      for (const Direction& d : dataset.lights()) lights.push_back(to_material(d));
-      result.tone = relief_tone(dataset, result.stereo_view, result.range_map, relight_floor(Material{lights, {}, {}, {}, {}, {}}));
-    }
+    for (const Direction& d : dataset.lights()) result.material.lights.push_back(to_material(d));
+    for (const Direction& d : dataset.views()) result.material.views.push_back(to_material(d));
+    if (options.relief_tone) result.tone = relief_tone(dataset, result.stereo_view, result.range_map, relight_floor(result.material));
     result.material.range = build_range_tiles(result.range_map, tiles, options.relief_tone ? &result.tone : nullptr);
   }
 
@@ -184,8 +182,6 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
     std::vector<std::vector<std::string>> notes(representatives.size());
     result.material.subspaces.resize(representatives.size());
     Progress progress("subspace models", representatives.size(), options.progress);
-    for (const Direction& d : dataset.lights()) result.material.lights.push_back(to_material(d));
-    for (const Direction& d : dataset.views()) result.material.views.push_back(to_material(d));
     const double z_floor = relight_floor(result.material);  // the render pass's, from the light set
     detail::parallel_for(representatives.size(), options.threads, [&](std::size_t s) {
       result.material.subspaces[s] = fit_subspace(dataset, representatives[s], result.range_map, result.tone, z_floor, options, notes[s]);
