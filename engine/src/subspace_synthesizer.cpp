@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <string>
 
@@ -173,6 +174,8 @@ Status SubspaceSynthesizer::create(Context& context, std::unique_ptr<SubspaceSyn
     return {ErrorCode::out_of_host_memory, "out of host memory while creating the subspace synthesizer"};
   }
 }
+
+void SubspaceSynthesizer::release() noexcept { prepared_.reset(); }
 
 Status SubspaceSynthesizer::prepare(const Material& material, const SynthesisRequest& request) noexcept {
   try {
@@ -594,17 +597,19 @@ Status SubspaceSynthesizer::timing(SynthesisTiming& out) const noexcept {
 
 namespace {
 
-// Copies layers [0, layers) of an RGBA32F image (in GENERAL, last written by compute shaders) into a
-// host buffer, tightly packed; the image is back in GENERAL afterwards.
+// Copies rows [row0, row0 + rows) of layers [0, layers) of an RGBA32F image (in GENERAL, last written by
+// compute shaders) into a host buffer, tightly packed layer by layer; the image is back in GENERAL
+// afterwards.
 void record_image_readback(const VulkanFunctions& vk, VkCommandBuffer command_buffer, VkImage image,
-                           std::uint32_t width, std::uint32_t height, std::uint32_t layers,
+                           std::uint32_t width, std::uint32_t row0, std::uint32_t rows, std::uint32_t layers,
                            VkBuffer destination) {
   transition_image(vk, command_buffer, image, layers, VK_IMAGE_LAYOUT_GENERAL,
                    VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                    VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
   VkBufferImageCopy copy{};
   copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, layers};
-  copy.imageExtent = {width, height, 1};
+  copy.imageOffset = {0, static_cast<std::int32_t>(row0), 0};
+  copy.imageExtent = {width, rows, 1};
   vk.vkCmdCopyImageToBuffer(command_buffer, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, destination, 1,
                             &copy);
   // A read needs no availability, only ordering before later writes.
@@ -616,11 +621,42 @@ void record_image_readback(const VulkanFunctions& vk, VkCommandBuffer command_bu
                   VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
 }
 
-void unpack_rgba(const float* rgba, std::size_t pixels, std::uint32_t channels, std::vector<float>& out) {
-  out.resize(pixels * channels);
+// Unpacks `pixels` RGBA texels into `out` from texel `first` on, keeping the first `channels`.
+void unpack_rgba(const float* rgba, std::size_t pixels, std::uint32_t channels, std::size_t first,
+                 std::vector<float>& out) {
   for (std::size_t p = 0; p < pixels; ++p) {
-    for (std::uint32_t c = 0; c < channels; ++c) out[p * channels + c] = rgba[p * 4 + c];
+    for (std::uint32_t c = 0; c < channels; ++c) out[(first + p) * channels + c] = rgba[p * 4 + c];
   }
+}
+
+// The host buffer a synthesis reads back through, a band of rows at a time: a whole 4096^2 x 20 result
+// would otherwise need a second copy of the image on the host.
+constexpr VkDeviceSize kReadbackBytes = VkDeviceSize{64} << 20;
+
+// Submits `work` followed by the readback of the first band of rows of layers [0, layers) of `image`,
+// then each further band on its own; `unpack(rgba, row0, rows)` receives each band, layer by layer.
+Status read_back_in_row_bands(Context& context, VkImage image, std::uint32_t width, std::uint32_t height,
+                              std::uint32_t layers, const std::function<Status(VkCommandBuffer)>& work,
+                              const std::function<void(const float*, std::uint32_t, std::uint32_t)>& unpack) {
+  const VkDeviceSize row_bytes = VkDeviceSize{width} * 4 * sizeof(float) * layers;
+  const auto band_rows = static_cast<std::uint32_t>(std::clamp<VkDeviceSize>(kReadbackBytes / row_bytes, 1, height));
+  Buffer readback;
+  CARBTF_TRY(Buffer::create(context,
+                            {row_bytes * band_rows, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::host_readback,
+                             "carbtf readback"},
+                            readback));
+  for (std::uint32_t row0 = 0; row0 < height; row0 += band_rows) {
+    const std::uint32_t rows = std::min(band_rows, height - row0);
+    const auto record_band = [&](VkCommandBuffer command_buffer) -> Status {
+      if (row0 == 0) CARBTF_TRY(work(command_buffer));
+      record_image_readback(context.vk(), command_buffer, image, width, row0, rows, layers, readback.handle());
+      return {};
+    };
+    CARBTF_TRY(context.submit_and_wait(record_band));
+    CARBTF_TRY(readback.invalidate_for_host_read());
+    unpack(static_cast<const float*>(readback.mapped()), row0, rows);
+  }
+  return {};
 }
 
 }  // namespace
@@ -630,36 +666,33 @@ Status SubspaceSynthesizer::synthesize(const Material& material, const Synthesis
   CARBTF_TRY(prepare(material, request));
   try {
     const detail::SynthesisPlan& plan = prepared_->plan;
-    const VkDeviceSize layer_bytes = VkDeviceSize{plan.width} * plan.height * 4 * sizeof(float);
-    Buffer readback;
-    CARBTF_TRY(Buffer::create(*context_,
-                              {layer_bytes * plan.subspaces.size(), VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                               MemoryUsage::host_readback, "carbtf subspace readback"},
-                              readback));
-    const auto record_work = [&](VkCommandBuffer command_buffer) -> Status {
-      CARBTF_TRY(record(command_buffer, timing_out != nullptr));
-      record_image_readback(context_->vk(), command_buffer, prepared_->image.handle(), plan.width,
-                            plan.height, static_cast<std::uint32_t>(plan.subspaces.size()),
-                            readback.handle());
-      return {};
-    };
-    CARBTF_TRY(context_->submit_and_wait(record_work));
-    CARBTF_TRY(readback.invalidate_for_host_read());
-    if (prepared_->capture_stage != SynthesisStage::none)
-      CARBTF_TRY(prepared_->capture.invalidate_for_host_read());
-    if (timing_out) CARBTF_TRY(timing(*timing_out));
+    const auto layers = static_cast<std::uint32_t>(plan.subspaces.size());
     out = {};
     out.width = plan.width;
     out.height = plan.height;
     out.channels.assign(material.subspaces.size(), 0);
     out.images.assign(material.subspaces.size(), {});
-    const auto* rgba = static_cast<const float*>(readback.mapped());
-    const std::size_t pixels = std::size_t{plan.width} * plan.height;
-    for (std::size_t layer = 0; layer < plan.subspaces.size(); ++layer) {
+    for (std::size_t layer = 0; layer < layers; ++layer) {
       const std::uint32_t s = plan.subspaces[layer];
       out.channels[s] = plan.channels[layer];
-      unpack_rgba(rgba + layer * pixels * 4, pixels, plan.channels[layer], out.images[s]);
+      out.images[s].resize(std::size_t{plan.width} * plan.height * plan.channels[layer]);
     }
+    const auto record_work = [&](VkCommandBuffer command_buffer) {
+      return record(command_buffer, timing_out != nullptr);
+    };
+    CARBTF_TRY(read_back_in_row_bands(
+        *context_, prepared_->image.handle(), plan.width, plan.height, layers, record_work,
+        [&](const float* rgba, std::uint32_t row0, std::uint32_t rows) {
+          const std::size_t pixels = std::size_t{plan.width} * rows;
+          for (std::size_t layer = 0; layer < layers; ++layer) {
+            const std::uint32_t s = plan.subspaces[layer];
+            unpack_rgba(rgba + layer * pixels * 4, pixels, plan.channels[layer],
+                        std::size_t{row0} * plan.width, out.images[s]);
+          }
+        }));
+    if (prepared_->capture_stage != SynthesisStage::none)
+      CARBTF_TRY(prepared_->capture.invalidate_for_host_read());
+    if (timing_out) CARBTF_TRY(timing(*timing_out));
     return {};
   } catch (const std::bad_alloc&) {
     return {ErrorCode::out_of_host_memory, "out of host memory while reading back subspace images"};
@@ -679,24 +712,6 @@ Status SubspaceSynthesizer::interpolate(const Material& material, const PairWeig
     info.debug_name = "carbtf interpolated image";
     Image target;
     CARBTF_TRY(Image::create(*context_, info, target));
-    Buffer readback;
-    const VkDeviceSize bytes = VkDeviceSize{plan.width} * plan.height * 4 * sizeof(float);
-    CARBTF_TRY(Buffer::create(
-        *context_,
-        {bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::host_readback, "carbtf interpolated readback"},
-        readback));
-    const VulkanFunctions& vk = context_->vk();
-    const auto record_work = [&](VkCommandBuffer command_buffer) -> Status {
-      transition_image(vk, command_buffer, target.handle(), 1, VK_IMAGE_LAYOUT_UNDEFINED,
-                       VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
-                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
-      CARBTF_TRY(record_interpolation(command_buffer, material, weights, target.view()));
-      record_image_readback(vk, command_buffer, target.handle(), plan.width, plan.height, 1,
-                            readback.handle());
-      return {};
-    };
-    CARBTF_TRY(context_->submit_and_wait(record_work));
-    CARBTF_TRY(readback.invalidate_for_host_read());
     std::uint32_t channels = 0;
     for (int k = 0; k < 9; ++k) {
       if (weights.weight[k] != 0.0f) {
@@ -704,8 +719,21 @@ Status SubspaceSynthesizer::interpolate(const Material& material, const PairWeig
         break;
       }
     }
-    unpack_rgba(static_cast<const float*>(readback.mapped()), std::size_t{plan.width} * plan.height,
-                channels == 0 ? plan.channels[0] : channels, out);
+    if (channels == 0) channels = plan.channels[0];
+    out.assign(std::size_t{plan.width} * plan.height * channels, 0.0f);
+    const VulkanFunctions& vk = context_->vk();
+    const auto record_work = [&](VkCommandBuffer command_buffer) -> Status {
+      transition_image(vk, command_buffer, target.handle(), 1, VK_IMAGE_LAYOUT_UNDEFINED,
+                       VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
+                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
+      return record_interpolation(command_buffer, material, weights, target.view());
+    };
+    CARBTF_TRY(read_back_in_row_bands(
+        *context_, target.handle(), plan.width, plan.height, 1,
+        record_work,
+        [&](const float* rgba, std::uint32_t row0, std::uint32_t rows) {
+          unpack_rgba(rgba, std::size_t{plan.width} * rows, channels, std::size_t{row0} * plan.width, out);
+        }));
     return {};
   } catch (const std::bad_alloc&) {
     return {ErrorCode::out_of_host_memory, "out of host memory while interpolating"};

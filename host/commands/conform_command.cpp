@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstring>
 #include <numbers>
+#include <thread>
 
 #include "carbtf/analysis/reference/conformance.hpp"
 #include "carbtf/analysis/reference/noise.hpp"
@@ -62,10 +63,6 @@ void accumulate(StageResult& stage, std::span<const float> gpu, std::span<const 
   stage.error = reference::worst_of(stage.error, reference::conformance_error(gpu, cpu, channels));
   stage.identical = stage.identical && bitwise_equal(gpu, cpu);
   ++stage.items;
-}
-
-std::vector<float> to_float(const std::vector<double>& values) {
-  return {values.begin(), values.end()};
 }
 
 // Interpolation queries: a measured pair, a point between measured directions, and grazing angles
@@ -135,7 +132,9 @@ CaseReport run_case(const std::string& name, const Material& material, std::uint
   request.scheme = options.scheme;
   const std::size_t count = material.subspaces.size();
 
-  // CPU float32 with every stage, and float64 for accuracy.
+  // CPU float32 with its bands, which become the collapsed levels once compared and are then freed;
+  // the float64 reference comes last, a few subspaces at a time, after the whole-size GPU buffers are
+  // gone. One image-sized copy of each kind at a time bounds a 4096^2 case's memory (issue 14).
   const SynthesisBlock& block = request;
   std::vector<reference::SubspaceStages> stages(count);
   std::vector<std::vector<float>> cpu(count);
@@ -145,7 +144,6 @@ CaseReport run_case(const std::string& name, const Material& material, std::uint
     reference::synthesize_subspace(material, static_cast<std::uint32_t>(s), block, cpu[s], &stages[s]);
   }
   report.cpu_ms = seconds_since(start) * 1e3;
-  const auto f64 = reference::synthesize_subspaces_f64(material, {}, block);
 
   StageResult noise("noise"), band("band fields"), collapse("collapse"), colour("colour"),
       interpolation("interpolation");
@@ -153,6 +151,7 @@ CaseReport run_case(const std::string& name, const Material& material, std::uint
   for (SynthesisStage capture : {SynthesisStage::noise, SynthesisStage::car, SynthesisStage::collapse}) {
     request.capture = capture;
     SynthesisTiming timing;
+    images = {};  // not held beside the next synthesis's buffers
     check(synthesizer.synthesize(material, request, images, &timing), name + ": GPU synthesis failed");
     report.gpu_ms = timing.total_ms;
     for (std::uint32_t s = 0; s < count; ++s) {
@@ -173,20 +172,19 @@ CaseReport run_case(const std::string& name, const Material& material, std::uint
           } else if (capture == SynthesisStage::car) {
             const float mean = model.bands[index].mean;
             for (float& v : gpu) v = mean + v;  // the reference's band is mean + y, one float add
-            accumulate(band, gpu, to_float(stages[s].band[index]), 1);
+            accumulate(band, gpu, stages[s].band[index], 1);
           } else {
-            accumulate(collapse, gpu, to_float(stages[s].collapsed[index]), 1);
+            accumulate(collapse, gpu, stages[s].band[index], 1);  // G since the car pass
+            std::vector<float>().swap(stages[s].band[index]);
           }
         }
       }
+      if (capture == SynthesisStage::car) reference::collapse_band_stages(stages[s]);
     }
   }
-  for (std::size_t s = 0; s < count; ++s) {
-    accumulate(colour, images.images[s], cpu[s], material.subspaces[s].channels);
-    report.float32_vs_float64 = reference::worst_of(
-        report.float32_vs_float64,
-        reference::conformance_error(images.images[s], f64[s], material.subspaces[s].channels));
-  }
+  stages = {};
+  for (std::size_t s = 0; s < count; ++s) accumulate(colour, images.images[s], cpu[s], material.subspaces[s].channels);
+  cpu = {};
   DirectionTriangulation lights, views;
   check(build_direction_triangulation(material.lights, lights), name + ": light directions");
   check(build_direction_triangulation(material.views, views), name + ": view directions");
@@ -195,11 +193,26 @@ CaseReport run_case(const std::string& name, const Material& material, std::uint
     std::vector<float> gpu;
     check(synthesizer.interpolate(material, weights, gpu), name + ": GPU interpolation failed");
     std::vector<float> expected(gpu.size());
-    reference::interpolate_subspaces(material, weights, cpu, expected);
+    // The stage alone: both sides interpolate the GPU's subspace images (the colour stage compared them).
+    reference::interpolate_subspaces(material, weights, images.images, expected);
     accumulate(interpolation, gpu, expected, material.subspaces[0].channels);
   }
-  report.stages = {noise,  band,          collapse,
-                   colour, interpolation, blockwise_stage(material, request, images, synthesizer)};
+  synthesizer.release();  // the blocks allocate their own, smaller buffers
+  const StageResult blockwise = blockwise_stage(material, request, images, synthesizer);
+  // float64 last, a few subspaces at a time, once the whole-size GPU buffers are gone.
+  const unsigned batch = std::max(1u, std::thread::hardware_concurrency());
+  for (std::size_t first = 0; first < count; first += batch) {
+    std::vector<std::uint32_t> list;
+    for (std::size_t s = first; s < std::min<std::size_t>(count, first + batch); ++s)
+      list.push_back(static_cast<std::uint32_t>(s));
+    const auto f64 = reference::synthesize_subspaces_f64(material, list, block);
+    for (const std::uint32_t s : list) {
+      report.float32_vs_float64 = reference::worst_of(
+          report.float32_vs_float64,
+          reference::conformance_error(images.images[s], f64[s], material.subspaces[s].channels));
+    }
+  }
+  report.stages = {noise, band, collapse, colour, interpolation, blockwise};
   return report;
 }
 

@@ -126,6 +126,43 @@ TEST_CASE("a 4096x4096 subspace image leaves no texel unwritten and matches the 
   context.require_clean();
 }
 
+TEST_CASE("results larger than one readback band come back whole and release() frees the synthesis",
+          "[gpu_synthesis][gpu][large]") {
+  test::ValidatedContext context;
+  auto synthesizer = make_synthesizer(*context);
+  // 3 layers of 4096 RGBA32F texels are 192 KiB a row: 341 rows fill the 64 MiB readback band, so 1100
+  // rows come back as three full bands and a last one of 77 rows.
+  const Material m = synthetic_material(3, 2);
+  SynthesisRequest request;
+  request.seed = 77;
+  request.width = 4096;
+  request.height = 1100;
+  request.margin = 8;
+  request.poison = true;
+  const SynthesizedImages images = gpu_synthesize(*synthesizer, m, request);
+  for (std::uint32_t s = 0; s < 3; ++s) {
+    INFO("subspace " << s);
+    test::require_bitwise_equal(images.images[s], cpu_subspace(m, s, request), std::size_t{request.width} * 3);
+  }
+  DirectionTriangulation lights, views;
+  REQUIRE(build_direction_triangulation(m.lights, lights).ok());
+  REQUIRE(build_direction_triangulation(m.views, views).ok());
+  const PairWeights weights = pair_weights(lights, views, 0.3, 0.4, 0.9, 2.0);
+  std::vector<float> gpu;
+  REQUIRE(synthesizer->interpolate(m, weights, gpu).ok());
+  std::vector<float> cpu(gpu.size());
+  reference::interpolate_subspaces(m, weights, images.images, cpu);
+  test::require_bitwise_equal(gpu, cpu);
+
+  synthesizer->release();
+  CHECK(synthesizer->image() == VK_NULL_HANDLE);
+  CHECK_FALSE(synthesizer->interpolate(m, weights, gpu).ok());
+  request.height = 64;  // a later synthesis prepares afresh
+  const SynthesizedImages again = gpu_synthesize(*synthesizer, m, request);
+  test::require_bitwise_equal(again.images[1], cpu_subspace(m, 1, request));
+  context.require_clean();
+}
+
 TEST_CASE("a near-unit-root band stays bounded and equal to the CPU", "[gpu_synthesis][gpu][stiff]") {
   test::ValidatedContext context;
   auto synthesizer = make_synthesizer(*context);

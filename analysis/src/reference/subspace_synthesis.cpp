@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "../parallel_for.hpp"
 #include "carbtf/analysis/reference/car_synthesis.hpp"
@@ -50,6 +51,14 @@ std::vector<Real> expand(const std::vector<Real>& coarse, const TextureRegion& f
   return out;
 }
 
+// Adds `coarser` (the collapsed level above, over `from`), expanded to `to`, to `band`: one collapse step.
+template <typename Real>
+void add_expanded(std::vector<Real>& band, const std::vector<Real>& coarser, const TextureRegion& from,
+                  const TextureRegion& to) {
+  const std::vector<Real> expanded = expand(coarser, from, to);
+  for (std::size_t i = 0; i < band.size(); ++i) band[i] = band[i] + expanded[i];
+}
+
 void check_subspace(const Material& material, std::uint32_t subspace) {
   if (subspace >= material.subspaces.size())
     throw std::invalid_argument("subspace " + std::to_string(subspace) + " does not exist");
@@ -74,11 +83,9 @@ void synthesize(const Material& material, std::uint32_t subspace, const Subspace
   const std::vector<TextureRegion> regions =
       level_regions({block.row0, block.col0, block.height, block.width}, model.levels);
 
-  std::vector<std::vector<Real>> collapsed(model.channels);
   if (stages) {
     stages->regions = regions;
     stages->band.assign(std::size_t{model.levels} * model.channels, {});
-    stages->collapsed.assign(std::size_t{model.levels} * model.channels, {});
   }
   for (std::uint32_t channel = 0; channel < model.channels; ++channel) {
     std::vector<Real> current;
@@ -99,22 +106,23 @@ void synthesize(const Material& material, std::uint32_t subspace, const Subspace
       std::vector<Real> band(static_cast<std::size_t>(region.rows * region.cols));
       synthesize_car_block(model.bands[level * model.channels + channel], field, std::span<Real>(band));
       const std::size_t index = std::size_t{level} * model.channels + channel;
-      if (stages) stages->band[index].assign(band.begin(), band.end());
-      if (level + 1 < model.levels) {
-        const std::vector<Real> expanded = expand(current, regions[level + 1], region);
-        for (std::size_t i = 0; i < band.size(); ++i) band[i] = band[i] + expanded[i];
+      if constexpr (std::is_same_v<Real, float>) {
+        if (stages) stages->band[index] = band;
       }
-      if (stages) stages->collapsed[index].assign(band.begin(), band.end());
+      if (level + 1 < model.levels) add_expanded(band, current, regions[level + 1], region);
       current = std::move(band);
     }
-    collapsed[channel] = std::move(current);
+    // The collapsed channel waits in `out` for the colour step: no second image-sized buffer.
+    for (std::size_t p = 0; p < pixels; ++p) out[p * model.channels + channel] = current[p];
   }
+  std::vector<Real> collapsed(model.channels);
   for (std::size_t p = 0; p < pixels; ++p) {
+    std::copy_n(out.begin() + static_cast<std::ptrdiff_t>(p * model.channels), model.channels, collapsed.begin());
     for (std::uint32_t i = 0; i < model.channels; ++i) {
       Real acc = static_cast<Real>(model.colour_mean[i]);
       for (std::uint32_t j = 0; j < model.channels; ++j) {
         acc = acc + static_cast<Real>(model.colour_transform[std::size_t{i} * model.channels + j]) *
-                        collapsed[j][p];
+                        collapsed[j];
       }
       out[p * model.channels + i] = acc;
     }
@@ -187,9 +195,21 @@ void synthesize_subspace(const Material& material, std::uint32_t subspace, const
   synthesize(material, subspace, block, out, stages, initial_values);
 }
 void synthesize_subspace(const Material& material, std::uint32_t subspace, const SubspaceBlock& block,
-                         std::span<double> out, SubspaceStages* stages,
-                         std::span<const float> initial_values) {
-  synthesize(material, subspace, block, out, stages, initial_values);
+                         std::span<double> out, std::span<const float> initial_values) {
+  synthesize(material, subspace, block, out, nullptr, initial_values);
+}
+
+void collapse_band_stages(SubspaceStages& stages) {
+  const std::size_t levels = stages.regions.size();
+  if (levels == 0 || stages.band.size() % levels != 0)
+    throw std::invalid_argument("collapse_band_stages: stages do not match their regions");
+  const std::size_t channels = stages.band.size() / levels;
+  for (std::size_t channel = 0; channel < channels; ++channel) {
+    for (std::size_t level = levels - 1; level-- > 0;) {
+      add_expanded(stages.band[level * channels + channel], stages.band[(level + 1) * channels + channel],
+                   stages.regions[level + 1], stages.regions[level]);
+    }
+  }
 }
 
 std::vector<std::vector<float>> block_initial_values(const Material& material,

@@ -92,6 +92,10 @@ class SubspaceSynthesizer {
   // beyond the device's limits), naming the cause.
   Status prepare(const Material& material, const SynthesisRequest& request) noexcept;
 
+  // Frees the prepared synthesis: its image, work buffer and tables (image() is null afterwards). The
+  // caller must have finished any work recorded from it. A later prepare() allocates again.
+  void release() noexcept;
+
   // Records the prepared synthesis. The output image goes from any layout to VK_IMAGE_LAYOUT_GENERAL
   // (its previous contents are discarded) and ends visible to compute and fragment shader reads. With
   // `timed`, writes GPU timestamps that timing() reads after the work has finished.

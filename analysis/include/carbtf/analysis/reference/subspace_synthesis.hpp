@@ -27,17 +27,22 @@ namespace carbtf::reference {
 using SubspaceBlock = SynthesisBlock;
 
 // The intermediate stages of one subspace synthesis, per band at index level * channels + channel, over
-// that level's window (level_regions()): the band (mean + CAR field) and the collapsed level G.
-// Stored in double; float32 values convert exactly.
+// that level's window (level_regions()): the band (mean + CAR field) as the float32 synthesis computes
+// it. collapse_band_stages() then turns them into the collapsed levels G, in place: one image-sized copy
+// of the stages at a time (conform compares 4096^2 fields). A caller may free each once it has used it.
 struct SubspaceStages {
   std::vector<TextureRegion> regions;  // per level
-  std::vector<std::vector<double>> band;
-  std::vector<std::vector<double>> collapsed;
+  std::vector<std::vector<float>> band;
 };
+
+// Adds to each band the expanded collapsed level above it, coarsest first, with the synthesis's own
+// operations: afterwards `stages.band[i]` holds the collapsed level G. Throws std::invalid_argument when
+// the bands do not match the regions.
+void collapse_band_stages(SubspaceStages& stages);
 
 // Synthesizes subspace image `subspace` into `out` (width * height * channels). Throws
 // std::invalid_argument for a subspace index out of range, an output span too small or initial values
-// of the wrong size. With `stages`, also keeps every band and collapsed level.
+// of the wrong size. With `stages`, also keeps every band.
 // Block-wise synthesis: `initial_values` (empty: every recursion starts from zeros) are the block
 // initialization values laid out by block_frame_layout(material, block, {subspace}), as
 // block_initial_values() computes them.
@@ -45,8 +50,7 @@ void synthesize_subspace(const Material& material, std::uint32_t subspace, const
                          std::span<float> out, SubspaceStages* stages = nullptr,
                          std::span<const float> initial_values = {});
 void synthesize_subspace(const Material& material, std::uint32_t subspace, const SubspaceBlock& block,
-                         std::span<double> out, SubspaceStages* stages = nullptr,
-                         std::span<const float> initial_values = {});
+                         std::span<double> out, std::span<const float> initial_values = {});
 
 // Synthesizes the listed subspace images (empty: all) with one task per image on `threads` threads (0:
 // all hardware threads). Result indexed by subspace id, empty where not listed. `initial_values` as
