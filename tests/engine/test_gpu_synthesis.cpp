@@ -38,6 +38,24 @@ SynthesizedImages gpu_synthesize(SubspaceSynthesizer& synthesizer, const Materia
   return images;
 }
 
+// The GPU interpolation of the prepared images at `query` (light theta, phi, view theta, phi) against
+// the CPU blend of `images`, bit for bit; returns the query's weights.
+PairWeights require_gpu_interpolation_equal(SubspaceSynthesizer& synthesizer, const Material& m,
+                                            const SynthesizedImages& images, const std::array<double, 4>& query) {
+  DirectionTriangulation lights, views;
+  REQUIRE(build_direction_triangulation(m.lights, lights).ok());
+  REQUIRE(build_direction_triangulation(m.views, views).ok());
+  const PairWeights weights = pair_weights(lights, views, query[0], query[1], query[2], query[3]);
+  std::vector<float> gpu;
+  const Status status = synthesizer.interpolate(m, weights, gpu);
+  INFO(status.message());
+  REQUIRE(status.ok());
+  std::vector<float> cpu(gpu.size());
+  reference::interpolate_subspaces(m, weights, images.images, cpu);
+  test::require_bitwise_equal(gpu, cpu);
+  return weights;
+}
+
 }  // namespace
 
 TEST_CASE("GPU subspace images equal the CPU float32 reference bit for bit, in both CAR schemes",
@@ -144,17 +162,10 @@ TEST_CASE("results larger than one readback band come back whole and release() f
     INFO("subspace " << s);
     test::require_bitwise_equal(images.images[s], cpu_subspace(m, s, request), std::size_t{request.width} * 3);
   }
-  DirectionTriangulation lights, views;
-  REQUIRE(build_direction_triangulation(m.lights, lights).ok());
-  REQUIRE(build_direction_triangulation(m.views, views).ok());
-  const PairWeights weights = pair_weights(lights, views, 0.3, 0.4, 0.9, 2.0);
-  std::vector<float> gpu;
-  REQUIRE(synthesizer->interpolate(m, weights, gpu).ok());
-  std::vector<float> cpu(gpu.size());
-  reference::interpolate_subspaces(m, weights, images.images, cpu);
-  test::require_bitwise_equal(gpu, cpu);
+  const PairWeights weights = require_gpu_interpolation_equal(*synthesizer, m, images, {0.3, 0.4, 0.9, 2.0});
 
   synthesizer->release();
+  std::vector<float> gpu;
   CHECK(synthesizer->image() == VK_NULL_HANDLE);
   CHECK_FALSE(synthesizer->interpolate(m, weights, gpu).ok());
   request.height = 64;  // a later synthesis prepares afresh
@@ -202,20 +213,10 @@ TEST_CASE("GPU interpolation equals the CPU blend of the same subspace images",
   request.height = 64;
   request.margin = 16;
   const SynthesizedImages images = gpu_synthesize(*synthesizer, m, request);
-  DirectionTriangulation lights, views;
-  REQUIRE(build_direction_triangulation(m.lights, lights).ok());
-  REQUIRE(build_direction_triangulation(m.views, views).ok());
-  for (const auto& [lt, lp, vt, vp] :
+  for (const std::array<double, 4>& query :
        {std::array<double, 4>{0.3, 0.4, 0.9, 2.0}, std::array<double, 4>{1.5, 5.0, 0.0, 0.0},
         std::array<double, 4>{0.6, 0.0, 0.6, 2.1}}) {
-    const PairWeights weights = pair_weights(lights, views, lt, lp, vt, vp);
-    std::vector<float> gpu;
-    const Status status = synthesizer->interpolate(m, weights, gpu);
-    INFO(status.message());
-    REQUIRE(status.ok());
-    std::vector<float> cpu(gpu.size());
-    reference::interpolate_subspaces(m, weights, images.images, cpu);
-    test::require_bitwise_equal(gpu, cpu);
+    require_gpu_interpolation_equal(*synthesizer, m, images, query);
   }
   context.require_clean();
 }
