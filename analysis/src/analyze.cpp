@@ -90,42 +90,56 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
   if (toned || options.deshade_floor > 0.0) {
     undo_parallax(channels, range_map, dataset.views()[pair.view].vector(), kAnalysisParallaxScale);
   }
-  if (toned) divide_shading(channels, tone, kReliefToneFloor);
   const Plane relit = relit_factor(range_map, dataset.lights()[pair.light].vector(), light_z_floor);
-  if (options.deshade_floor > 0.0) divide_shading(channels, relit, options.deshade_floor);
-  if (!toned || options.remainder_clamps.empty()) return fit_channels(channels, pair, options, notes);
+  // The smooth texture a model of tone weight `weight` is fitted to: the tone's share and, with
+  // --deshade, the relit factor divided out.
+  const auto prepared = [&](double weight) {
+    std::vector<Plane> smooth = channels;
+    if (toned && weight > 0.0) divide_shading(smooth, weighted_tone(tone, weight), kReliefToneFloor);
+    if (options.deshade_floor > 0.0) divide_shading(smooth, relit, options.deshade_floor);
+    return smooth;
+  };
+  if (!toned || options.remainder_clamps.empty()) return fit_channels(prepared(1.0), pair, options, notes);
 
-  // Each candidate clamp gives a model; the one whose image, as the render pass composes it (smooth
-  // texture x tone x relit factor), is nearest the measured image by the texture-similarity measure
-  // wins. Every candidate is synthesized from the same noise, so only the model differs.
+  // Each candidate (tone weight, clamp) gives a model; the one whose image, as the render pass
+  // composes it (smooth texture x its share of the tone x relit factor), is nearest the measured image
+  // by the texture-similarity measure wins. Every candidate is synthesized from the same noise, so
+  // only the model differs.
   const TextureStatistics measured = texture_statistics(rgb, width, height);
+  const std::vector<double> weights = options.tone_weights.empty() ? std::vector<double>{1.0} : options.tone_weights;
   std::optional<SubspaceModel> best;
   double best_distance = 0.0, best_clamp = 0.0;
   std::vector<std::string> best_notes;
-  for (const double clamp : options.remainder_clamps) {
-    std::vector<Plane> clamped = channels;
-    if (clamp > 0.0) clamp_remainder(clamped, clamp);
-    std::vector<std::string> candidate_notes;
-    Material single;
-    single.subspaces.push_back(fit_channels(clamped, pair, options, candidate_notes));
-    std::vector<float> image(rgb.size());
-    reference::SubspaceBlock block;  // the default burn-in, as synthesis uses
-    block.seed = options.segmentation.seed;
-    block.width = width;
-    block.height = height;
-    reference::synthesize_subspace(single, 0, block, image);
-    apply_relief(image, tone, relit);
-    const double distance = texture_distance(texture_statistics(image, width, height), measured).total;
-    if (!best || distance < best_distance) {
-      best = std::move(single.subspaces[0]);
-      best_distance = distance;
-      best_clamp = clamp;
-      best_notes = std::move(candidate_notes);
+  for (const double weight : weights) {
+    const std::vector<Plane> smooth = prepared(weight);
+    const Plane share = weighted_tone(tone, weight);
+    for (const double clamp : options.remainder_clamps) {
+      std::vector<Plane> clamped = smooth;
+      if (clamp > 0.0) clamp_remainder(clamped, clamp);
+      std::vector<std::string> candidate_notes;
+      Material single;
+      single.subspaces.push_back(fit_channels(clamped, pair, options, candidate_notes));
+      single.subspaces[0].tone_weight = static_cast<float>(weight);
+      std::vector<float> image(rgb.size());
+      reference::SubspaceBlock block;  // the default burn-in, as synthesis uses
+      block.seed = options.segmentation.seed;
+      block.width = width;
+      block.height = height;
+      reference::synthesize_subspace(single, 0, block, image);
+      apply_relief(image, share, relit);
+      const double distance = texture_distance(texture_statistics(image, width, height), measured).total;
+      if (!best || distance < best_distance) {
+        best = std::move(single.subspaces[0]);
+        best_distance = distance;
+        best_clamp = clamp;
+        best_notes = std::move(candidate_notes);
+      }
     }
   }
   notes = std::move(best_notes);
-  char line[120];
-  std::snprintf(line, sizeof line, "remainder clamp %.2g chosen of %zu (texture distance %.3f)", best_clamp, options.remainder_clamps.size(), best_distance);
+  char line[160];
+  std::snprintf(line, sizeof line, "tone weight %.2g, remainder clamp %.2g chosen of %zu candidates (texture distance %.3f)",
+                static_cast<double>(best->tone_weight), best_clamp, weights.size() * options.remainder_clamps.size(), best_distance);
   notes.emplace_back(line);
   return *best;
 }

@@ -266,7 +266,8 @@ struct MaterialTablesHeader {
   uint layer_table;  // lights * views uints, [light * views + view]: the texture layer, or CARBTF_NO_LAYER
   uint width;        // texels of the subspace images and of the range map
   uint height;
-  uint reserved0;
+  uint tone_weight_table;  // lights * views floats (as uint bits), [light * views + view]: the pair's
+                           // subspace's tone weight (SubspaceModel::tone_weight)
   float parallax_scale;  // parallax offset in texels = parallax_scale * (height - range_mean) * view.xy
   float range_mean;
   float light_z_floor;  // cos of the largest measured light elevation: the relit factor's denominator floor

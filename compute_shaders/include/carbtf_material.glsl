@@ -168,9 +168,10 @@ void carbtf_direction_weights(DirectionLookupGpu set, vec2 p, out uvec3 index, o
   weight /= weight.x + weight.y + weight.z;
 }
 
-// The smooth BTF colour at (already parallax-shifted) uv for tangent-frame light and view directions:
-// sum over the 3 x 3 nearest measured (light, view) pairs of weight * subspace image of the pair.
-vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, vec3 view) {
+// The smooth BTF colour at (already parallax-shifted) uv for tangent-frame light and view directions,
+// with the relief tone `tone` at uv: sum over the 3 x 3 nearest measured (light, view) pairs of
+// weight * (1 + tone weight * (tone - 1)) * subspace image of the pair.
+vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, vec3 view, float tone) {
   uvec3 li, vi;
   vec3 lw, vw;
   carbtf_direction_weights(carbtf_header.lights, carbtf_project_direction(light), li, lw);
@@ -184,13 +185,15 @@ vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, vec3 view) {
       if (w == 0.0) continue;
       uint layer = carbtf_data[carbtf_header.layer_table + li[i] * views + vi[j]];
       if (layer == CARBTF_NO_LAYER) continue;
-      colour += w * carbtf_subspace_texel(b, layer);
+      float tone_weight = uintBitsToFloat(carbtf_data[carbtf_header.tone_weight_table + li[i] * views + vi[j]]);
+      colour += (w * (1.0 + tone_weight * (tone - 1.0))) * carbtf_subspace_texel(b, layer);
     }
   }
   return colour;
 }
 
-// The material under one light: the interpolated smooth BTF times the relief tone times the range map
+// The material under one light: the interpolated smooth BTF, each image with its share of the relief
+// tone, times the range map
 // relit for the light, max(N.L, 0) / max(L.z, light_z_floor). The measured images already hold the flat surface's cosine
 // falloff (L.z), so the relit factor swaps it for the local facet's and a flat range map changes
 // nothing. Beyond the last measured elevation the interpolation holds that ring's images, whose
@@ -200,7 +203,7 @@ vec3 carbtf_material_shade(vec2 uv, vec3 light, vec3 view) {
   if (light.z <= 0.0 || view.z <= 0.0) return vec3(0.0);
   vec3 n = carbtf_normal(uv);
   float relit = max(dot(n, light), 0.0) / max(light.z, carbtf_header.light_z_floor);
-  return (relit * carbtf_tone(uv)) * carbtf_interpolated_btf(uv, light, view);
+  return relit * carbtf_interpolated_btf(uv, light, view, carbtf_tone(uv));
 }
 
 #endif  // CARBTF_MATERIAL_GLSL

@@ -80,6 +80,7 @@ Status validate_subspace(const SubspaceModel& s, std::size_t index, const Materi
   if (s.colour_mean.size() != s.channels || s.colour_transform.size() != std::size_t{s.channels} * s.channels) return invalid(where + " has a colour transform of the wrong size");
   if (!all_bounded(s.colour_mean) || !all_bounded(s.colour_transform)) return invalid(where + " has a colour mean or transform entry that is not finite or beyond +-" + magnitude_text());
   if (s.bands.size() != std::size_t{s.levels} * s.channels) return invalid(where + " has " + std::to_string(s.bands.size()) + " bands, not levels x channels");
+  if (!(s.tone_weight >= 0.0f && s.tone_weight <= 1.0f)) return invalid(where + " has tone weight " + std::to_string(s.tone_weight) + ", outside 0..1");
   for (std::size_t b = 0; b < s.bands.size(); ++b) {
     const std::string band = where + " level " + std::to_string(b / s.channels) + " band " + std::to_string(b % s.channels);
     if (Status status = validate_band(s.bands[b], band); !status.ok()) return status;

@@ -1,6 +1,7 @@
 #include "carbtf/engine/material_binding.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -118,6 +119,14 @@ Status MaterialBinding::create(Context& context, const Material& material, const
                                                                       static_cast<std::uint32_t>(v))]
                                         : textures.pair_layers[l * material.views.size() + v];
         r.tables.push_back(layer == std::numeric_limits<std::uint32_t>::max() ? gpu::CARBTF_NO_LAYER : layer);
+      }
+    }
+    header.tone_weight_table = static_cast<std::uint32_t>(r.tables.size() - kHeaderWords);
+    for (std::size_t l = 0; l < material.lights.size(); ++l) {
+      for (std::size_t v = 0; v < material.views.size(); ++v) {
+        const std::uint32_t s =
+            subspace_of(material, static_cast<std::uint32_t>(l), static_cast<std::uint32_t>(v));
+        r.tables.push_back(std::bit_cast<std::uint32_t>(material.subspaces[s].tone_weight));
       }
     }
     header.width = textures.width;

@@ -22,8 +22,8 @@ constexpr std::array<std::uint8_t, 4> kMagic{'C', 'B', 'T', 'F'};
 constexpr std::uint32_t kMaxChunks = 64;
 constexpr std::size_t kChunkOverhead = 12;  // tag, size, CRC
 
-enum class Chunk { settings, directions, index, subspaces, range, tone, count };
-constexpr std::array<std::string_view, static_cast<std::size_t>(Chunk::count)> kChunkTags{"SETT", "DIRS", "INDX", "SUBS", "RNGE", "TONE"};
+enum class Chunk { settings, directions, index, subspaces, range, tone, tone_weights, count };
+constexpr std::array<std::string_view, static_cast<std::size_t>(Chunk::count)> kChunkTags{"SETT", "DIRS", "INDX", "SUBS", "RNGE", "TONE", "TWGT"};
 
 // A deflated chunk (format 1.1): payload = inner tag (4 bytes), u32 inner payload size, u8 filter
 // stride (0: none; s: each byte stored minus the byte s before it, as PNG's Sub filter, which turns
@@ -287,6 +287,25 @@ bool decode_range(ByteReader& r, Material& m) {
   return !r.failed();
 }
 
+// Optional (format 1.2): written only when a subspace takes less than the whole tone.
+bool has_tone_weights(const Material& m) {
+  return std::any_of(m.subspaces.begin(), m.subspaces.end(), [](const SubspaceModel& s) { return s.tone_weight != 1.0f; });
+}
+
+void encode_tone_weights(const Material& m, ByteWriter& w) {
+  w.u32(static_cast<std::uint32_t>(m.subspaces.size()));
+  for (const SubspaceModel& s : m.subspaces) w.f32(s.tone_weight);
+}
+
+// Into `weights`: the subspaces may come later in the file.
+bool decode_tone_weights(ByteReader& r, std::vector<float>& weights) {
+  const std::uint32_t count = r.u32();
+  if (r.failed() || count > kMaxSubspaces || !r.can_read(count, 4)) return false;
+  weights.resize(count);
+  for (float& w : weights) w = r.f32();
+  return !r.failed();
+}
+
 bool decode_tone(ByteReader& r, Material& m) {
   RangeTiles& t = m.range;
   t.tone_offset = r.f32();
@@ -357,13 +376,16 @@ Status encode_material(const Material& material, std::vector<std::uint8_t>& out,
   w.bytes(kMagic);
   w.u16(kMaterialFormatMajor);
   w.u16(kMaterialFormatMinor);
-  const bool has_tone = !material.range.tone.empty();
-  w.u32(static_cast<std::uint32_t>(Chunk::count) - (has_tone ? 0u : 1u));
+  std::array<bool, static_cast<std::size_t>(Chunk::count)> written{};
+  written.fill(true);
+  written[static_cast<std::size_t>(Chunk::tone)] = !material.range.tone.empty();
+  written[static_cast<std::size_t>(Chunk::tone_weights)] = has_tone_weights(material);
+  w.u32(static_cast<std::uint32_t>(std::count(written.begin(), written.end(), true)));
   using Encoder = void (*)(const Material&, ByteWriter&);
-  constexpr std::array<Encoder, static_cast<std::size_t>(Chunk::count)> encoders{encode_settings, encode_directions, encode_index,
-                                                                                encode_subspaces, encode_range, encode_tone};
+  constexpr std::array<Encoder, static_cast<std::size_t>(Chunk::count)> encoders{
+      encode_settings, encode_directions, encode_index, encode_subspaces, encode_range, encode_tone, encode_tone_weights};
   for (std::size_t c = 0; c < encoders.size(); ++c) {
-    if (static_cast<Chunk>(c) == Chunk::tone && !has_tone) continue;
+    if (!written[c]) continue;
     std::vector<std::uint8_t> payload;
     ByteWriter payload_writer(payload);
     encoders[c](material, payload_writer);
@@ -385,6 +407,7 @@ Status decode_material(std::span<const std::uint8_t> bytes, const std::string& n
   Material m;
   std::array<bool, static_cast<std::size_t>(Chunk::count)> seen{};
   std::uint32_t index_lights = 0, index_views = 0;
+  std::vector<float> tone_weights;
   Status walked = walk_chunks(bytes, name, [&](std::span<const std::uint8_t> outer_tag, std::span<const std::uint8_t> outer_payload) -> Status {
     std::span<const std::uint8_t> tag = outer_tag;
     std::span<const std::uint8_t> payload = outer_payload;
@@ -410,6 +433,7 @@ Status decode_material(std::span<const std::uint8_t> bytes, const std::string& n
       case Chunk::subspaces: ok = decode_subspaces(r, m); break;
       case Chunk::range: ok = decode_range(r, m); break;
       case Chunk::tone: ok = decode_tone(r, m); break;
+      case Chunk::tone_weights: ok = decode_tone_weights(r, tone_weights); break;
       case Chunk::count: break;
     }
     if (!ok) return fail(name, "chunk " + printable_tag(tag) + " is truncated or has out-of-range counts");
@@ -418,12 +442,20 @@ Status decode_material(std::span<const std::uint8_t> bytes, const std::string& n
   });
   if (!walked.ok()) return walked;
   for (std::size_t c = 0; c < seen.size(); ++c) {
-    const bool optional = static_cast<Chunk>(c) == Chunk::settings || static_cast<Chunk>(c) == Chunk::tone;
+    const bool optional = static_cast<Chunk>(c) == Chunk::settings || static_cast<Chunk>(c) == Chunk::tone ||
+                          static_cast<Chunk>(c) == Chunk::tone_weights;
     if (!seen[c] && !optional) return fail(name, "chunk " + std::string(kChunkTags[c]) + " is missing");
   }
   if (index_lights != m.lights.size() || index_views != m.views.size()) {
     return fail(name, "the index table is " + std::to_string(index_lights) + " x " + std::to_string(index_views) + " but there are " +
                           std::to_string(m.lights.size()) + " lights and " + std::to_string(m.views.size()) + " views");
+  }
+  if (seen[static_cast<std::size_t>(Chunk::tone_weights)]) {
+    if (tone_weights.size() != m.subspaces.size()) {
+      return fail(name, "chunk TWGT has " + std::to_string(tone_weights.size()) + " tone weights for " +
+                            std::to_string(m.subspaces.size()) + " subspaces");
+    }
+    for (std::size_t s = 0; s < tone_weights.size(); ++s) m.subspaces[s].tone_weight = tone_weights[s];
   }
   if (Status s = validate_material(m); !s.ok()) return fail(name, s.message());
   out = std::move(m);

@@ -89,6 +89,13 @@ void register_analyze_command(CLI::App& app) {
       ->check(CLI::Range(0.0, 100.0))
       ->delimiter(',')
       ->capture_default_str();
+  command->add_option("--tone-weights", a.tone_weights,
+                      "With the relief tone, the candidate shares of the tone each subspace image takes (0: none, 1: all); "
+                      "per subspace the one whose model looks nearest the measurement is kept, with its clamp. One value "
+                      "fixes it")
+      ->check(CLI::Range(0.0, 1.0))
+      ->delimiter(',')
+      ->capture_default_str();
   command->add_option("--deshade", a.deshade_floor,
                       "Divide the representative pair's relit range map out of each subspace image before fitting, the factor "
                       "floored at this value (0: off)")

@@ -83,6 +83,15 @@ void run_material_info(const std::string& path) {
   } else {
     std::printf("range tiles:  none\n");
   }
+  if (!material.range.tone.empty()) {
+    std::size_t whole = 0, none = 0;
+    for (const SubspaceModel& s : material.subspaces) {
+      whole += s.tone_weight == 1.0f ? 1 : 0;
+      none += s.tone_weight == 0.0f ? 1 : 0;
+    }
+    std::printf("relief tone:  taken whole by %zu subspaces, by none %zu, in part by %zu\n", whole, none,
+                material.subspaces.size() - whole - none);
+  }
   std::printf("file size:    %zu bytes (%.1f KiB)\n", bytes.size(), static_cast<double>(bytes.size()) / 1024.0);
   std::printf("  %-6s %10s %7s\n", "chunk", "bytes", "share");
   std::printf("  %-6s %10d %6.1f%%\n", "header", 12, 1200.0 / static_cast<double>(bytes.size()));

@@ -242,6 +242,49 @@ TEST_CASE("a relief tone outside its range or of the wrong size is refused", "[m
   CHECK_THAT(message(short_tone), Catch::Contains("the relief tone has"));
 }
 
+TEST_CASE("tone weights read back, are left out when all 1, and are refused out of range", "[material_file][tone]") {
+  Material m = sample_material();
+  const std::string twgt = "TWGT";
+  SECTION("all 1: no TWGT chunk, as a format 1.1 file") {
+    const std::vector<std::uint8_t> bytes = encoded(m);
+    CHECK(std::search(bytes.begin(), bytes.end(), twgt.begin(), twgt.end()) == bytes.end());
+    Material back;
+    REQUIRE(decode_material(bytes, "x.cbtf", back).ok());
+    for (const SubspaceModel& s : back.subspaces) CHECK(s.tone_weight == 1.0f);
+  }
+  SECTION("per subspace, plain and deflated") {
+    m.subspaces[0].tone_weight = 0.0f;
+    m.subspaces[2].tone_weight = 0.5f;
+    for (const auto& bytes : {encoded(m), deflated(m)}) {
+      Material back;
+      REQUIRE(decode_material(bytes, "x.cbtf", back).ok());
+      CHECK(back == m);
+    }
+    std::vector<std::uint8_t> bytes = encoded(m);
+    const auto at = static_cast<std::size_t>(std::search(bytes.begin(), bytes.end(), twgt.begin(), twgt.end()) - bytes.begin());
+    REQUIRE(at < bytes.size());
+    SECTION("a weight beyond 1") {
+      const float two = 2.0f;
+      std::memcpy(&bytes[at + 8 + 4 + 4 * 2], &two, 4);  // tag, size, count, then subspace 2's weight
+      fix_crcs(bytes);
+      Material back;
+      const Status s = decode_material(bytes, "bad.cbtf", back);
+      CHECK_THAT(s.message(), Catch::Contains("bad.cbtf") && Catch::Contains("subspace 2 has tone weight 2") && Catch::Contains("outside 0..1"));
+    }
+    SECTION("a count that is not the subspaces'") {
+      bytes[at + 8] = 2;  // 2 weights claimed, 3 stored: the chunk then has trailing bytes
+      fix_crcs(bytes);
+      Material back;
+      CHECK_FALSE(decode_material(bytes, "bad.cbtf", back).ok());
+    }
+  }
+  SECTION("validation names the subspace") {
+    m.subspaces[1].tone_weight = std::nanf("");
+    const Status s = validate_material(m);
+    CHECK_THAT(s.message(), Catch::Contains("subspace 1 has tone weight"));
+  }
+}
+
 TEST_CASE("10,000 random corruptions and truncations are rejected or read without a crash", "[material_file][fuzz]") {
   const bool deflate = GENERATE(false, true);
   INFO("deflated chunks: " << deflate);

@@ -98,7 +98,8 @@ TEST_CASE("lookup grids give the triangulation's weights, inside and beyond the 
 
 TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment stage", "[render][gpu]") {
   test::ValidatedContext context;
-  const Material m = test::bumpy_material();
+  // With a relief tone and a different tone weight per subspace (0 to 1), which both sides must apply.
+  const Material m = test::bumpy_material(true);
   SynthesizedImages images;
   auto synthesizer = synthesized(*context, m, images);
   MaterialBindingInfo binding_info;
@@ -185,6 +186,16 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
   // 1e-6 RMS; allowed: 1e-4 of the peak at any pixel, 1e-5 RMS.
   CHECK(worst <= 1e-4 * peak);
   CHECK(rms <= 1e-5 * peak);
+
+  // Tone weight 0 everywhere renders as no tone at all; weight 1 does not.
+  Material untoned = m;
+  for (SubspaceModel& s : untoned.subspaces) s.tone_weight = 0.0f;
+  reference::ReferenceRenderInput weightless = input, toneless = input;
+  weightless.material = &untoned;
+  toneless.tone_map = {};
+  const auto cpu_weightless = reference::render_plane(weightless, scene, target.width, target.height, target.clear);
+  CHECK(cpu_weightless == reference::render_plane(toneless, scene, target.width, target.height, target.clear));
+  CHECK(cpu_weightless != cpu);
   context.require_clean();
 }
 

@@ -10,7 +10,8 @@
 namespace carbtf::test {
 
 // A material with a bumpy range map: the synthetic models plus tiles cut from a smooth random surface.
-inline Material bumpy_material() {
+// `toned`: with a relief tone that follows the relief and a different tone weight per subspace.
+inline Material bumpy_material(bool toned = false) {
   Material m = synthetic_material(5, 2);
   Plane heights(48, 48);
   std::mt19937 random(11);
@@ -22,7 +23,14 @@ inline Material bumpy_material() {
   }
   RangeTileOptions options;
   options.tile_size = 16;
-  m.range = build_range_tiles(heights, options);
+  if (!toned) {
+    m.range = build_range_tiles(heights, options);
+    return m;
+  }
+  const Plane tone = 0.9 + 0.5 * (0.5 * heights).sin();
+  m.range = build_range_tiles(heights, options, &tone);
+  const float weights[] = {1.0f, 0.0f, 0.5f, 0.25f, 1.0f};
+  for (std::size_t s = 0; s < m.subspaces.size(); ++s) m.subspaces[s].tone_weight = weights[s % 5];
   return m;
 }
 

@@ -52,6 +52,8 @@ void clamp_remainder(std::vector<Plane>& channels, double k) {
   }
 }
 
+Plane weighted_tone(const Plane& tone, double weight) { return 1.0 + weight * (tone - 1.0); }
+
 void apply_relief(std::span<float> rgb, const Plane& tone, const Plane& relit) {
   const auto pixels = static_cast<std::size_t>(tone.size());
   if (relit.rows() != tone.rows() || relit.cols() != tone.cols() || rgb.size() != pixels * 3) {

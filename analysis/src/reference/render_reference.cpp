@@ -150,10 +150,11 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
           if (w.weight[k] == 0.0f) continue;
           const std::uint32_t subspace = subspace_of(material, w.light[k], w.view[k]);
           if (input.images->images[subspace].empty()) continue;
-          btf += w.weight[k] * sampler.subspace_at(bilinear, subspace);
+          const float tone_weight = material.subspaces[subspace].tone_weight;
+          btf += (w.weight[k] * (1.0f + tone_weight * (tone - 1.0f))) * sampler.subspace_at(bilinear, subspace);
         }
         const float relit = std::max(glm::dot(normal, l), 0.0f) / std::max(l.z, light_z_floor);
-        colour += falloff * glm::vec3(light.colour[0], light.colour[1], light.colour[2]) * (relit * tone) * btf;
+        colour += falloff * glm::vec3(light.colour[0], light.colour[1], light.colour[2]) * relit * btf;
       }
       pixel[0] = colour.r;
       pixel[1] = colour.g;

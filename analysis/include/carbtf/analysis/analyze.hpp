@@ -39,6 +39,11 @@ struct AnalysisOptions {
   // by the texture-similarity measure is kept: a woven material wants a tight clamp (its remainder
   // is relief the CAR can only turn into speckle), a stochastic one a loose one. Empty: no clamp.
   std::vector<double> remainder_clamps = {0.25, 0.5, 1.0, 1.5, 2.0, 3.0};
+  // With the relief tone: the candidate shares of the tone a subspace image takes (SubspaceModel::
+  // tone_weight), chosen per subspace together with the clamp by the same measure. On
+  // coast_sand_rocks the whole tone helps under low and grazing light yet doubles the shading the
+  // image already holds at 45 degrees. Empty: the whole tone everywhere.
+  std::vector<double> tone_weights = {0.0, 1.0};
   double deshade_floor = 0.0;        // > 0: divide the relit range map out before fitting, floored here (model/deshade.hpp)
   RangeTileOptions tiles;            // its seed is ignored: the tiles follow segmentation.seed
   unsigned threads = 0;              // 0: all hardware threads

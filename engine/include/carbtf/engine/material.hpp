@@ -62,6 +62,11 @@ struct SubspaceModel {
   std::vector<float> colour_mean;       // channels, linear RGB (or spectral) mean
   std::vector<float> colour_transform;  // channels x channels, row-major: colour[i] = mean[i] + sum_j T[i][j] band[j]
   std::vector<CarBandModel> bands;      // levels * channels
+  // How much of the relief tone this subspace image takes, in [0, 1]: the render multiplies it by
+  // 1 + tone_weight * (tone - 1). The analysis chooses it per subspace by the texture measure, since
+  // the tone (the crease darkening of the photometric-stereo view) helps some lights and views and
+  // doubles shading the image already holds under others. 1 when the material has no tone.
+  float tone_weight = 1.0f;
   bool operator==(const SubspaceModel&) const = default;
 };
 

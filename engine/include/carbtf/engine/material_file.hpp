@@ -18,6 +18,9 @@
 //   TONE  (1.1, optional) f32 tone_offset, f32 tone_scale, u32 count, u8 tone[count]: the relief tone
 //         per patch texel (count = the patches' texel count). A 1.0 reader skips it and renders the
 //         smooth texture without the crease darkening it carries.
+//   TWGT  (1.2, optional) u32 count, f32 tone_weight per subspace (count = the subspaces): how much of
+//         the relief tone each subspace image takes. Absent, every weight is 1 (as a 1.1 file means);
+//         a 1.1 reader skips it and applies the whole tone everywhere.
 // A reader of major version 1 rejects any other major version. Every count is bounded (material.hpp)
 // before anything is allocated, every read is bounds-checked, and the decoded material is validated,
 // so a truncated, corrupted or hostile file gives an error, never a crash or an unbounded allocation.
@@ -34,7 +37,7 @@
 namespace carbtf {
 
 inline constexpr std::uint16_t kMaterialFormatMajor = 1;
-inline constexpr std::uint16_t kMaterialFormatMinor = 1;
+inline constexpr std::uint16_t kMaterialFormatMinor = 2;
 
 struct MaterialEncoding {
   // Deflate every chunk but SETT where that is smaller (format 1.1). Off, every chunk is stored plain:

@@ -37,8 +37,13 @@ Plane relief_tone(const BtfDataset& dataset, std::uint32_t view, const Plane& ra
 // map draw the relief; the CAR keeps the smooth texture between.
 void clamp_remainder(std::vector<Plane>& channels, double k);
 
+// The tone as a subspace image of tone weight `weight` takes it: 1 + weight * (tone - 1), as the
+// render pass composes it (SubspaceModel::tone_weight).
+Plane weighted_tone(const Plane& tone, double weight);
+
 // The render pass's product for one measured pair, without parallax or direction interpolation:
-// every pixel of `rgb` (interleaved RGB, row-major, the planes' size) times tone x relit. What the
+// every pixel of `rgb` (interleaved RGB, row-major, the planes' size) times tone x relit (pass the
+// subspace's weighted_tone()). What the
 // analysis scores when it chooses the remainder clamp, and `bench synth` when it scores a synthesis.
 void apply_relief(std::span<float> rgb, const Plane& tone, const Plane& relit);
 
