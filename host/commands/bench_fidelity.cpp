@@ -48,9 +48,9 @@ const std::vector<ModelVariant>& model_variants() {
          o.tiles.height_bits = 9;
          o.tiles.tone_bits = 5;
        }},
-      {"default", "relief tone, 128-texel tiles, 9-bit heights, tone weight and remainder clamp chosen per subspace", [](AnalysisOptions&) {}},
-      {"whole_tone", "the default with the whole relief tone on every subspace (no tone weight chosen)",
-       [](AnalysisOptions& o) { o.tone_weights = {1.0}; }},
+      {"default", "relief tone, 128-texel tiles, 9-bit heights, remainder clamp chosen per subspace", [](AnalysisOptions&) {}},
+      {"tone_weights", "the default with each subspace's share of the relief tone (0 or 1) chosen with its clamp",
+       [](AnalysisOptions& o) { o.tone_weights = {0.0, 1.0}; }},
       {"fixed_clamp", "the default with the remainder clamp fixed at 1.5", [](AnalysisOptions& o) { o.remainder_clamps = {1.5}; }},
       {"levels4", "the default with 4 pyramid levels", [](AnalysisOptions& o) { o.pyramid_levels = 4; }},
       {"collapse", "the default with the collapse calibration", [](AnalysisOptions& o) { o.calibrate_collapse = true; }},
