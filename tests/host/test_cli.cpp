@@ -326,6 +326,21 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
     CHECK(line_count(csv) == 5);  // header + 4 frames
     CHECK(fs::exists(out / "bench_frame.md"));
   }
+  SECTION("tone weights: each subspace's share of the relief tone, chosen or fixed, stored and shown by info") {
+    const fs::path btf = folder / "leather" / "btf";
+    const fs::path none = folder / "tone_none.cbtf", chosen = folder / "tone_chosen.cbtf";
+    REQUIRE(run("analyze " + btf.string() + " --subspaces 8 --levels 2 --tone-weights 0 --out " + none.string()).status == 0);
+    const Run info_none = run("info " + none.string());
+    CHECK_THAT(info_none.output, Catch::Contains("relief tone:  taken whole by 0 subspaces, by none 8") && Catch::Contains("TWGT"));
+    const Run with_choice = run("analyze " + btf.string() + " --subspaces 8 --levels 2 --tone-weights 0,1 --out " + chosen.string());
+    INFO(with_choice.output);
+    REQUIRE(with_choice.status == 0);
+    CHECK_THAT(with_choice.output, Catch::Contains("chosen of 12 candidates"));
+    CHECK_THAT(run("info " + material.string()).output, Catch::Contains("taken whole by 8 subspaces") && !Catch::Contains("TWGT"));
+    const Run out_of_range = run("analyze " + btf.string() + " --tone-weights 2 --out " + (folder / "bad.cbtf").string());
+    CHECK(out_of_range.status != 0);
+    CHECK_THAT(out_of_range.output, Catch::Contains("--tone-weights"));
+  }
   SECTION("bad analysis arguments") {
     for (const auto& [arguments, expected] : std::vector<std::pair<std::string, std::string>>{
              {"analyze " + (folder / "leather" / "btf").string() + " --out x.cbtf --subspaces 21", "--subspaces"},
