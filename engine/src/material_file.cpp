@@ -6,11 +6,13 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <string_view>
 
 #include <zlib.h>
 
 #include "byte_stream.hpp"
+#include "raster_prediction.hpp"
 
 namespace carbtf {
 namespace {
@@ -25,26 +27,136 @@ constexpr std::size_t kChunkOverhead = 12;  // tag, size, CRC
 enum class Chunk { settings, directions, index, subspaces, range, tone, tone_weights, count };
 constexpr std::array<std::string_view, static_cast<std::size_t>(Chunk::count)> kChunkTags{"SETT", "DIRS", "INDX", "SUBS", "RNGE", "TONE", "TWGT"};
 
-// A deflated chunk (format 1.1): payload = inner tag (4 bytes), u32 inner payload size, u8 filter
-// stride (0: none; s: each byte stored minus the byte s before it, as PNG's Sub filter, which turns
-// smooth u16 and u8 rasters into small repeated values), then one zlib stream of the filtered payload.
+// A deflated chunk (format 1.1): payload = inner tag (4 bytes), u32 inner payload size, u8 filter, the
+// filter's parameters, then one zlib stream of the filtered payload. Filters:
+//   0         none;
+//   1..8      Sub with that stride: each byte stored minus the byte `stride` before it, as PNG's Sub
+//             filter, which turns smooth u16 and u8 rasters into small repeated values (no parameters);
+//   9 (1.3)   raster: u32 skip, u8 value bytes (1 or 2, little-endian), u32 width, u32 height, u32
+//             rasters, u8 rest stride. The payload's first `skip` bytes are stored as they are; the
+//             `rasters` row-major rasters after them are stored as each value minus its prediction
+//             (raster_prediction.hpp), modulo 2^(8 value bytes), zigzag-mapped (0, -1, 1, -2, ... to 0,
+//             1, 2, 3, ...), low bytes of every value first, then high bytes; the bytes after the
+//             rasters take the Sub filter of `rest stride` (0..8).
 constexpr std::string_view kDeflatedTag = "DEFL";
 constexpr std::uint32_t kMaxInflatedBytes = 64u << 20;  // far above any valid chunk (material.hpp limits)
 constexpr std::uint8_t kMaxFilterStride = 8;
+constexpr std::uint8_t kRasterFilter = 9;
 
-void apply_sub_filter(std::vector<std::uint8_t>& bytes, std::size_t stride) {
+struct RasterLayout {
+  std::uint32_t skip = 0;
+  std::uint8_t value_bytes = 1;
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  std::uint32_t rasters = 0;
+  std::uint8_t rest_stride = 0;
+  std::uint64_t values() const { return std::uint64_t{width} * height * rasters; }
+  std::uint64_t end() const { return skip + values() * value_bytes; }
+  // Whether the layout is well formed and its rasters lie within `size` bytes (without overflow).
+  bool fits(std::uint64_t size) const {
+    if ((value_bytes != 1 && value_bytes != 2) || width == 0 || height == 0 || rasters == 0 || rest_stride > kMaxFilterStride) return false;
+    if (skip > size) return false;
+    std::uint64_t room = (size - skip) / value_bytes;
+    if (width > room) return false;
+    room /= width;
+    if (height > room) return false;
+    return rasters <= room / height;
+  }
+};
+
+// Stride 0 is no filter.
+void apply_sub_filter(std::span<std::uint8_t> bytes, std::size_t stride) {
+  if (stride == 0) return;
   for (std::size_t i = bytes.size(); i-- > stride;) bytes[i] = static_cast<std::uint8_t>(bytes[i] - bytes[i - stride]);
 }
-void undo_sub_filter(std::vector<std::uint8_t>& bytes, std::size_t stride) {
+void undo_sub_filter(std::span<std::uint8_t> bytes, std::size_t stride) {
+  if (stride == 0) return;
   for (std::size_t i = stride; i < bytes.size(); ++i) bytes[i] = static_cast<std::uint8_t>(bytes[i] + bytes[i - stride]);
 }
 
-// The smallest of the filtered deflations of `payload`, or empty when none is smaller than it.
-std::vector<std::uint8_t> deflate_chunk(std::string_view tag, std::span<const std::uint8_t> payload) {
+// Zigzag of a difference modulo 2^bits: small differences of either sign become small codes.
+std::uint32_t zigzag(std::uint32_t difference, std::uint32_t bits) {
+  const std::uint32_t modulus = 1u << bits;
+  return difference < modulus / 2 ? 2 * difference : 2 * (modulus - difference) - 1;
+}
+std::uint32_t unzigzag(std::uint32_t code, std::uint32_t bits) {
+  const std::uint32_t modulus = 1u << bits;
+  return (code % 2 == 0 ? code / 2 : modulus - (code + 1) / 2) & (modulus - 1);
+}
+
+std::uint32_t load_value(const std::uint8_t* at, std::uint8_t value_bytes) {
+  return value_bytes == 1 ? at[0] : static_cast<std::uint32_t>(at[0]) | static_cast<std::uint32_t>(at[1]) << 8;
+}
+
+// In place over bytes [skip, end) of a payload the caller has checked holds them.
+template <typename Value>
+void apply_raster_filter(std::span<std::uint8_t> bytes, const RasterLayout& layout) {
+  constexpr std::uint32_t bits = 8 * sizeof(Value);
+  const std::size_t count = layout.values();
+  const std::size_t texels = std::size_t{layout.width} * layout.height;
+  std::vector<Value> values(count);
+  for (std::size_t i = 0; i < count; ++i) values[i] = static_cast<Value>(load_value(&bytes[layout.skip + i * sizeof(Value)], sizeof(Value)));
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::size_t in_raster = i % texels;
+    const auto x = static_cast<std::uint32_t>(in_raster % layout.width);
+    const auto y = static_cast<std::uint32_t>(in_raster / layout.width);
+    const std::uint32_t prediction = detail::raster_prediction(values.data() + (i - in_raster), layout.width, x, y);
+    const std::uint32_t code = zigzag((values[i] - prediction) & ((1u << bits) - 1), bits);
+    for (std::size_t k = 0; k < sizeof(Value); ++k) bytes[layout.skip + k * count + i] = static_cast<std::uint8_t>(code >> (8 * k));
+  }
+}
+
+template <typename Value>
+void undo_raster_filter(std::span<std::uint8_t> bytes, const RasterLayout& layout) {
+  constexpr std::uint32_t bits = 8 * sizeof(Value);
+  const std::size_t count = layout.values();
+  const std::size_t texels = std::size_t{layout.width} * layout.height;
+  std::vector<Value> values(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    std::uint32_t code = 0;
+    for (std::size_t k = 0; k < sizeof(Value); ++k) code |= static_cast<std::uint32_t>(bytes[layout.skip + k * count + i]) << (8 * k);
+    const std::size_t in_raster = i % texels;
+    const auto x = static_cast<std::uint32_t>(in_raster % layout.width);
+    const auto y = static_cast<std::uint32_t>(in_raster / layout.width);
+    const std::uint32_t prediction = detail::raster_prediction(values.data() + (i - in_raster), layout.width, x, y);
+    values[i] = static_cast<Value>((prediction + unzigzag(code, bits)) & ((1u << bits) - 1));
+  }
+  for (std::size_t i = 0; i < count; ++i) {
+    for (std::size_t k = 0; k < sizeof(Value); ++k) bytes[layout.skip + i * sizeof(Value) + k] = static_cast<std::uint8_t>(values[i] >> (8 * k));
+  }
+}
+
+void apply_filter(std::vector<std::uint8_t>& bytes, std::uint8_t filter, const RasterLayout& layout) {
+  if (filter != kRasterFilter) {
+    apply_sub_filter(bytes, filter);
+    return;
+  }
+  if (layout.value_bytes == 1) apply_raster_filter<std::uint8_t>(bytes, layout);
+  else apply_raster_filter<std::uint16_t>(bytes, layout);
+  apply_sub_filter(std::span(bytes).subspan(static_cast<std::size_t>(layout.end())), layout.rest_stride);
+}
+
+void undo_filter(std::vector<std::uint8_t>& bytes, std::uint8_t filter, const RasterLayout& layout) {
+  if (filter != kRasterFilter) {
+    undo_sub_filter(bytes, filter);
+    return;
+  }
+  if (layout.value_bytes == 1) undo_raster_filter<std::uint8_t>(bytes, layout);
+  else undo_raster_filter<std::uint16_t>(bytes, layout);
+  undo_sub_filter(std::span(bytes).subspan(static_cast<std::size_t>(layout.end())), layout.rest_stride);
+}
+
+// The smallest of the filtered deflations of `payload`, or empty when none is smaller than it. `rasters`
+// (optional) is where the payload holds rasters, for the raster filter.
+std::vector<std::uint8_t> deflate_chunk(std::string_view tag, std::span<const std::uint8_t> payload,
+                                        const std::optional<RasterLayout>& rasters) {
   std::vector<std::uint8_t> best;
-  for (std::uint8_t stride : {0, 1, 2}) {
+  std::vector<std::uint8_t> filters{0, 1, 2};
+  if (rasters && rasters->fits(payload.size())) filters.push_back(kRasterFilter);
+  for (std::uint8_t filter : filters) {
+    const RasterLayout layout = filter == kRasterFilter ? *rasters : RasterLayout{};
     std::vector<std::uint8_t> filtered(payload.begin(), payload.end());
-    if (stride > 0) apply_sub_filter(filtered, stride);
+    apply_filter(filtered, filter, layout);
     uLongf packed_size = compressBound(static_cast<uLong>(filtered.size()));
     std::vector<std::uint8_t> packed(packed_size);
     if (compress2(packed.data(), &packed_size, filtered.data(), static_cast<uLong>(filtered.size()), Z_BEST_COMPRESSION) != Z_OK) continue;
@@ -53,7 +165,15 @@ std::vector<std::uint8_t> deflate_chunk(std::string_view tag, std::span<const st
     ByteWriter w(chunk);
     w.bytes(std::span(reinterpret_cast<const std::uint8_t*>(tag.data()), 4));
     w.u32(static_cast<std::uint32_t>(payload.size()));
-    w.u8(stride);
+    w.u8(filter);
+    if (filter == kRasterFilter) {
+      w.u32(layout.skip);
+      w.u8(layout.value_bytes);
+      w.u32(layout.width);
+      w.u32(layout.height);
+      w.u32(layout.rasters);
+      w.u8(layout.rest_stride);
+    }
     w.bytes(packed);
     if (chunk.size() < payload.size() && (best.empty() || chunk.size() < best.size())) best = std::move(chunk);
   }
@@ -66,16 +186,36 @@ bool inflate_chunk(std::span<const std::uint8_t> payload, std::array<std::uint8_
   ByteReader r(payload);
   const auto inner = r.bytes(4);
   const std::uint32_t size = r.u32();
-  const std::uint8_t stride = r.u8();
+  const std::uint8_t filter = r.u8();
+  RasterLayout layout;
+  if (filter == kRasterFilter) {
+    layout.skip = r.u32();
+    layout.value_bytes = r.u8();
+    layout.width = r.u32();
+    layout.height = r.u32();
+    layout.rasters = r.u32();
+    layout.rest_stride = r.u8();
+  }
   if (r.failed()) {
     problem = "is truncated";
     return false;
   }
   std::copy(inner.begin(), inner.end(), tag.begin());
+  if (filter > kMaxFilterStride && filter != kRasterFilter) {
+    problem = "has unknown filter " + std::to_string(filter) + " (this carbtf knows 0-" + std::to_string(kRasterFilter) + ")";
+    return false;
+  }
+  if (filter == kRasterFilter && !layout.fits(size)) {
+    problem = "has a raster filter that does not fit its " + std::to_string(size) + " bytes (skip " + std::to_string(layout.skip) +
+              ", " + std::to_string(layout.value_bytes) + "-byte values, " + std::to_string(layout.width) + " x " +
+              std::to_string(layout.height) + " x " + std::to_string(layout.rasters) + ", rest stride " +
+              std::to_string(layout.rest_stride) + ")";
+    return false;
+  }
   const std::size_t packed = r.remaining();
   // zlib expands at most about 1032:1, so a larger claim is a lie; refusing it bounds the allocation.
-  if (size > kMaxInflatedBytes || size > packed * 1100 + 64 || stride > kMaxFilterStride) {
-    problem = "claims " + std::to_string(size) + " inflated bytes from " + std::to_string(packed) + " (or filter " + std::to_string(stride) + ")";
+  if (size > kMaxInflatedBytes || size > packed * 1100 + 64) {
+    problem = "claims " + std::to_string(size) + " inflated bytes from " + std::to_string(packed);
     return false;
   }
   out.assign(size, 0);
@@ -86,7 +226,7 @@ bool inflate_chunk(std::span<const std::uint8_t> payload, std::array<std::uint8_
     problem = "does not inflate to its " + std::to_string(size) + " bytes (zlib: " + (result == Z_OK ? "short" : std::to_string(result)) + ")";
     return false;
   }
-  if (stride > 0) undo_sub_filter(out, stride);
+  undo_filter(out, filter, layout);
   return true;
 }
 
@@ -165,6 +305,9 @@ void encode_subspaces(const Material& m, ByteWriter& w) {
   }
 }
 
+constexpr std::uint32_t kRangeHeaderBytes = 16;  // tile size, edge colours, height offset and scale
+constexpr std::uint32_t kToneHeaderBytes = 12;   // tone offset and scale, count
+
 void encode_range(const Material& m, ByteWriter& w) {
   const RangeTiles& r = m.range;
   w.u32(r.tile_size);
@@ -182,6 +325,17 @@ void encode_tone(const Material& m, ByteWriter& w) {
   w.f32(r.tone_scale);
   w.u32(static_cast<std::uint32_t>(r.tone.size()));
   w.bytes(r.tone);
+}
+
+// Where a chunk's payload holds rasters (the patches of heights or tone), for the raster filter.
+std::optional<RasterLayout> chunk_rasters(Chunk chunk, const Material& m) {
+  const RangeTiles& r = m.range;
+  if (r.tile_size == 0) return std::nullopt;
+  const std::uint32_t patches = 2 * r.edge_colours;
+  // The cuts after the patches are runs of small steps: Sub over u16 turns them into 0s and 1s.
+  if (chunk == Chunk::range) return RasterLayout{kRangeHeaderBytes, 2, r.tile_size, r.tile_size, patches, 2};
+  if (chunk == Chunk::tone) return RasterLayout{kToneHeaderBytes, 1, r.tile_size, r.tile_size, patches, 0};
+  return std::nullopt;
 }
 
 // ---- decoding: each returns false on a short or out-of-limit payload ---------------------------------
@@ -391,7 +545,7 @@ Status encode_material(const Material& material, std::vector<std::uint8_t>& out,
     encoders[c](material, payload_writer);
     // Settings stay plain text, readable with a hex viewer; the rest is deflated where that is smaller.
     std::vector<std::uint8_t> deflated;
-    if (encoding.deflate && static_cast<Chunk>(c) != Chunk::settings) deflated = deflate_chunk(kChunkTags[c], payload);
+    if (encoding.deflate && static_cast<Chunk>(c) != Chunk::settings) deflated = deflate_chunk(kChunkTags[c], payload, chunk_rasters(static_cast<Chunk>(c), material));
     const std::string_view tag = deflated.empty() ? kChunkTags[c] : kDeflatedTag;
     const std::vector<std::uint8_t>& body = deflated.empty() ? payload : deflated;
     const std::size_t start = w.size();

@@ -4,6 +4,8 @@
 
 #include <vector>
 
+#include "raster_prediction.hpp"
+
 namespace carbtf {
 namespace {
 
@@ -38,8 +40,10 @@ QuadrantPatches quadrant_patches(const RangeTiles& tiles, std::uint32_t tile, Ti
   return {};
 }
 
-float patch_value_at_tile_texel(const RangeTiles& tiles, RangeChannel channel, std::uint32_t patch, std::uint32_t x,
-                                std::uint32_t y) {
+namespace {
+
+// The index into RangeTiles::patches (or tone) of the texel `patch` shows at tile texel (x, y).
+std::size_t patch_texel(const RangeTiles& tiles, std::uint32_t patch, std::uint32_t x, std::uint32_t y) {
   const std::uint32_t size = tiles.tile_size;
   const std::uint32_t half = size / 2;
   std::uint32_t row = y;
@@ -49,14 +53,12 @@ float patch_value_at_tile_texel(const RangeTiles& tiles, RangeChannel channel, s
   } else {
     col = x < half ? x + half : x - half;  // the west role left of the centre, the east role right
   }
-  const std::size_t texel = (std::size_t{patch} * size + row) * size + col;
-  if (channel == RangeChannel::tone) {
-    return tiles.tone.empty() ? 1.0f : tiles.tone_offset + tiles.tone_scale * static_cast<float>(tiles.tone[texel]);
-  }
-  return tiles.height_offset + tiles.height_scale * static_cast<float>(tiles.patches[texel]);
+  return (std::size_t{patch} * size + row) * size + col;
 }
 
-void compose_range_tile(const RangeTiles& tiles, std::uint32_t tile, std::span<float> out, RangeChannel channel) {
+// Calls shown(x, y, patch) for every texel of `tile` with the patch its cut gives it.
+template <typename Shown>
+void for_each_tile_texel(const RangeTiles& tiles, std::uint32_t tile, Shown&& shown) {
   const std::uint32_t size = tiles.tile_size;
   const std::uint32_t half = size / 2;
   for (std::uint32_t q = 0; q < 4; ++q) {
@@ -68,8 +70,46 @@ void compose_range_tile(const RangeTiles& tiles, std::uint32_t tile, std::span<f
         std::uint32_t x = 0;
         std::uint32_t y = 0;
         quadrant_to_tile(size, quadrant, u, v, x, y);
-        const std::uint32_t patch = u < cut[v] ? patches.b : patches.a;
-        out[std::size_t{y} * size + x] = patch_value_at_tile_texel(tiles, channel, patch, x, y);
+        shown(x, y, u < cut[v] ? patches.b : patches.a);
+      }
+    }
+  }
+}
+
+}  // namespace
+
+float patch_value_at_tile_texel(const RangeTiles& tiles, RangeChannel channel, std::uint32_t patch, std::uint32_t x,
+                                std::uint32_t y) {
+  const std::size_t texel = patch_texel(tiles, patch, x, y);
+  if (channel == RangeChannel::tone) {
+    return tiles.tone.empty() ? 1.0f : tiles.tone_offset + tiles.tone_scale * static_cast<float>(tiles.tone[texel]);
+  }
+  return tiles.height_offset + tiles.height_scale * static_cast<float>(tiles.patches[texel]);
+}
+
+void compose_range_tile(const RangeTiles& tiles, std::uint32_t tile, std::span<float> out, RangeChannel channel) {
+  const std::uint32_t size = tiles.tile_size;
+  for_each_tile_texel(tiles, tile, [&](std::uint32_t x, std::uint32_t y, std::uint32_t patch) {
+    out[std::size_t{y} * size + x] = patch_value_at_tile_texel(tiles, channel, patch, x, y);
+  });
+}
+
+void fill_unseen_patch_texels(RangeTiles& tiles) {
+  const std::uint32_t size = tiles.tile_size;
+  if (size == 0) return;
+  std::vector<bool> seen(tiles.patches.size(), false);
+  for (std::uint32_t t = 0; t < range_tile_count(tiles); ++t) {
+    for_each_tile_texel(tiles, t, [&](std::uint32_t x, std::uint32_t y, std::uint32_t patch) { seen[patch_texel(tiles, patch, x, y)] = true; });
+  }
+  // Raster order, so each prediction reads texels already final, as the file's decoder will.
+  const std::size_t texels = std::size_t{size} * size;
+  for (std::size_t p = 0; p * texels < tiles.patches.size(); ++p) {
+    for (std::uint32_t y = 0; y < size; ++y) {
+      for (std::uint32_t x = 0; x < size; ++x) {
+        const std::size_t texel = p * texels + std::size_t{y} * size + x;
+        if (seen[texel]) continue;
+        tiles.patches[texel] = static_cast<std::uint16_t>(detail::raster_prediction(tiles.patches.data() + p * texels, size, x, y));
+        if (!tiles.tone.empty()) tiles.tone[texel] = static_cast<std::uint8_t>(detail::raster_prediction(tiles.tone.data() + p * texels, size, x, y));
       }
     }
   }

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <random>
@@ -11,6 +12,7 @@
 #include "carbtf/analysis/range/range_tile_builder.hpp"
 #include "carbtf/analysis/reference/noise.hpp"
 #include "carbtf/engine/material_file.hpp"
+#include "carbtf/engine/range_tiles.hpp"
 #include "material_bytes.hpp"
 #include "scratch_folder.hpp"
 
@@ -199,6 +201,113 @@ TEST_CASE("deflated chunks read back exactly, and a lying one is refused before 
     std::copy(defl.begin(), defl.end(), bytes.begin() + static_cast<std::ptrdiff_t>(first + 8));
     CHECK_THAT(refused(bytes), Catch::Contains("holds another deflated chunk"));
   }
+}
+
+// A material whose relief is smooth at the scale of its 32-texel tiles, as measured reliefs are: the
+// case the raster filter (format 1.3) is for.
+Material smooth_relief_material() {
+  Material m = sample_material();
+  Plane heights(80, 72);
+  for (Eigen::Index r = 0; r < heights.rows(); ++r) {
+    for (Eigen::Index c = 0; c < heights.cols(); ++c) {
+      heights(r, c) = 3.0 * std::sin(0.21 * static_cast<double>(r)) * std::cos(0.17 * static_cast<double>(c)) +
+                      0.05 * reference::gaussian_noise(2, 0, static_cast<std::int32_t>(r), static_cast<std::int32_t>(c));
+    }
+  }
+  const Plane tone = 1.0 + 0.1 * heights;
+  RangeTileOptions options;
+  options.tile_size = 32;
+  m.range = build_range_tiles(heights, options, &tone);
+  return m;
+}
+
+// The byte offset of the DEFL chunk whose inner tag is `inner`, or npos.
+std::size_t deflated_chunk_at(const std::vector<std::uint8_t>& bytes, const std::string& inner) {
+  const std::string defl = "DEFL";
+  for (auto it = bytes.begin(); (it = std::search(it, bytes.end(), defl.begin(), defl.end())) != bytes.end(); ++it) {
+    const auto at = static_cast<std::size_t>(it - bytes.begin());
+    if (at + 12 <= bytes.size() && std::equal(inner.begin(), inner.end(), bytes.begin() + static_cast<std::ptrdiff_t>(at + 8))) return at;
+  }
+  return std::string::npos;
+}
+
+TEST_CASE("heights and tone are stored as residuals of a raster predictor and read back exactly", "[material_file][deflate][raster]") {
+  const Material m = smooth_relief_material();
+  const std::vector<std::uint8_t> packed = deflated(m);
+  Material back;
+  REQUIRE(decode_material(packed, "x.cbtf", back).ok());
+  CHECK(back == m);
+  CHECK(packed[6] == kMaterialFormatMinor);
+  // The encoder keeps the smallest filter; on a smooth relief that is the raster filter (9) for both.
+  const std::size_t range_at = deflated_chunk_at(packed, "RNGE");
+  const std::size_t tone_at = deflated_chunk_at(packed, "TONE");
+  REQUIRE(range_at != std::string::npos);
+  REQUIRE(tone_at != std::string::npos);
+  CHECK(packed[range_at + 16] == 9);
+  CHECK(packed[range_at + 21] == 2);  // 2-byte heights
+  CHECK(packed[tone_at + 16] == 9);
+  CHECK(packed[tone_at + 21] == 1);  // 1-byte tone
+
+  auto refused = [&](std::size_t at, std::uint32_t value, int width) {
+    std::vector<std::uint8_t> bytes = packed;
+    for (int i = 0; i < width; ++i) bytes[at + i] = static_cast<std::uint8_t>(value >> (8 * i));
+    fix_crcs(bytes);
+    Material damaged;
+    const Status s = decode_material(bytes, "bad.cbtf", damaged);
+    REQUIRE_FALSE(s.ok());
+    return s.message();
+  };
+  SECTION("an unknown filter") { CHECK_THAT(refused(range_at + 16, 10, 1), Catch::Contains("bad.cbtf: deflated chunk has unknown filter 10")); }
+  SECTION("3-byte values") { CHECK_THAT(refused(range_at + 21, 3, 1), Catch::Contains("raster filter that does not fit")); }
+  SECTION("rasters whose size overflows 64 bits") {
+    std::vector<std::uint8_t> bytes = packed;
+    for (std::size_t k = 22; k < 34; ++k) bytes[range_at + k] = 0xFF;  // width, height and count 2^32 - 1
+    fix_crcs(bytes);
+    Material damaged;
+    const Status s = decode_material(bytes, "bad.cbtf", damaged);
+    REQUIRE_FALSE(s.ok());
+    CHECK_THAT(s.message(), Catch::Contains("raster filter that does not fit"));
+  }
+  SECTION("rasters past the payload's end") { CHECK_THAT(refused(range_at + 30, 1000, 4), Catch::Contains("raster filter that does not fit")); }
+  SECTION("a skip past the payload's end") { CHECK_THAT(refused(range_at + 17, 0xFFFFFFF0u, 4), Catch::Contains("raster filter that does not fit")); }
+  SECTION("a rest stride beyond 8") { CHECK_THAT(refused(range_at + 34, 9, 1), Catch::Contains("rest stride 9")); }
+}
+
+TEST_CASE("patch texels that no tile shows are filled so they cost nothing, and no tile changes", "[material_file][raster]") {
+  const Material filled = smooth_relief_material();
+  const RangeTiles& tiles = filled.range;
+  const std::size_t tile_texels = std::size_t{tiles.tile_size} * tiles.tile_size;
+  auto composed = [&](const RangeTiles& t, RangeChannel channel) {
+    std::vector<float> all(tile_texels * range_tile_count(t));
+    for (std::uint32_t i = 0; i < range_tile_count(t); ++i) compose_range_tile(t, i, std::span<float>(all).subspan(i * tile_texels, tile_texels), channel);
+    return all;
+  };
+  // Which patch texels some tile shows, found by changing each and looking, independent of the code.
+  std::vector<bool> shown(tiles.patches.size());
+  const std::vector<float> heights = composed(tiles, RangeChannel::height);
+  for (std::size_t i = 0; i < tiles.patches.size(); ++i) {
+    RangeTiles probe = tiles;
+    probe.patches[i] = static_cast<std::uint16_t>(probe.patches[i] ^ 1u);
+    shown[i] = composed(probe, RangeChannel::height) != heights;
+  }
+  const auto unseen = static_cast<std::size_t>(std::count(shown.begin(), shown.end(), false));
+  CHECK(unseen > tiles.patches.size() / 5);
+  CHECK(unseen < tiles.patches.size());
+
+  // The same tiles before filling: random values where no tile looks.
+  Material unfilled = filled;
+  std::mt19937 rng(5);
+  for (std::size_t i = 0; i < shown.size(); ++i) {
+    if (shown[i]) continue;
+    unfilled.range.patches[i] = static_cast<std::uint16_t>(rng() % 512);
+    unfilled.range.tone[i] = static_cast<std::uint8_t>(rng() % 256);
+  }
+  REQUIRE(unfilled.range != filled.range);
+  RangeTiles refilled = unfilled.range;
+  fill_unseen_patch_texels(refilled);
+  CHECK(refilled == tiles);  // only the shown texels decide the filling
+  for (RangeChannel channel : {RangeChannel::height, RangeChannel::tone}) CHECK(composed(unfilled.range, channel) == composed(tiles, channel));
+  CHECK(deflated(filled).size() < deflated(unfilled).size());
 }
 
 TEST_CASE("a format 1.0 file (plain chunks, no relief tone) still reads", "[material_file][compatibility]") {

@@ -108,6 +108,7 @@ RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& optio
       std::copy(cut.begin(), cut.end(), tiles.cuts.begin() + static_cast<std::ptrdiff_t>((std::size_t{t} * 4 + q) * half));
     }
   }
+  fill_unseen_patch_texels(tiles);
   return tiles;
 }
 

@@ -73,6 +73,12 @@ inline float patch_height_at_tile_texel(const RangeTiles& tiles, std::uint32_t p
 void compose_range_tile(const RangeTiles& tiles, std::uint32_t tile, std::span<float> out,
                         RangeChannel channel = RangeChannel::height);
 
+// Sets every patch texel that no tile shows (it lies beyond every cut that reaches it; about 40% of
+// them) to the value the material file's raster filter predicts there, in heights and tone alike, so it
+// costs almost nothing to store. Every composed tile stays the same. Requires valid tiles (cuts
+// included).
+void fill_unseen_patch_texels(RangeTiles& tiles);
+
 // The tile laid at tile coordinates (tile_row, tile_col) of the enlarged map for `seed`.
 std::uint32_t range_tile_at(const RangeTiles& tiles, std::uint64_t seed, std::int32_t tile_row, std::int32_t tile_col);
 

@@ -30,7 +30,9 @@ struct RangeTileOptions {
 
 // Heights in texel units are quantized to height_bits over the map's range (stored in u16). `tone` (optional, the map's
 // size) is the relief tone (model/relief_tone.hpp): its patches are cut from the same places, so it
-// stays aligned with the heights, and it is quantized to 8 bits over its range. Throws
+// stays aligned with the heights, and it is quantized to 8 bits over its range. Patch texels that no
+// tile shows are set to what the file's predictor expects (fill_unseen_patch_texels), so they cost
+// nearly nothing in the file. Throws
 // std::invalid_argument for a map smaller than 4 x 4 or a tone of another size.
 RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& options, const Plane* tone = nullptr);
 
