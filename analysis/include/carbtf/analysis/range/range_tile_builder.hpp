@@ -18,19 +18,20 @@ struct RangeTileOptions {
   // crease fragments (calibrated fidelity, issue 13 note).
   std::uint32_t tile_size = 128;
   std::uint32_t edge_colours = 2;   // per direction, 1..4: 2 gives 16 tiles from 4 patches
-  // Height quantization, 1..16 bits over the map's range. 9 bits leave a step of 1/511 of the range
-  // (0.02 texel for a 10-texel relief: slopes to about 1 degree); the calibrated fidelity of the three
-  // samples at 256^2 is the same as with 12 bits to three decimals, and the range chunk deflates 20%
-  // smaller (`carbtf bench fidelity`, variant tone128_12bit against default; issue 13 note).
-  std::uint32_t height_bits = 9;
-  // Relief-tone quantization, 1..8 bits over the tone's range (stored in u8).
-  std::uint32_t tone_bits = 8;
+  // Height quantization, 1..16 bits over the map's range. 8 bits leave a step of 1/255 of the range
+  // (0.04 texel for a 10-texel relief: slopes to about 2 degrees). The calibrated fidelity of the three
+  // samples at 256^2 is that of 12 bits to three decimals in the mean down to 6 bits, and falls on
+  // fabric at 5 (`carbtf bench fidelity`, variants tone128_12bit, default and compact); 8 keeps a margin
+  // for gentle slopes under grazing light that the samples do not have.
+  std::uint32_t height_bits = 8;
+  // Relief-tone quantization, 1..8 bits over the tone's range (stored in u8): 7 scores as 8 does.
+  std::uint32_t tone_bits = 7;
   std::uint64_t seed = 1;
 };
 
 // Heights in texel units are quantized to height_bits over the map's range (stored in u16). `tone` (optional, the map's
 // size) is the relief tone (model/relief_tone.hpp): its patches are cut from the same places, so it
-// stays aligned with the heights, and it is quantized to 8 bits over its range. Patch texels that no
+// stays aligned with the heights, and it is quantized to tone_bits over its range. Patch texels that no
 // tile shows are set to what the file's predictor expects (fill_unseen_patch_texels), so they cost
 // nearly nothing in the file. Throws
 // std::invalid_argument for a map smaller than 4 x 4 or a tone of another size.
