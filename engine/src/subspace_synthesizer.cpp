@@ -308,9 +308,10 @@ Status SubspaceSynthesizer::read_band(std::uint32_t subspace, std::uint32_t leve
                                       std::vector<float>& out, std::uint32_t& rows,
                                       std::uint32_t& cols) const noexcept {
   if (!prepared_ || prepared_->capture_stage == SynthesisStage::none) {
-    return {ErrorCode::invalid_argument, "read_band() needs a synthesize() whose request captured a stage"};
+    return {ErrorCode::invalid_argument, "read_band() needs a synthesize() or run() whose request captured a stage"};
   }
   const Prepared& p = *prepared_;
+  CARBTF_TRY(p.capture.invalidate_for_host_read());
   for (std::size_t b = 0; b < p.plan.batches.size(); ++b) {
     for (const detail::PlannedField& field : p.plan.batches[b].fields) {
       if (field.subspace != subspace || field.level != level || field.channel != channel) continue;
@@ -690,13 +691,18 @@ Status SubspaceSynthesizer::synthesize(const Material& material, const Synthesis
                         std::size_t{row0} * plan.width, out.images[s]);
           }
         }));
-    if (prepared_->capture_stage != SynthesisStage::none)
-      CARBTF_TRY(prepared_->capture.invalidate_for_host_read());
     if (timing_out) CARBTF_TRY(timing(*timing_out));
     return {};
   } catch (const std::bad_alloc&) {
     return {ErrorCode::out_of_host_memory, "out of host memory while reading back subspace images"};
   }
+}
+
+Status SubspaceSynthesizer::run(const Material& material, const SynthesisRequest& request, SynthesisTiming* timing_out) noexcept {
+  CARBTF_TRY(prepare(material, request));
+  CARBTF_TRY(context_->submit_and_wait([&](VkCommandBuffer command_buffer) { return record(command_buffer, timing_out != nullptr); }));
+  if (timing_out) CARBTF_TRY(timing(*timing_out));
+  return {};
 }
 
 Status SubspaceSynthesizer::interpolate(const Material& material, const PairWeights& weights,

@@ -132,9 +132,11 @@ CaseReport run_case(const std::string& name, const Material& material, std::uint
   request.scheme = options.scheme;
   const std::size_t count = material.subspaces.size();
 
-  // CPU float32 with its bands, which become the collapsed levels once compared and are then freed;
-  // the float64 reference comes last, a few subspaces at a time, after the whole-size GPU buffers are
-  // gone. One image-sized copy of each kind at a time bounds a 4096^2 case's memory (issue 14).
+  // CPU float32 stages: the bands, which become the collapsed levels once compared and are then freed.
+  // The GPU's captures stay on the device (run(), no image read back) and the CPU images are computed
+  // again for the colour check, after the stages are gone; the float64 reference comes last, a few
+  // subspaces at a time, after the whole-size GPU buffers are gone. One image-sized copy of each kind
+  // at a time bounds a 4096^2 case's memory (issue 14).
   const SynthesisBlock& block = request;
   std::vector<reference::SubspaceStages> stages(count);
   std::vector<std::vector<float>> cpu(count);
@@ -142,6 +144,7 @@ CaseReport run_case(const std::string& name, const Material& material, std::uint
   for (std::size_t s = 0; s < count; ++s) {
     cpu[s].resize(std::size_t{size} * size * material.subspaces[s].channels);
     reference::synthesize_subspace(material, static_cast<std::uint32_t>(s), block, cpu[s], &stages[s]);
+    std::vector<float>().swap(cpu[s]);
   }
   report.cpu_ms = seconds_since(start) * 1e3;
 
@@ -150,10 +153,7 @@ CaseReport run_case(const std::string& name, const Material& material, std::uint
   SynthesizedImages images;
   for (SynthesisStage capture : {SynthesisStage::noise, SynthesisStage::car, SynthesisStage::collapse}) {
     request.capture = capture;
-    SynthesisTiming timing;
-    images = {};  // not held beside the next synthesis's buffers
-    check(synthesizer.synthesize(material, request, images, &timing), name + ": GPU synthesis failed");
-    report.gpu_ms = timing.total_ms;
+    check(synthesizer.run(material, request), name + ": GPU synthesis failed");
     for (std::uint32_t s = 0; s < count; ++s) {
       const SubspaceModel& model = material.subspaces[s];
       for (std::uint32_t level = 0; level < model.levels; ++level) {
@@ -183,8 +183,16 @@ CaseReport run_case(const std::string& name, const Material& material, std::uint
     }
   }
   stages = {};
-  for (std::size_t s = 0; s < count; ++s) accumulate(colour, images.images[s], cpu[s], material.subspaces[s].channels);
-  cpu = {};
+  request.capture = SynthesisStage::none;
+  SynthesisTiming timing;
+  check(synthesizer.synthesize(material, request, images, &timing), name + ": GPU synthesis failed");
+  report.gpu_ms = timing.total_ms;
+  for (std::size_t s = 0; s < count; ++s) {
+    cpu[s].resize(std::size_t{size} * size * material.subspaces[s].channels);
+    reference::synthesize_subspace(material, static_cast<std::uint32_t>(s), block, cpu[s]);
+    accumulate(colour, images.images[s], cpu[s], material.subspaces[s].channels);
+    std::vector<float>().swap(cpu[s]);
+  }
   DirectionTriangulation lights, views;
   check(build_direction_triangulation(material.lights, lights), name + ": light directions");
   check(build_direction_triangulation(material.views, views), name + ": view directions");
@@ -307,16 +315,20 @@ void run_conform(const ConformOptions& options) {
       request.seed = options.seed;
       request.width = request.height = size;
       request.margin = options.margin;
+      // One whole-size copy of each kind at a time: the GPU's buffers go once its image is read back,
+      // and its image once compared, before the float64 image (twice the size) is made.
       SynthesizedImages gpu;
       check(synthesizer->synthesize(stiff, request, gpu), "GPU synthesis failed");
+      synthesizer->release();
       const SynthesisBlock& block = request;
       std::vector<float> f32(std::size_t{size} * size * 3);
-      std::vector<double> f64(f32.size());
       reference::synthesize_subspace(stiff, 0, block, f32);
+      const bool gpu_bits = bitwise_equal(gpu.images[0], f32);
+      gpu = {};
+      std::vector<double> f64(f32.size());
       reference::synthesize_subspace(stiff, 0, block, f64);
       const ConformanceError e = reference::conformance_error(f32, f64, 3);
-      std::printf("  %8u %14.3e %14.3e %10s\n", size, e.max_relative, e.rms_relative,
-                  bitwise_equal(gpu.images[0], f32) ? "yes" : "NO");
+      std::printf("  %8u %14.3e %14.3e %10s\n", size, e.max_relative, e.rms_relative, gpu_bits ? "yes" : "NO");
       std::fflush(stdout);
     }
   }

@@ -174,6 +174,44 @@ TEST_CASE("results larger than one readback band come back whole and release() f
   context.require_clean();
 }
 
+TEST_CASE("run() leaves the images on the device: its captures and interpolation equal synthesize()'s",
+          "[gpu_synthesis][gpu]") {
+  test::ValidatedContext context;
+  auto synthesizer = make_synthesizer(*context);
+  const Material m = synthetic_material(2, 2);
+  SynthesisRequest request;
+  request.seed = 9;
+  request.width = 64;
+  request.height = 48;
+  request.margin = 8;
+  request.poison = true;
+  request.capture = SynthesisStage::car;
+  auto band = [&](std::uint32_t subspace, std::uint32_t level) {
+    std::vector<float> values;
+    std::uint32_t rows = 0, cols = 0;
+    const Status status = synthesizer->read_band(subspace, level, 1, values, rows, cols);
+    INFO(status.message());
+    REQUIRE(status.ok());
+    CHECK(values.size() == std::size_t{rows} * cols);
+    return values;
+  };
+  REQUIRE(synthesizer->run(m, request).ok());
+  const std::vector<float> run_band0 = band(1, 0), run_band1 = band(1, 1);
+  const SynthesizedImages images = gpu_synthesize(*synthesizer, m, request);
+  test::require_bitwise_equal(band(1, 0), run_band0);
+  test::require_bitwise_equal(band(1, 1), run_band1);
+
+  request.capture = SynthesisStage::none;
+  REQUIRE(synthesizer->run(m, request).ok());
+  require_gpu_interpolation_equal(*synthesizer, m, images, {0.3, 0.4, 0.9, 2.0});
+  std::vector<float> values;
+  std::uint32_t rows = 0, cols = 0;
+  const Status no_capture = synthesizer->read_band(0, 0, 0, values, rows, cols);
+  REQUIRE_FALSE(no_capture.ok());
+  CHECK_THAT(no_capture.message(), Catch::Contains("captured a stage"));
+  context.require_clean();
+}
+
 TEST_CASE("a near-unit-root band stays bounded and equal to the CPU", "[gpu_synthesis][gpu][stiff]") {
   test::ValidatedContext context;
   auto synthesizer = make_synthesizer(*context);

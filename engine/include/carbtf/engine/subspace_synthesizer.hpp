@@ -121,10 +121,13 @@ class SubspaceSynthesizer {
   // After a timed record() has executed: the GPU time per stage.
   Status timing(SynthesisTiming& out) const noexcept;
 
+  // Convenience: prepare, record, submit and wait, leaving the images on the device (image(),
+  // read_band(), interpolate()): for captures and checks that need no host copy of every image.
+  Status run(const Material& material, const SynthesisRequest& request, SynthesisTiming* timing = nullptr) noexcept;
   // Convenience: prepare, record, submit, wait, read back. `timing` may be null.
   Status synthesize(const Material& material, const SynthesisRequest& request, SynthesizedImages& out,
                     SynthesisTiming* timing = nullptr) noexcept;
-  // After a synthesize() with request.capture set: band (level, channel) of `subspace` over its level
+  // After a synthesize() or run() with request.capture set: band (level, channel) of `subspace` over its level
   // window (row-major; rows x cols of that level's region): the noise, the CAR field y (its mean not
   // yet added) or the collapsed level G, as captured.
   Status read_band(std::uint32_t subspace, std::uint32_t level, std::uint32_t channel,
