@@ -65,7 +65,7 @@ const std::vector<KnownModel>& known_models() {
 
 }  // namespace
 
-TEST_CASE("the CAR estimator recovers gamma and sigma^2 of synthetic fields within 5 standard errors", "[car]") {
+TEST_CASE("the CAR estimator recovers gamma and sigma^2 of synthetic fields within 5 standard errors and stores gamma to that precision", "[car]") {
   for (const KnownModel& known : known_models()) {
     const CarBandModel truth = true_model(known.candidate, known.gamma, 0.7f, 2.0f);
     REQUIRE(car_spectral_radius(truth.neighbourhood, {known.gamma.begin(), known.gamma.end()}) < 0.95);
@@ -81,6 +81,10 @@ TEST_CASE("the CAR estimator recovers gamma and sigma^2 of synthetic fields with
       INFO("gamma " << k << ": fitted " << fit.model.gamma[k] << ", true " << known.gamma[k] << ", se " << fit.gamma_standard_error[k]);
       CHECK(std::abs(fit.model.gamma[k] - known.gamma[k]) <= 5.0 * fit.gamma_standard_error[k]);
       CHECK(fit.gamma_standard_error[k] < 0.01);
+      // Stored to the precision of its estimate: a multiple of the power-of-two step at most 1/32 of
+      // its standard error, so the bits below carry nothing the file has to keep.
+      const double step = std::exp2(std::floor(std::log2(fit.gamma_standard_error[k] / 32.0)));
+      CHECK(std::fmod(double{fit.model.gamma[k]}, step) == 0.0);
     }
     const double sigma2 = double{fit.model.sigma} * fit.model.sigma;
     const double true_sigma2 = 0.49;
