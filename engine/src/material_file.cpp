@@ -88,62 +88,57 @@ std::uint32_t load_value(const std::uint8_t* at, std::uint8_t value_bytes) {
   return value_bytes == 1 ? at[0] : static_cast<std::uint32_t>(at[0]) | static_cast<std::uint32_t>(at[1]) << 8;
 }
 
-// In place over bytes [skip, end) of a payload the caller has checked holds them.
+enum class FilterDirection { apply, undo };
+
+// In place over bytes [skip, end) of a payload the caller has checked holds them. Both directions walk
+// the values in the same order and predict from the same texels: the originals when applying, the
+// ones already decoded when undoing.
 template <typename Value>
-void apply_raster_filter(std::span<std::uint8_t> bytes, const RasterLayout& layout) {
+void raster_filter(std::span<std::uint8_t> bytes, const RasterLayout& layout, FilterDirection direction) {
   constexpr std::uint32_t bits = 8 * sizeof(Value);
+  constexpr std::uint32_t mask = (1u << bits) - 1;
+  const bool apply = direction == FilterDirection::apply;
   const std::size_t count = layout.values();
   const std::size_t texels = std::size_t{layout.width} * layout.height;
+  std::uint8_t* const values_at = bytes.data() + layout.skip;  // values, interleaved little-endian
+  std::uint8_t* const planes_at = values_at;                   // residual codes, one byte plane after another
   std::vector<Value> values(count);
-  for (std::size_t i = 0; i < count; ++i) values[i] = static_cast<Value>(load_value(&bytes[layout.skip + i * sizeof(Value)], sizeof(Value)));
+  if (apply) {
+    for (std::size_t i = 0; i < count; ++i) values[i] = static_cast<Value>(load_value(values_at + i * sizeof(Value), sizeof(Value)));
+  }
   for (std::size_t i = 0; i < count; ++i) {
     const std::size_t in_raster = i % texels;
     const auto x = static_cast<std::uint32_t>(in_raster % layout.width);
     const auto y = static_cast<std::uint32_t>(in_raster / layout.width);
     const std::uint32_t prediction = detail::raster_prediction(values.data() + (i - in_raster), layout.width, x, y);
-    const std::uint32_t code = zigzag((values[i] - prediction) & ((1u << bits) - 1), bits);
-    for (std::size_t k = 0; k < sizeof(Value); ++k) bytes[layout.skip + k * count + i] = static_cast<std::uint8_t>(code >> (8 * k));
+    if (apply) {
+      const std::uint32_t code = zigzag((values[i] - prediction) & mask, bits);
+      for (std::size_t k = 0; k < sizeof(Value); ++k) planes_at[k * count + i] = static_cast<std::uint8_t>(code >> (8 * k));
+    } else {
+      std::uint32_t code = 0;
+      for (std::size_t k = 0; k < sizeof(Value); ++k) code |= static_cast<std::uint32_t>(planes_at[k * count + i]) << (8 * k);
+      values[i] = static_cast<Value>((prediction + unzigzag(code, bits)) & mask);
+    }
+  }
+  if (!apply) {
+    for (std::size_t i = 0; i < count; ++i) {
+      for (std::size_t k = 0; k < sizeof(Value); ++k) values_at[i * sizeof(Value) + k] = static_cast<std::uint8_t>(values[i] >> (8 * k));
+    }
   }
 }
 
-template <typename Value>
-void undo_raster_filter(std::span<std::uint8_t> bytes, const RasterLayout& layout) {
-  constexpr std::uint32_t bits = 8 * sizeof(Value);
-  const std::size_t count = layout.values();
-  const std::size_t texels = std::size_t{layout.width} * layout.height;
-  std::vector<Value> values(count);
-  for (std::size_t i = 0; i < count; ++i) {
-    std::uint32_t code = 0;
-    for (std::size_t k = 0; k < sizeof(Value); ++k) code |= static_cast<std::uint32_t>(bytes[layout.skip + k * count + i]) << (8 * k);
-    const std::size_t in_raster = i % texels;
-    const auto x = static_cast<std::uint32_t>(in_raster % layout.width);
-    const auto y = static_cast<std::uint32_t>(in_raster / layout.width);
-    const std::uint32_t prediction = detail::raster_prediction(values.data() + (i - in_raster), layout.width, x, y);
-    values[i] = static_cast<Value>((prediction + unzigzag(code, bits)) & ((1u << bits) - 1));
-  }
-  for (std::size_t i = 0; i < count; ++i) {
-    for (std::size_t k = 0; k < sizeof(Value); ++k) bytes[layout.skip + i * sizeof(Value) + k] = static_cast<std::uint8_t>(values[i] >> (8 * k));
-  }
-}
-
-void apply_filter(std::vector<std::uint8_t>& bytes, std::uint8_t filter, const RasterLayout& layout) {
+void run_filter(std::vector<std::uint8_t>& bytes, std::uint8_t filter, const RasterLayout& layout, FilterDirection direction) {
+  const auto sub = [direction](std::span<std::uint8_t> span, std::size_t stride) {
+    if (direction == FilterDirection::apply) apply_sub_filter(span, stride);
+    else undo_sub_filter(span, stride);
+  };
   if (filter != kRasterFilter) {
-    apply_sub_filter(bytes, filter);
+    sub(bytes, filter);
     return;
   }
-  if (layout.value_bytes == 1) apply_raster_filter<std::uint8_t>(bytes, layout);
-  else apply_raster_filter<std::uint16_t>(bytes, layout);
-  apply_sub_filter(std::span(bytes).subspan(static_cast<std::size_t>(layout.end())), layout.rest_stride);
-}
-
-void undo_filter(std::vector<std::uint8_t>& bytes, std::uint8_t filter, const RasterLayout& layout) {
-  if (filter != kRasterFilter) {
-    undo_sub_filter(bytes, filter);
-    return;
-  }
-  if (layout.value_bytes == 1) undo_raster_filter<std::uint8_t>(bytes, layout);
-  else undo_raster_filter<std::uint16_t>(bytes, layout);
-  undo_sub_filter(std::span(bytes).subspan(static_cast<std::size_t>(layout.end())), layout.rest_stride);
+  if (layout.value_bytes == 1) raster_filter<std::uint8_t>(bytes, layout, direction);
+  else raster_filter<std::uint16_t>(bytes, layout, direction);
+  sub(std::span(bytes).subspan(static_cast<std::size_t>(layout.end())), layout.rest_stride);
 }
 
 // The smallest of the filtered deflations of `payload`, or empty when none is smaller than it. `rasters`
@@ -156,7 +151,7 @@ std::vector<std::uint8_t> deflate_chunk(std::string_view tag, std::span<const st
   for (std::uint8_t filter : filters) {
     const RasterLayout layout = filter == kRasterFilter ? *rasters : RasterLayout{};
     std::vector<std::uint8_t> filtered(payload.begin(), payload.end());
-    apply_filter(filtered, filter, layout);
+    run_filter(filtered, filter, layout, FilterDirection::apply);
     uLongf packed_size = compressBound(static_cast<uLong>(filtered.size()));
     std::vector<std::uint8_t> packed(packed_size);
     if (compress2(packed.data(), &packed_size, filtered.data(), static_cast<uLong>(filtered.size()), Z_BEST_COMPRESSION) != Z_OK) continue;
@@ -226,7 +221,7 @@ bool inflate_chunk(std::span<const std::uint8_t> payload, std::array<std::uint8_
     problem = "does not inflate to its " + std::to_string(size) + " bytes (zlib: " + (result == Z_OK ? "short" : std::to_string(result)) + ")";
     return false;
   }
-  undo_filter(out, filter, layout);
+  run_filter(out, filter, layout, FilterDirection::undo);
   return true;
 }
 
