@@ -69,7 +69,9 @@ void run_material_info(const std::string& path) {
       white += (b.flags & car_band_white_noise) != 0;
     }
   }
-  std::printf("material:     %s (format %u.x)\n", path.c_str(), unsigned{kMaterialFormatMajor});
+  // The version the file says it was written in (the header after the signature; decoding checked it).
+  const unsigned minor = unsigned{bytes[6]} | unsigned{bytes[7]} << 8;
+  std::printf("material:     %s (format %u.%u)\n", path.c_str(), unsigned{kMaterialFormatMajor}, minor);
   std::printf("source:       %s\n", setting(material, "source").c_str());
   std::printf("image size:   %s\n", setting(material, "image_size").c_str());
   std::printf("directions:   %zu lights x %zu views\n", material.lights.size(), material.views.size());

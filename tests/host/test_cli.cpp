@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "carbtf/analysis/image_io.hpp"
+#include "carbtf/engine/material_file.hpp"
 
 #include "cli_run.hpp"
 #include "scratch_folder.hpp"
@@ -185,6 +186,7 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
   const Run info = run("info " + material.string());
   INFO(info.output);
   REQUIRE(info.status == 0);
+  CHECK_THAT(info.output, Catch::Contains("(format 1." + std::to_string(kMaterialFormatMinor) + ")"));
   CHECK_THAT(info.output, Catch::Contains("81 lights x 81 views") && Catch::Contains("8, up to 2 pyramid levels") &&
                               Catch::Contains("SUBS") && Catch::Contains("RNGE") && Catch::Contains("compression ratio"));
 
