@@ -228,7 +228,7 @@ CarFit fit_car_band(const Plane& band, const CarFitOptions& options) {
   }
   // Each gamma is stored to the precision its estimate has: rounded to a power-of-two step of at most
   // kGammaStepPerError of its posterior standard error, which clears the low mantissa bits that carry
-  // only estimation noise so that the file deflates them (about 1.7 KB of a 256^2 material). The
+  // only estimation noise so that the file deflates them (2-2.5 KB of a 256^2 material). The
   // recursion moves by far less than its own uncertainty; the rounding is kept only where the rounded
   // recursion keeps the stability margin.
   std::vector<double> rounded = gamma;
