@@ -273,7 +273,7 @@ TEST_CASE("heights and tone are stored as residuals of a raster predictor and re
   SECTION("a rest stride beyond 8") { CHECK_THAT(refused(range_at + 34, 9, 1), Catch::Contains("rest stride 9")); }
 }
 
-TEST_CASE("patch texels that no tile shows are filled so they cost nothing, and no tile changes", "[material_file][raster]") {
+TEST_CASE("patch texels that no tile shows are filled so they cost nothing and no tile changes", "[material_file][raster]") {
   const Material filled = smooth_relief_material();
   const RangeTiles& tiles = filled.range;
   const std::size_t tile_texels = std::size_t{tiles.tile_size} * tiles.tile_size;
