@@ -143,7 +143,36 @@ void run_filter(std::vector<std::uint8_t>& bytes, std::uint8_t filter, const Ras
 
 // The smallest of the filtered deflations of `payload`, or empty when none is smaller than it. `rasters`
 // (optional) is where the payload holds rasters, for the raster filter.
-std::vector<std::uint8_t> deflate_chunk(std::string_view tag, std::span<const std::uint8_t> payload,
+// One zlib deflate stream, reset for each payload: a material's chunks and filters are many small
+// payloads, and a fresh stream per payload costs more in allocation than in compression.
+class Deflater {
+ public:
+  Deflater() { ready_ = deflateInit(&stream_, Z_BEST_COMPRESSION) == Z_OK; }
+  ~Deflater() {
+    if (ready_) deflateEnd(&stream_);
+  }
+  Deflater(const Deflater&) = delete;
+  Deflater& operator=(const Deflater&) = delete;
+
+  // `bytes` as one zlib stream into `out`; false if zlib fails.
+  bool pack(std::span<const std::uint8_t> bytes, std::vector<std::uint8_t>& out) {
+    if (!ready_ || deflateReset(&stream_) != Z_OK) return false;
+    out.resize(deflateBound(&stream_, static_cast<uLong>(bytes.size())));
+    stream_.next_in = const_cast<Bytef*>(bytes.data());  // zlib's API is not const; it only reads the input
+    stream_.avail_in = static_cast<uInt>(bytes.size());
+    stream_.next_out = out.data();
+    stream_.avail_out = static_cast<uInt>(out.size());
+    if (deflate(&stream_, Z_FINISH) != Z_STREAM_END) return false;
+    out.resize(out.size() - stream_.avail_out);
+    return true;
+  }
+
+ private:
+  z_stream stream_{};
+  bool ready_ = false;
+};
+
+std::vector<std::uint8_t> deflate_chunk(Deflater& deflater, std::string_view tag, std::span<const std::uint8_t> payload,
                                         const std::optional<RasterLayout>& rasters) {
   std::vector<std::uint8_t> best;
   std::vector<std::uint8_t> filters{0, 1, 2};
@@ -152,10 +181,8 @@ std::vector<std::uint8_t> deflate_chunk(std::string_view tag, std::span<const st
     const RasterLayout layout = filter == kRasterFilter ? *rasters : RasterLayout{};
     std::vector<std::uint8_t> filtered(payload.begin(), payload.end());
     run_filter(filtered, filter, layout, FilterDirection::apply);
-    uLongf packed_size = compressBound(static_cast<uLong>(filtered.size()));
-    std::vector<std::uint8_t> packed(packed_size);
-    if (compress2(packed.data(), &packed_size, filtered.data(), static_cast<uLong>(filtered.size()), Z_BEST_COMPRESSION) != Z_OK) continue;
-    packed.resize(packed_size);
+    std::vector<std::uint8_t> packed;
+    if (!deflater.pack(filtered, packed)) continue;
     std::vector<std::uint8_t> chunk;
     ByteWriter w(chunk);
     w.bytes(std::span(reinterpret_cast<const std::uint8_t*>(tag.data()), 4));
@@ -173,6 +200,40 @@ std::vector<std::uint8_t> deflate_chunk(std::string_view tag, std::span<const st
     if (chunk.size() < payload.size() && (best.empty() || chunk.size() < best.size())) best = std::move(chunk);
   }
   return best;
+}
+
+// Inflates one zlib stream that must give exactly `size` bytes. It grows the output as the stream
+// produces it, so a chunk that lies about its size costs what its stream holds, not what it claims.
+bool inflate_exactly(std::span<const std::uint8_t> packed, std::uint32_t size, std::vector<std::uint8_t>& out, std::string& problem) {
+  z_stream stream{};
+  if (inflateInit(&stream) != Z_OK) {
+    problem = "could not start zlib";
+    return false;
+  }
+  stream.next_in = const_cast<Bytef*>(packed.data());  // zlib's API is not const; it only reads the input
+  stream.avail_in = static_cast<uInt>(packed.size());
+  out.clear();
+  std::array<std::uint8_t, 16384> buffer{};
+  int result = Z_OK;
+  bool too_long = false;
+  while (result == Z_OK) {
+    stream.next_out = buffer.data();
+    stream.avail_out = static_cast<uInt>(buffer.size());
+    result = inflate(&stream, Z_NO_FLUSH);
+    const std::size_t produced = buffer.size() - stream.avail_out;
+    if (out.size() + produced > size) {
+      too_long = true;
+      break;
+    }
+    out.insert(out.end(), buffer.begin(), buffer.begin() + static_cast<std::ptrdiff_t>(produced));
+  }
+  inflateEnd(&stream);
+  if (too_long || result != Z_STREAM_END || out.size() != size) {
+    const std::string zlib = too_long ? "long" : result == Z_STREAM_END || result == Z_BUF_ERROR ? "short" : std::to_string(result);
+    problem = "does not inflate to its " + std::to_string(size) + " bytes (zlib: " + zlib + ")";
+    return false;
+  }
+  return true;
 }
 
 // Inflates a DEFL payload into its inner tag and payload; false with `problem` set when it is malformed.
@@ -213,14 +274,7 @@ bool inflate_chunk(std::span<const std::uint8_t> payload, std::array<std::uint8_
     problem = "claims " + std::to_string(size) + " inflated bytes from " + std::to_string(packed);
     return false;
   }
-  out.assign(size, 0);
-  uLongf inflated = size;
-  const auto stream = r.bytes(packed);
-  const int result = uncompress(out.data(), &inflated, stream.data(), static_cast<uLong>(stream.size()));
-  if (result != Z_OK || inflated != size) {
-    problem = "does not inflate to its " + std::to_string(size) + " bytes (zlib: " + (result == Z_OK ? "short" : std::to_string(result)) + ")";
-    return false;
-  }
+  if (!inflate_exactly(r.bytes(packed), size, out, problem)) return false;
   run_filter(out, filter, layout, FilterDirection::undo);
   return true;
 }
@@ -530,6 +584,7 @@ Status encode_material(const Material& material, std::vector<std::uint8_t>& out,
   written[static_cast<std::size_t>(Chunk::tone)] = !material.range.tone.empty();
   written[static_cast<std::size_t>(Chunk::tone_weights)] = has_tone_weights(material);
   w.u32(static_cast<std::uint32_t>(std::count(written.begin(), written.end(), true)));
+  Deflater deflater;
   using Encoder = void (*)(const Material&, ByteWriter&);
   constexpr std::array<Encoder, static_cast<std::size_t>(Chunk::count)> encoders{
       encode_settings, encode_directions, encode_index, encode_subspaces, encode_range, encode_tone, encode_tone_weights};
@@ -540,7 +595,7 @@ Status encode_material(const Material& material, std::vector<std::uint8_t>& out,
     encoders[c](material, payload_writer);
     // Settings stay plain text, readable with a hex viewer; the rest is deflated where that is smaller.
     std::vector<std::uint8_t> deflated;
-    if (encoding.deflate && static_cast<Chunk>(c) != Chunk::settings) deflated = deflate_chunk(kChunkTags[c], payload, chunk_rasters(static_cast<Chunk>(c), material));
+    if (encoding.deflate && static_cast<Chunk>(c) != Chunk::settings) deflated = deflate_chunk(deflater, kChunkTags[c], payload, chunk_rasters(static_cast<Chunk>(c), material));
     const std::string_view tag = deflated.empty() ? kChunkTags[c] : kDeflatedTag;
     const std::vector<std::uint8_t>& body = deflated.empty() ? payload : deflated;
     const std::size_t start = w.size();
