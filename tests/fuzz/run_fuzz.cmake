@@ -1,4 +1,4 @@
-# cmake -DSOURCE_DIR=... -DWORK_DIR=... [-DRUNS=N] [-DSECONDS=S] -P run_fuzz.cmake
+# cmake -DSOURCE_DIR=... -DWORK_DIR=... [-DRUNS=N] [-DSECONDS=S] [-DBUILT=ON] -P run_fuzz.cmake
 # Builds the libFuzzer targets in the sanitized tree (tests/sanitize/sanitized_tree.cmake) and runs each
 # over its seed corpus (tests/fuzz/corpus/TARGET, read only; new inputs go to WORK_DIR/fuzz_corpus)
 # for RUNS executions or SECONDS seconds, whichever ends first. Any crash, sanitizer report, leak or
@@ -14,7 +14,7 @@ if(NOT DEFINED SECONDS)
 endif()
 
 configure_sanitized_tree("${SOURCE_DIR}" "${WORK_DIR}")
-step("${CMAKE_COMMAND}" --build "${WORK_DIR}" --target carbtf_fuzz_targets)
+build_sanitized_targets("${WORK_DIR}" carbtf_fuzz_targets)
 set(ENV{ASAN_OPTIONS} "abort_on_error=0:halt_on_error=1:detect_leaks=1")
 set(ENV{UBSAN_OPTIONS} "halt_on_error=1:print_stacktrace=1")
 foreach(target material_file ubo2003_name manifest light_file obj_mesh)

@@ -10,3 +10,12 @@ function(configure_sanitized_tree source_dir work_dir)
        "-DCMAKE_CXX_COMPILER=${CARBTF_CLANGXX}" -DCARBTF_SANITIZE=ON -DCARBTF_FUZZ=ON -DCARBTF_BUILD_CLI=OFF
        -DCARBTF_INSTALL=OFF)
 endfunction()
+
+# build_sanitized_targets(WORK_DIR TARGET...): builds them, unless -DBUILT=ON says the fixture
+# (build_sanitized_tree.cmake) already has; two builds at once in one tree would race.
+function(build_sanitized_targets work_dir)
+  if(BUILT)
+    return()
+  endif()
+  step("${CMAKE_COMMAND}" --build "${work_dir}" --target ${ARGN})
+endfunction()
