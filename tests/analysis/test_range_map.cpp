@@ -212,4 +212,64 @@ TEST_CASE("the relief tone is tiled under the heights' layout, texel for texel",
   CHECK_THROWS_AS(build_range_tiles(heights, options, &small), std::invalid_argument);
 }
 
+// The largest change of the enlarged map under a shift by `period` texels along rows or columns: 0 (to
+// the quantization) where it repeats with that period across every tile edge and cut.
+double worst_period_break(const RangeTiles& tiles, std::uint32_t period) {
+  const std::uint32_t size = 4 * tiles.tile_size + period;
+  std::vector<float> map(std::size_t{size} * size);
+  enlarge_range_map(tiles, 3, -5, 9, size, size, map);
+  double worst = 0.0;
+  for (std::uint32_t r = 0; r + period < size; ++r) {
+    for (std::uint32_t c = 0; c + period < size; ++c) {
+      const float here = map[std::size_t{r} * size + c];
+      worst = std::max({worst, double(std::abs(map[std::size_t{r} * size + c + period] - here)),
+                        double(std::abs(map[std::size_t{r + period} * size + c] - here))});
+    }
+  }
+  return worst;
+}
+
+// Patch texels are filled where no tile shows them, so tiles are compared composed.
+bool all_tiles_differ(const RangeTiles& tiles) {
+  const std::size_t texels = std::size_t{tiles.tile_size} * tiles.tile_size;
+  std::vector<std::vector<float>> composed(range_tile_count(tiles), std::vector<float>(texels));
+  for (std::uint32_t t = 0; t < range_tile_count(tiles); ++t) compose_range_tile(tiles, t, composed[t]);
+  for (std::size_t i = 0; i < composed.size(); ++i) {
+    for (std::size_t j = i + 1; j < composed.size(); ++j) {
+      if (composed[i] == composed[j]) return false;
+    }
+  }
+  return true;
+}
+
+TEST_CASE("a periodic relief gets patches in step with its period and a stochastic one keeps its variety", "[range]") {
+  // A weave-like relief: a checkerboard of bumps, 16 texels a period, which divides the 64-texel tile.
+  // Patches cut at random places are out of step, so every cut would have to hide a phase jump.
+  const double pi = std::acos(-1.0);
+  Plane weave(160, 160);
+  for (Eigen::Index r = 0; r < 160; ++r) {
+    for (Eigen::Index c = 0; c < 160; ++c) weave(r, c) = 5.0 * std::sin(2 * pi * c / 16.0) * std::sin(2 * pi * r / 16.0);
+  }
+  RangeTileOptions options;
+  options.tile_size = 64;
+  options.height_bits = 12;
+  for (std::uint64_t seed : {1u, 2u, 3u}) {
+    options.seed = seed;
+    const RangeTiles tiles = build_range_tiles(weave, options);
+    const double worst = worst_period_break(tiles, 16);
+    INFO("seed " << seed << ": the enlarged map changes by up to " << worst << " under a one-period shift; step " << tiles.height_scale);
+    CHECK(worst <= 2.0 * tiles.height_scale + 1e-6);
+  }
+
+  // A stochastic relief (the leather sample) has no place where patches agree: they stay where they
+  // were drawn, four different places, so the sixteen tiles all differ.
+  const Surface surface = make_sample_surface("leather", 128, 7);
+  Plane leather(128, 128);
+  for (int i = 0; i < 128 * 128; ++i) leather(i / 128, i % 128) = surface.height[static_cast<std::size_t>(i)];
+  options.tile_size = 32;
+  options.seed = 1;
+  const RangeTiles tiles = build_range_tiles(leather, options);
+  CHECK(all_tiles_differ(tiles));
+}
+
 }  // namespace carbtf
