@@ -113,12 +113,24 @@ std::vector<PatchOrigin> choose_patch_origins(const Plane& map, std::uint32_t si
     return cost;
   };
   constexpr std::size_t kRefined = 16;
+  // Beyond this many places (a map over about 380^2 with 128-texel tiles), a seeded random sample of
+  // them: a period's worth of places holds several in step, so the sample still finds one.
+  constexpr Eigen::Index kMostPlaces = 65536;
   for (std::uint32_t k = 1; k < 2 * colours; ++k) {
     const std::uint32_t patch = k % 2 == 1 ? colours + k / 2 : k / 2;  // V0, H1, V1, H2, ...
     std::vector<std::pair<double, PatchOrigin>> scored;
-    scored.reserve(static_cast<std::size_t>(rows * cols));
-    for (Eigen::Index r = 0; r < rows; ++r) {
-      for (Eigen::Index c = 0; c < cols; ++c) scored.push_back({cost_of(patch, {r, c}, 4), {r, c}});
+    if (rows * cols <= kMostPlaces) {
+      scored.reserve(static_cast<std::size_t>(rows * cols));
+      for (Eigen::Index r = 0; r < rows; ++r) {
+        for (Eigen::Index c = 0; c < cols; ++c) scored.push_back({cost_of(patch, {r, c}, 4), {r, c}});
+      }
+    } else {
+      scored.reserve(static_cast<std::size_t>(kMostPlaces));
+      for (Eigen::Index i = 0; i < kMostPlaces; ++i) {
+        const PatchOrigin at{static_cast<Eigen::Index>(rng() % static_cast<std::uint64_t>(rows)),
+                             static_cast<Eigen::Index>(rng() % static_cast<std::uint64_t>(cols))};
+        scored.push_back({cost_of(patch, at, 4), at});
+      }
     }
     const std::size_t keep = std::min(kRefined, scored.size());
     std::partial_sort(scored.begin(), scored.begin() + static_cast<std::ptrdiff_t>(keep), scored.end(),
