@@ -99,7 +99,12 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
     if (options.deshade_floor > 0.0) divide_shading(smooth, relit, options.deshade_floor);
     return smooth;
   };
-  if (!toned || options.remainder_clamps.empty()) return fit_channels(prepared(1.0), pair, options, notes);
+  const Plane no_tone = Plane::Ones(height, width);
+  if (!toned || options.remainder_clamps.empty()) {
+    std::vector<Plane> smooth = prepared(1.0);
+    match_render_mean(smooth, channels, toned ? tone : no_tone, relit);
+    return fit_channels(smooth, pair, options, notes);
+  }
 
   // Each candidate (tone weight, clamp) gives a model; the one whose image, as the render pass
   // composes it (smooth texture x its share of the tone x relit factor), is nearest the measured image
@@ -116,6 +121,7 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
     for (const double clamp : options.remainder_clamps) {
       std::vector<Plane> clamped = smooth;
       if (clamp > 0.0) clamp_remainder(clamped, clamp);
+      match_render_mean(clamped, channels, share, relit);
       std::vector<std::string> candidate_notes;
       Material single;
       single.subspaces.push_back(fit_channels(clamped, pair, options, candidate_notes));

@@ -96,4 +96,45 @@ TEST_CASE("clamping the remainder bounds each channel around its median", "[tone
   CHECK(channels[1].maxCoeff() == 1.0);  // MAD 0: the spike is clamped to the median
 }
 
+TEST_CASE("the smooth texture is scaled so that the render keeps the measured mean", "[tone]") {
+  // A measured image whose brightness follows the relief: bright where tone x relit is high. The
+  // smooth remainder is what the CAR models, independently of the relief, so the render's mean is
+  // mean(smooth) x mean(tone x relit), which is darker than the measurement before the scaling.
+  const Eigen::Index n = 64;
+  Plane tone(n, n), relit(n, n);
+  std::vector<Plane> measured(3, Plane(n, n));
+  for (Eigen::Index r = 0; r < n; ++r) {
+    for (Eigen::Index c = 0; c < n; ++c) {
+      tone(r, c) = 1.0 + 0.5 * std::sin(0.4 * static_cast<double>(c));
+      relit(r, c) = 1.0 + 0.3 * std::cos(0.3 * static_cast<double>(r + c));
+      const double relief = tone(r, c) * relit(r, c);
+      for (int k = 0; k < 3; ++k) measured[static_cast<std::size_t>(k)](r, c) = (0.2 + 0.1 * k) * relief * relief;
+    }
+  }
+  std::vector<Plane> smooth = measured;
+  for (Plane& channel : smooth) channel /= tone;
+  const double relief_mean = (tone * relit).mean();
+  auto render_mean = [&](const std::vector<Plane>& channels) {
+    double sum = 0.0;
+    for (const Plane& channel : channels) sum += channel.mean() * relief_mean;
+    return sum;
+  };
+  double target = 0.0;
+  for (const Plane& channel : measured) target += channel.mean();
+  REQUIRE(render_mean(smooth) < 0.97 * target);  // the case is one the scaling has to mend
+  const std::vector<Plane> before = smooth;
+  match_render_mean(smooth, measured, tone, relit);
+  CHECK(render_mean(smooth) == Approx(target).epsilon(1e-12));
+  // One gain for all channels: the colour's chroma stays the smooth texture's.
+  const double gain = smooth[0].mean() / before[0].mean();
+  CHECK(gain > 1.0);
+  for (std::size_t k = 0; k < 3; ++k) CHECK(((smooth[k] - gain * before[k]).abs() < 1e-12 * gain * before[k].abs().maxCoeff()).all());
+
+  // Nothing to match: a black measurement leaves the texture as it was.
+  std::vector<Plane> black(3, Plane::Zero(n, n));
+  std::vector<Plane> unchanged = before;
+  match_render_mean(unchanged, black, tone, relit);
+  for (std::size_t k = 0; k < 3; ++k) CHECK((unchanged[k] == before[k]).all());
+}
+
 }  // namespace carbtf

@@ -67,4 +67,14 @@ void apply_relief(std::span<float> rgb, const Plane& tone, const Plane& relit) {
   }
 }
 
+void match_render_mean(std::vector<Plane>& smooth, const std::vector<Plane>& measured, const Plane& tone, const Plane& relit) {
+  if (smooth.size() != measured.size()) throw std::invalid_argument("match_render_mean: channel counts differ");
+  double smooth_mean = 0.0, target = 0.0;
+  for (std::size_t c = 0; c < smooth.size(); ++c) smooth_mean += smooth[c].mean(), target += measured[c].mean();
+  const double relief_mean = (tone * relit).mean();
+  const double gain = target / (smooth_mean * relief_mean);
+  if (!(smooth_mean > 0.0 && relief_mean > 0.0 && target > 0.0 && std::isfinite(gain))) return;
+  for (Plane& channel : smooth) channel *= gain;
+}
+
 }  // namespace carbtf

@@ -47,4 +47,12 @@ Plane weighted_tone(const Plane& tone, double weight);
 // analysis scores when it chooses the remainder clamp, and `bench synth` when it scores a synthesis.
 void apply_relief(std::span<float> rgb, const Plane& tone, const Plane& relit);
 
+// Scales each channel of the smooth texture so that the render pass's product keeps the measured
+// image's mean. The CAR synthesizes the smooth texture independently of the relief, so the render's
+// mean is mean(smooth) x mean(tone x relit), not the mean of the measured product, which the
+// correlation between the measured remainder and the relief (and the remainder clamp) leaves
+// elsewhere; the model was measured 4-7 sRGB steps darker than the measurement on every sample.
+// `measured` has the channels' size; a channel whose means are not positive is left as it is.
+void match_render_mean(std::vector<Plane>& smooth, const std::vector<Plane>& measured, const Plane& tone, const Plane& relit);
+
 }  // namespace carbtf
