@@ -77,7 +77,7 @@ SubspaceModel fit_channels(const std::vector<Plane>& channels, LightView pair, c
 }
 
 // The model of one subspace image; notes name the band they concern.
-SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plane& range_map, const Plane& tone,
+SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plane& range_map, const Plane& tone, const std::array<float, 3>& chroma,
                            double light_z_floor, const AnalysisOptions& options, std::vector<std::string>& notes) {
   const std::uint32_t width = dataset.width(), height = dataset.height();
   std::vector<float> rgb(dataset.pixel_count() * 3);
@@ -95,14 +95,13 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
   // --deshade, the relit factor divided out.
   const auto prepared = [&](double weight) {
     std::vector<Plane> smooth = channels;
-    if (toned && weight > 0.0) divide_shading(smooth, weighted_tone(tone, weight), kReliefToneFloor);
+    if (toned && weight > 0.0) divide_shading(smooth, weighted_tone(tone, weight, chroma), kReliefToneFloor);
     if (options.deshade_floor > 0.0) divide_shading(smooth, relit, options.deshade_floor);
     return smooth;
   };
-  const Plane no_tone = Plane::Ones(height, width);
   if (!toned || options.remainder_clamps.empty()) {
     std::vector<Plane> smooth = prepared(1.0);
-    match_render_mean(smooth, channels, toned ? tone : no_tone, relit);
+    match_render_mean(smooth, channels, weighted_tone(toned ? tone : Plane::Ones(height, width), 1.0, chroma), relit);
     return fit_channels(smooth, pair, options, notes);
   }
 
@@ -117,7 +116,7 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
   std::vector<std::string> best_notes;
   for (const double weight : weights) {
     const std::vector<Plane> smooth = prepared(weight);
-    const Plane share = weighted_tone(tone, weight);
+    const std::vector<Plane> share = weighted_tone(tone, weight, chroma);
     for (const double clamp : options.remainder_clamps) {
       std::vector<Plane> clamped = smooth;
       if (clamp > 0.0) clamp_remainder(clamped, clamp);
@@ -194,6 +193,9 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
     for (const Direction& d : dataset.views()) result.material.views.push_back(to_material(d));
     if (options.relief_tone) result.tone = relief_tone(dataset, result.stereo_view, result.range_map, relight_floor(result.material));
     result.material.range = build_range_tiles(result.range_map, tiles, options.relief_tone ? &result.tone : nullptr);
+    if (options.relief_tone && options.coloured_tone) {
+      result.material.range.tone_chroma = relief_tone_chroma(dataset, result.stereo_view, result.range_map, relight_floor(result.material), result.tone);
+    }
   }
 
   {
@@ -204,7 +206,8 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
     Progress progress("subspace models", representatives.size(), options.progress);
     const double z_floor = relight_floor(result.material);  // the render pass's, from the light set
     detail::parallel_for(representatives.size(), options.threads, [&](std::size_t s) {
-      result.material.subspaces[s] = fit_subspace(dataset, representatives[s], result.range_map, result.tone, z_floor, options, notes[s]);
+      result.material.subspaces[s] = fit_subspace(dataset, representatives[s], result.range_map, result.tone,
+                                                    result.material.range.tone_chroma, z_floor, options, notes[s]);
       progress.advance();
     });
     for (std::size_t s = 0; s < notes.size(); ++s) {
@@ -229,6 +232,7 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
       {"car_stability_margin", std::to_string(options.car.stability_margin)},
       {"calibrate_collapse", options.calibrate_collapse ? "yes" : "no"},
       {"relief_tone", options.relief_tone ? "yes" : "no"},
+      {"coloured_tone", options.relief_tone && options.coloured_tone ? "where it explains the colour" : "no"},
       {"remainder_clamps", join_numbers(options.remainder_clamps)},
       {"deshade_floor", std::to_string(options.deshade_floor)},
       {"stereo_view", std::to_string(result.stereo_view)},

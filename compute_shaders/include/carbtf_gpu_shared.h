@@ -272,6 +272,8 @@ struct MaterialTablesHeader {
   float range_mean;
   float light_z_floor;  // cos of the largest measured light elevation: the relit factor's denominator floor
   float reserved1;
+  float tone_chroma[3];  // RangeTiles::tone_chroma: channel c takes max(1 + tone_chroma[c] * (tone - 1), 0)
+  float reserved2;
 };
 
 // carbtf's own mesh pipeline (material_vertex.vert / material_fragment.frag): per-draw uniforms, std140.
@@ -305,8 +307,9 @@ static_assert(offsetof(CarFieldGpu, tap) == 48 && offsetof(CarFieldGpu, gamma) =
 static_assert(sizeof(CollapseItemGpu) == 48, "CollapseItemGpu must match std430");
 static_assert(sizeof(ColourItemGpu) == 32 + 12 * CARBTF_SYNTH_MAX_CHANNELS + 4 * CARBTF_SYNTH_MAX_CHANNELS * CARBTF_SYNTH_MAX_CHANNELS);
 static_assert(sizeof(SynthPassParams) == 32 && sizeof(InterpolateParams) == 112);
-static_assert(sizeof(DirectionLookupGpu) == 32 && sizeof(MaterialTablesHeader) == 96);
+static_assert(sizeof(DirectionLookupGpu) == 32 && sizeof(MaterialTablesHeader) == 112);
 static_assert(offsetof(MaterialTablesHeader, layer_table) == 64 && offsetof(MaterialTablesHeader, parallax_scale) == 80);
+static_assert(offsetof(MaterialTablesHeader, tone_chroma) == 96);
 static_assert(sizeof(RenderFrameUniforms) == 160 + 32 * CARBTF_RENDER_MAX_LIGHTS, "RenderFrameUniforms must match std140");
 static_assert(offsetof(RenderFrameUniforms, light_count) == 144 + 32 * CARBTF_RENDER_MAX_LIGHTS);
 }  // namespace carbtf::gpu

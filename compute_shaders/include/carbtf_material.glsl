@@ -170,7 +170,8 @@ void carbtf_direction_weights(DirectionLookupGpu set, vec2 p, out uvec3 index, o
 
 // The smooth BTF colour at (already parallax-shifted) uv for tangent-frame light and view directions,
 // with the relief tone `tone` at uv: sum over the 3 x 3 nearest measured (light, view) pairs of
-// weight * (1 + tone weight * (tone - 1)) * subspace image of the pair.
+// weight * max(1 + tone weight * tone_chroma * (tone - 1), 0) * subspace image of the pair, per
+// channel (a grey tone where tone_chroma is 1, as render_reference.cpp computes it).
 vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, vec3 view, float tone) {
   uvec3 li, vi;
   vec3 lw, vw;
@@ -179,6 +180,7 @@ vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, vec3 view, float tone) {
   CarbtfBilinear b = carbtf_bilinear(uv);
   vec3 colour = vec3(0.0);
   uint views = carbtf_header.views.count;
+  vec3 tone_offset = vec3(carbtf_header.tone_chroma[0], carbtf_header.tone_chroma[1], carbtf_header.tone_chroma[2]) * (tone - 1.0);
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
       float w = lw[i] * vw[j];
@@ -186,7 +188,7 @@ vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, vec3 view, float tone) {
       uint layer = carbtf_data[carbtf_header.layer_table + li[i] * views + vi[j]];
       if (layer == CARBTF_NO_LAYER) continue;
       float tone_weight = uintBitsToFloat(carbtf_data[carbtf_header.tone_weight_table + li[i] * views + vi[j]]);
-      colour += (w * (1.0 + tone_weight * (tone - 1.0))) * carbtf_subspace_texel(b, layer);
+      colour += (w * max(1.0 + tone_weight * tone_offset, vec3(0.0))) * carbtf_subspace_texel(b, layer);
     }
   }
   return colour;

@@ -89,6 +89,12 @@ Status validate_subspace(const SubspaceModel& s, std::size_t index, const Materi
 }
 
 Status validate_range(const RangeTiles& r) {
+  for (std::size_t channel = 0; channel < r.tone_chroma.size(); ++channel) {
+    if (!(std::abs(r.tone_chroma[channel]) <= kMaxToneChroma)) {
+      return invalid("range map: tone chroma " + std::to_string(channel) + " is " + std::to_string(r.tone_chroma[channel]) + ", outside -" +
+                     std::to_string(int(kMaxToneChroma)) + ".." + std::to_string(int(kMaxToneChroma)));
+    }
+  }
   if (r.tile_size == 0) {
     if (!r.patches.empty() || !r.cuts.empty() || !r.tone.empty()) return invalid("range map: tile size 0 but tile data present");
     return {};

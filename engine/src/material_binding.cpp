@@ -133,6 +133,7 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     header.height = textures.height;
     header.parallax_scale = info.parallax_scale;
     header.light_z_floor = relight_floor(material);
+    for (std::size_t c = 0; c < 3; ++c) header.tone_chroma[c] = material.range.tone_chroma[c];
 
     r.range_map.assign(std::size_t{textures.width} * textures.height, 0.0f);
     r.tone_map.assign(r.range_map.size(), 1.0f);

@@ -124,7 +124,7 @@ FidelityColumn fidelity_of(const Material& material, const SynthesizedImages& im
     const MaterialDirection& l = material.lights[material.subspaces[s].light];
     const std::array<double, 3> light{std::sin(l.theta) * std::cos(l.phi), std::sin(l.theta) * std::sin(l.phi), std::cos(l.theta)};
     RgbField model{images.images[s], w, h};
-    apply_relief(model.rgb, weighted_tone(tone, material.subspaces[s].tone_weight),
+    apply_relief(model.rgb, weighted_tone(tone, material.subspaces[s].tone_weight, material.range.tone_chroma),
                  relit_factor(height_plane, light, relight_floor(material)));
     const CalibratedFidelity f = calibrated_fidelity(model, measured.images[s]);
     column.mean_rel += f.rel;

@@ -1,4 +1,5 @@
 // `carbtf info PATH`: what a BTF dataset holds.
+#include <array>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -93,6 +94,12 @@ void run_material_info(const std::string& path) {
     }
     std::printf("relief tone:  taken whole by %zu subspaces, by none %zu, in part by %zu\n", whole, none,
                 material.subspaces.size() - whole - none);
+    const auto& chroma = material.range.tone_chroma;
+    if (chroma != std::array<float, 3>{1.0f, 1.0f, 1.0f}) {
+      std::printf("tone colour:  red, green and blue follow it by %.2f, %.2f and %.2f\n", chroma[0], chroma[1], chroma[2]);
+    } else {
+      std::printf("tone colour:  grey\n");
+    }
   }
   std::printf("file size:    %zu bytes (%.1f KiB)\n", bytes.size(), static_cast<double>(bytes.size()) / 1024.0);
   std::printf("  %-6s %10s %7s\n", "chunk", "bytes", "share");

@@ -123,7 +123,7 @@ TEST_CASE("the smooth texture is scaled so that the render keeps the measured me
   for (const Plane& channel : measured) target += channel.mean();
   REQUIRE(render_mean(smooth) < 0.97 * target);  // the case is one the scaling has to mend
   const std::vector<Plane> before = smooth;
-  match_render_mean(smooth, measured, tone, relit);
+  match_render_mean(smooth, measured, weighted_tone(tone, 1.0, {1.0f, 1.0f, 1.0f}), relit);
   CHECK(render_mean(smooth) == Approx(target).epsilon(1e-12));
   // One gain for all channels: the colour's chroma stays the smooth texture's.
   const double gain = smooth[0].mean() / before[0].mean();
@@ -133,8 +133,33 @@ TEST_CASE("the smooth texture is scaled so that the render keeps the measured me
   // Nothing to match: a black measurement leaves the texture as it was.
   std::vector<Plane> black(3, Plane::Zero(n, n));
   std::vector<Plane> unchanged = before;
-  match_render_mean(unchanged, black, tone, relit);
+  match_render_mean(unchanged, black, weighted_tone(tone, 1.0, {1.0f, 1.0f, 1.0f}), relit);
   for (std::size_t k = 0; k < 3; ++k) CHECK((unchanged[k] == before[k]).all());
+}
+
+TEST_CASE("a two-colour weave gets a coloured tone and a leather a grey one", "[tone]") {
+  constexpr std::uint32_t size = 64;
+  const double z_floor = std::max(std::cos(75.0 * M_PI / 180.0), 1e-3);
+  auto chroma_of = [&](const Surface& surface) {
+    const BtfDataset dataset = top_view_dataset(surface);
+    const Plane heights = heights_of(surface);
+    return relief_tone_chroma(dataset, 0, heights, z_floor, relief_tone(dataset, 0, heights, z_floor));
+  };
+  // The fabric sample's raised threads are white and its sunken ones blue: where the tone is dark the
+  // blue channel stays relatively bright, so blue follows the tone least and red most.
+  const std::array<float, 3> fabric = chroma_of(make_sample_surface("fabric", size, 1));
+  INFO("fabric tone chroma " << fabric[0] << " " << fabric[1] << " " << fabric[2]);
+  CHECK(fabric[0] > 1.1f);
+  CHECK(fabric[2] < 0.8f);
+  CHECK(fabric[2] < fabric[1]);
+  CHECK(fabric[1] < fabric[0]);
+  // The leather's creases darken every channel about alike: its slopes explain too little to keep.
+  const std::array<float, 3> leather = chroma_of(make_sample_surface("leather", size, 3));
+  CHECK(leather == std::array<float, 3>{1.0f, 1.0f, 1.0f});
+  // A grey material's channel tones equal the grey tone: nothing departs from grey, so grey it stays.
+  Surface uniform = make_sample_surface("leather", size, 3);
+  for (float& a : uniform.albedo) a = 0.5f;
+  CHECK(chroma_of(uniform) == std::array<float, 3>{1.0f, 1.0f, 1.0f});
 }
 
 }  // namespace carbtf

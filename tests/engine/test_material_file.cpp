@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <filesystem>
 #include <random>
 
@@ -391,6 +392,47 @@ TEST_CASE("tone weights read back, are left out when all 1, and are refused out 
     m.subspaces[1].tone_weight = std::nanf("");
     const Status s = validate_material(m);
     CHECK_THAT(s.message(), Catch::Contains("subspace 1 has tone weight"));
+  }
+}
+
+TEST_CASE("a coloured tone reads back and is left out when grey and refused out of range", "[material_file][tone]") {
+  Material m = sample_material();
+  const std::string tchr = "TCHR";
+  SECTION("grey: no TCHR chunk, and a file without one reads as grey") {
+    const std::vector<std::uint8_t> bytes = encoded(m);
+    CHECK(std::search(bytes.begin(), bytes.end(), tchr.begin(), tchr.end()) == bytes.end());
+    Material back;
+    REQUIRE(decode_material(bytes, "x.cbtf", back).ok());
+    CHECK(back.range.tone_chroma == std::array<float, 3>{1.0f, 1.0f, 1.0f});
+  }
+  SECTION("coloured, plain and deflated") {
+    m.range.tone_chroma = {1.3f, 1.2f, 0.6f};
+    for (const auto& bytes : {encoded(m), deflated(m)}) {
+      Material back;
+      REQUIRE(decode_material(bytes, "x.cbtf", back).ok());
+      CHECK(back == m);
+    }
+    std::vector<std::uint8_t> bytes = encoded(m);
+    const auto at = static_cast<std::size_t>(std::search(bytes.begin(), bytes.end(), tchr.begin(), tchr.end()) - bytes.begin());
+    REQUIRE(at < bytes.size());
+    for (const float hostile : {5.0f, -4.5f, std::nanf(""), std::numeric_limits<float>::infinity()}) {
+      std::memcpy(&bytes[at + 8 + 4], &hostile, 4);  // tag, size, then the green slope
+      fix_crcs(bytes);
+      Material back;
+      const Status s = decode_material(bytes, "bad.cbtf", back);
+      CHECK_THAT(s.message(), Catch::Contains("bad.cbtf") && Catch::Contains("tone chroma 1 is") && Catch::Contains("outside -4..4"));
+    }
+    bytes.insert(bytes.begin() + static_cast<std::ptrdiff_t>(at + 8 + 12), {0, 0, 0, 0});  // a fourth value
+    bytes[at + 4] = 16;
+    fix_crcs(bytes);
+    Material back;
+    CHECK_FALSE(decode_material(bytes, "bad.cbtf", back).ok());
+  }
+  SECTION("validation checks it also without range tiles") {
+    m.range = RangeTiles{};
+    m.range.tile_size = 0;
+    m.range.tone_chroma = {1.0f, std::nanf(""), 1.0f};
+    CHECK_THAT(validate_material(m).message(), Catch::Contains("tone chroma 1"));
   }
 }
 

@@ -33,6 +33,14 @@ void divide_shading(std::vector<Plane>& channels, const Plane& factor, double fl
   }
 }
 
+void divide_shading(std::vector<Plane>& channels, const std::vector<Plane>& factors, double floor) {
+  if (factors.size() != channels.size()) throw std::invalid_argument("divide_shading: one factor per channel");
+  for (std::size_t c = 0; c < channels.size(); ++c) {
+    if (channels[c].rows() != factors[c].rows() || channels[c].cols() != factors[c].cols()) throw std::invalid_argument("divide_shading: sizes differ");
+    channels[c] /= factors[c].max(floor);
+  }
+}
+
 void undo_parallax(std::vector<Plane>& channels, const Plane& range_map, const std::array<double, 3>& view, double scale) {
   const Eigen::Index rows = range_map.rows(), cols = range_map.cols();
   const double mean = range_map.mean();

@@ -1,11 +1,13 @@
 #include "carbtf/analysis/model/relief_tone.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
 
 #include "carbtf/analysis/model/deshade.hpp"
+#include "carbtf/engine/material.hpp"
 
 namespace carbtf {
 
@@ -52,28 +54,88 @@ void clamp_remainder(std::vector<Plane>& channels, double k) {
   }
 }
 
-Plane weighted_tone(const Plane& tone, double weight) { return 1.0 + weight * (tone - 1.0); }
-
-void apply_relief(std::span<float> rgb, const Plane& tone, const Plane& relit) {
-  const auto pixels = static_cast<std::size_t>(tone.size());
-  if (relit.rows() != tone.rows() || relit.cols() != tone.cols() || rgb.size() != pixels * 3) {
-    throw std::invalid_argument("apply_relief: the image, the tone and the relit factor differ in size");
+std::array<float, 3> relief_tone_chroma(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor,
+                                        const Plane& tone) {
+  const auto rows = static_cast<Eigen::Index>(dataset.height()), cols = static_cast<Eigen::Index>(dataset.width());
+  if (range_map.rows() != rows || range_map.cols() != cols || tone.rows() != rows || tone.cols() != cols) {
+    throw std::invalid_argument("relief_tone_chroma: the range map or the tone is not the dataset's size");
   }
-  const std::size_t width = static_cast<std::size_t>(tone.cols());
+  std::array<Plane, 3> measured, explained;
+  for (int k = 0; k < 3; ++k) measured[k] = explained[k] = Plane::Zero(rows, cols);
+  std::vector<float> rgb(dataset.pixel_count() * 3);
+  Plane channel(rows, cols);
+  for (std::uint32_t l = 0; l < dataset.lights().size(); ++l) {
+    const LightView pair{l, view};
+    if (!dataset.has_image(pair)) continue;
+    dataset.linear_rgb(pair, rgb);
+    const Plane relit = relit_factor(range_map, dataset.lights()[l].vector(), light_z_floor);
+    const double relit_mean = relit.mean();
+    if (relit_mean <= 0.0) continue;
+    for (int k = 0; k < 3; ++k) {
+      for (Eigen::Index i = 0; i < channel.size(); ++i) channel(i / cols, i % cols) = rgb[static_cast<std::size_t>(i) * 3 + k];
+      measured[k] += channel;
+      explained[k] += relit * (channel.mean() / relit_mean);
+    }
+  }
+  // The least-squares slope of each channel's tone on the grey tone, over the texels both are known at,
+  // and how much of the channels' departure from the grey tone the slopes explain.
+  auto own_tone = [&](int k, Eigen::Index r, Eigen::Index c) {
+    return std::clamp(measured[k](r, c) / explained[k](r, c), kReliefToneFloor, kReliefToneCeiling);
+  };
+  std::array<float, 3> chroma{1.0f, 1.0f, 1.0f};
+  double as_grey = 0.0, as_coloured = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    double across = 0.0, grey = 0.0;
+    for (Eigen::Index i = 0; i < tone.size(); ++i) {
+      const Eigen::Index r = i / cols, c = i % cols;
+      if (!(explained[k](r, c) > 0.0)) continue;
+      across += (own_tone(k, r, c) - 1.0) * (tone(r, c) - 1.0);
+      grey += (tone(r, c) - 1.0) * (tone(r, c) - 1.0);
+    }
+    if (grey > 0.0 && std::isfinite(across / grey)) {
+      chroma[static_cast<std::size_t>(k)] = static_cast<float>(std::clamp(across / grey, -double{kMaxToneChroma}, double{kMaxToneChroma}));
+    }
+    for (Eigen::Index i = 0; i < tone.size(); ++i) {
+      const Eigen::Index r = i / cols, c = i % cols;
+      if (!(explained[k](r, c) > 0.0)) continue;
+      const double own = own_tone(k, r, c);
+      const double coloured = 1.0 + chroma[static_cast<std::size_t>(k)] * (tone(r, c) - 1.0);
+      as_grey += (own - tone(r, c)) * (own - tone(r, c));
+      as_coloured += (own - coloured) * (own - coloured);
+    }
+  }
+  if (!(as_coloured <= (1.0 - kToneChromaExplained) * as_grey)) return {1.0f, 1.0f, 1.0f};
+  return chroma;
+}
+
+std::vector<Plane> weighted_tone(const Plane& tone, double weight, const std::array<float, 3>& chroma) {
+  std::vector<Plane> channels;
+  for (const float k : chroma) channels.push_back((1.0 + weight * (double{k} * (tone - 1.0))).max(0.0));
+  return channels;
+}
+
+void apply_relief(std::span<float> rgb, const std::vector<Plane>& tones, const Plane& relit) {
+  const auto pixels = static_cast<std::size_t>(relit.size());
+  if (tones.size() != 3 || rgb.size() != pixels * 3 ||
+      std::any_of(tones.begin(), tones.end(), [&](const Plane& t) { return t.rows() != relit.rows() || t.cols() != relit.cols(); })) {
+    throw std::invalid_argument("apply_relief: the image, the tones and the relit factor differ in size");
+  }
+  const std::size_t width = static_cast<std::size_t>(relit.cols());
   for (std::size_t p = 0; p < pixels; ++p) {
     const auto r = static_cast<Eigen::Index>(p / width), c = static_cast<Eigen::Index>(p % width);
-    const auto factor = static_cast<float>(tone(r, c) * relit(r, c));
-    for (std::size_t k = 0; k < 3; ++k) rgb[p * 3 + k] *= factor;
+    for (std::size_t k = 0; k < 3; ++k) rgb[p * 3 + k] *= static_cast<float>(tones[k](r, c) * relit(r, c));
   }
 }
 
-void match_render_mean(std::vector<Plane>& smooth, const std::vector<Plane>& measured, const Plane& tone, const Plane& relit) {
-  if (smooth.size() != measured.size()) throw std::invalid_argument("match_render_mean: channel counts differ");
-  double smooth_mean = 0.0, target = 0.0;
-  for (std::size_t c = 0; c < smooth.size(); ++c) smooth_mean += smooth[c].mean(), target += measured[c].mean();
-  const double relief_mean = (tone * relit).mean();
-  const double gain = target / (smooth_mean * relief_mean);
-  if (!(smooth_mean > 0.0 && relief_mean > 0.0 && target > 0.0 && std::isfinite(gain))) return;
+void match_render_mean(std::vector<Plane>& smooth, const std::vector<Plane>& measured, const std::vector<Plane>& tones, const Plane& relit) {
+  if (smooth.size() != measured.size() || smooth.size() != tones.size()) throw std::invalid_argument("match_render_mean: channel counts differ");
+  double rendered = 0.0, target = 0.0;
+  for (std::size_t c = 0; c < smooth.size(); ++c) {
+    rendered += smooth[c].mean() * (tones[c] * relit).mean();
+    target += measured[c].mean();
+  }
+  const double gain = target / rendered;
+  if (!(rendered > 0.0 && target > 0.0 && std::isfinite(gain))) return;
   for (Plane& channel : smooth) channel *= gain;
 }
 

@@ -146,12 +146,14 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
         angles(view, vt, vp_angle);
         const PairWeights w = pair_weights(lights, views, lt, lp, vt, vp_angle);
         glm::vec3 btf(0.0f);
+        const glm::vec3 tone_offset =
+            glm::vec3(material.range.tone_chroma[0], material.range.tone_chroma[1], material.range.tone_chroma[2]) * (tone - 1.0f);
         for (int k = 0; k < 9; ++k) {
           if (w.weight[k] == 0.0f) continue;
           const std::uint32_t subspace = subspace_of(material, w.light[k], w.view[k]);
           if (input.images->images[subspace].empty()) continue;
           const float tone_weight = material.subspaces[subspace].tone_weight;
-          btf += (w.weight[k] * (1.0f + tone_weight * (tone - 1.0f))) * sampler.subspace_at(bilinear, subspace);
+          btf += (w.weight[k] * glm::max(1.0f + tone_weight * tone_offset, glm::vec3(0.0f))) * sampler.subspace_at(bilinear, subspace);
         }
         const float relit = std::max(glm::dot(normal, l), 0.0f) / std::max(l.z, light_z_floor);
         colour += falloff * glm::vec3(light.colour[0], light.colour[1], light.colour[2]) * relit * btf;

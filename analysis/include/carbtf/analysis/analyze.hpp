@@ -33,6 +33,9 @@ struct AnalysisOptions {
   // Store the relief tone (model/relief_tone.hpp) with the range tiles and divide it out of the
   // subspace images before their fit.
   bool relief_tone = true;
+  // Each colour channel follows the tone by its own measured slope (RangeTiles::tone_chroma); off, the
+  // tone is grey.
+  bool coloured_tone = true;
   // With the relief tone: the smooth remainder is clamped to its median +- k robust standard
   // deviations before the fit (model/relief_tone.hpp; k = 0: not clamped). Per subspace, the k of
   // this list whose model image (CPU synthesis x tone x relit factor) is nearest the measured image

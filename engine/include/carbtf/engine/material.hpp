@@ -93,6 +93,11 @@ struct RangeTiles {
   float tone_offset = 0.0f;
   float tone_scale = 0.0f;
   std::vector<std::uint8_t> tone;  // empty or patches.size()
+  // How far each colour channel (linear R, G, B) follows the tone: channel c takes
+  // 1 + tone_chroma[c] * (tone - 1), at least 0. All 1 (the default, and any file without a TCHR chunk),
+  // the tone is grey. A woven fabric's dark threads are blue and its bright ones white, so its tone is
+  // not grey: the blue channel follows it less than the red.
+  std::array<float, 3> tone_chroma{1.0f, 1.0f, 1.0f};
   bool operator==(const RangeTiles&) const = default;
 };
 
@@ -126,6 +131,9 @@ inline constexpr float kMaxModelMagnitude = 1e6f;
 // A relief tone lies within [0, kMaxRangeTone]: a factor on colour, so a hostile file cannot scale the
 // render by more than the colour magnitudes above allow.
 inline constexpr float kMaxRangeTone = 16.0f;
+// A channel's tone chroma lies within [-kMaxToneChroma, kMaxToneChroma], so a channel's tone stays
+// below 1 + 4 * 15 and the colour bounded.
+inline constexpr float kMaxToneChroma = 4.0f;
 
 // The subspace index of (light, view); the caller keeps both in range.
 inline std::uint32_t subspace_of(const Material& material, std::uint32_t light, std::uint32_t view) {

@@ -21,6 +21,8 @@ Plane relit_factor(const Plane& range_map, const std::array<double, 3>& light, d
 
 // Divides every channel by max(factor, floor); the channels and the factor share one size.
 void divide_shading(std::vector<Plane>& channels, const Plane& factor, double floor);
+// Divides channel c by max(factors[c], floor): one factor per channel (a coloured relief tone).
+void divide_shading(std::vector<Plane>& channels, const std::vector<Plane>& factors, double floor);
 
 // Undoes the render pass's parallax for a measured image seen from unit direction `view` (tangent
 // frame): the render shows the material's texel u' = u + scale * h(u) * (view.x, -view.y) at u, so the

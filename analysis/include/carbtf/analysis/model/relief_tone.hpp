@@ -11,6 +11,7 @@
 // the range map puts them.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -37,22 +38,36 @@ Plane relief_tone(const BtfDataset& dataset, std::uint32_t view, const Plane& ra
 // map draw the relief; the CAR keeps the smooth texture between.
 void clamp_remainder(std::vector<Plane>& channels, double k);
 
-// The tone as a subspace image of tone weight `weight` takes it: 1 + weight * (tone - 1), as the
-// render pass composes it (SubspaceModel::tone_weight).
-Plane weighted_tone(const Plane& tone, double weight);
+// How far each colour channel follows the relief tone (RangeTiles::tone_chroma): the least-squares
+// slope of the channel's own tone (the formula above on that channel) on the grey tone `tone`, within
+// +-kMaxToneChroma. The slopes are kept only where they explain at least kToneChromaExplained of how
+// the channels' own tones depart from the grey one, summed over the channels; otherwise all 1 (a grey
+// tone). Measured at 256^2: fabric, whose threads are blue and white, 0.82 (its calibrated fidelity
+// improves); leather 0.25 and coast_sand_rocks 0.32, where a coloured tone only adds chroma the
+// measurement lacks (mean rel 0.334 -> 0.354 and 0.276 -> 0.293 with it).
+inline constexpr double kToneChromaExplained = 0.5;
+std::array<float, 3> relief_tone_chroma(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor,
+                                        const Plane& tone);
+
+// The tone per colour channel as a subspace image of tone weight `weight` takes it:
+// max(1 + weight * chroma[c] * (tone - 1), 0), as the render pass composes it (SubspaceModel::tone_weight,
+// RangeTiles::tone_chroma).
+std::vector<Plane> weighted_tone(const Plane& tone, double weight, const std::array<float, 3>& chroma);
 
 // The render pass's product for one measured pair, without parallax or direction interpolation:
-// every pixel of `rgb` (interleaved RGB, row-major, the planes' size) times tone x relit (pass the
-// subspace's weighted_tone()). What the
-// analysis scores when it chooses the remainder clamp, and `bench synth` when it scores a synthesis.
-void apply_relief(std::span<float> rgb, const Plane& tone, const Plane& relit);
+// every pixel of `rgb` (interleaved RGB, row-major, the planes' size) times its channel's tone x relit
+// (pass the subspace's weighted_tone()). What the analysis scores when it chooses the remainder clamp,
+// and `bench synth` when it scores a synthesis.
+void apply_relief(std::span<float> rgb, const std::vector<Plane>& tones, const Plane& relit);
 
-// Scales each channel of the smooth texture so that the render pass's product keeps the measured
-// image's mean. The CAR synthesizes the smooth texture independently of the relief, so the render's
-// mean is mean(smooth) x mean(tone x relit), not the mean of the measured product, which the
+// Scales the smooth texture so that the render pass's product keeps the measured image's mean. The
+// CAR synthesizes the smooth texture independently of the relief, so the render's mean is
+// sum_c mean(smooth_c) x mean(tone_c x relit), not the mean of the measured product, which the
 // correlation between the measured remainder and the relief (and the remainder clamp) leaves
-// elsewhere; the model was measured 4-7 sRGB steps darker than the measurement on every sample.
-// `measured` has the channels' size; a channel whose means are not positive is left as it is.
-void match_render_mean(std::vector<Plane>& smooth, const std::vector<Plane>& measured, const Plane& tone, const Plane& relit);
+// elsewhere; the model was measured 4-7 sRGB steps darker than the measurement on every sample. One
+// gain for all channels: per-channel gains were measured worse (they move the chroma of a material
+// whose colour follows its relief). `measured` and `tones` have the channels' size; nothing changes
+// where a mean is not positive.
+void match_render_mean(std::vector<Plane>& smooth, const std::vector<Plane>& measured, const std::vector<Plane>& tones, const Plane& relit);
 
 }  // namespace carbtf
