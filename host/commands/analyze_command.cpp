@@ -81,10 +81,10 @@ void register_analyze_command(CLI::App& app) {
   command->add_flag("!--no-relief-tone", a.relief_tone,
                     "Leave out the relief tone: the photometric-stereo albedo stored with the range tiles, which puts the "
                     "creases' dark colour where the range map puts the creases (on by default)");
-  command->add_flag("!--grey-tone", a.coloured_tone,
-                    "Keep the relief tone grey. By default each colour channel follows it by its own measured slope where "
-                    "those slopes explain most of how the channels' tones differ (a fabric of blue and white threads), and "
-                    "the tone stays grey otherwise");
+  command->add_flag("--coloured-tone", a.coloured_tone,
+                    "Let each colour channel follow the relief tone by its own measured slope where those slopes explain "
+                    "most of how the channels' tones differ (a fabric of blue and white threads; the tone stays grey "
+                    "otherwise). Off by default: it can leave the smooth texture's noise too strong on small images");
   command->add_option("--remainder-clamp", a.remainder_clamps,
                       "With the relief tone, each subspace image's smooth remainder is clamped to its median +- K robust "
                       "standard deviations before the CAR fit, so that relief lines the tone does not explain do not become "

@@ -102,6 +102,16 @@ TEST_CASE("carbtf fidelity ranks a deliberately broken model worse than the fitt
   const double without_tone_rel = fidelity_of(without_tone, btf, folder / "without_tone");
   INFO(name << ": fitted rel " << fitted_rel << ", without the relief tone " << without_tone_rel);
   CHECK(without_tone_rel > fitted_rel);
+  if (name == "fabric") {
+    // Its threads are blue and white: a tone that follows them in colour looks nearer the measurement.
+    const fs::path coloured = folder / "coloured_tone.cbtf";
+    REQUIRE(run("analyze " + btf.string() + " --coloured-tone --out " + coloured.string()).status == 0);
+    const Run info = run("info " + coloured.string());
+    CHECK_THAT(info.output, Catch::Contains("tone colour:  red, green and blue follow it by"));
+    const double coloured_rel = fidelity_of(coloured, btf, folder / "coloured_tone");
+    INFO(name << ": fitted rel " << fitted_rel << ", with the coloured tone " << coloured_rel);
+    CHECK(coloured_rel < fitted_rel);
+  }
   fs::remove_all(folder);
 }
 

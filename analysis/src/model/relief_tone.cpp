@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "carbtf/analysis/model/deshade.hpp"
@@ -11,30 +12,49 @@
 
 namespace carbtf {
 
-Plane relief_tone(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor) {
+namespace {
+
+// The tone's sums over the lights of `view`: sum_l I_l and sum_l m_l relit_l (relief_tone.hpp), for the
+// grey image (index 0) and for the red, green and blue channels (1-3), in one pass over the images.
+struct ToneSums {
+  std::array<Plane, 4> measured, explained;
+};
+
+ToneSums tone_sums(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor, const char* who) {
   const auto rows = static_cast<Eigen::Index>(dataset.height()), cols = static_cast<Eigen::Index>(dataset.width());
-  if (range_map.rows() != rows || range_map.cols() != cols) throw std::invalid_argument("relief_tone: the range map is not the dataset's size");
-  Plane measured = Plane::Zero(rows, cols);
-  Plane explained = Plane::Zero(rows, cols);
+  if (range_map.rows() != rows || range_map.cols() != cols) throw std::invalid_argument(std::string(who) + ": the range map is not the dataset's size");
+  ToneSums sums;
+  for (std::size_t k = 0; k < 4; ++k) sums.measured[k] = sums.explained[k] = Plane::Zero(rows, cols);
   std::vector<float> rgb(dataset.pixel_count() * 3);
-  Plane grey(rows, cols);
+  std::array<Plane, 4> image;
+  image.fill(Plane(rows, cols));
   for (std::uint32_t l = 0; l < dataset.lights().size(); ++l) {
     const LightView pair{l, view};
     if (!dataset.has_image(pair)) continue;
     dataset.linear_rgb(pair, rgb);
-    for (Eigen::Index r = 0; r < rows; ++r) {
-      for (Eigen::Index c = 0; c < cols; ++c) {
-        const std::size_t p = static_cast<std::size_t>(r * cols + c);
-        grey(r, c) = (rgb[3 * p] + rgb[3 * p + 1] + rgb[3 * p + 2]) / 3.0;
-      }
+    for (Eigen::Index i = 0; i < rows * cols; ++i) {
+      const auto p = static_cast<std::size_t>(i);
+      for (std::size_t k = 1; k < 4; ++k) image[k](i / cols, i % cols) = rgb[3 * p + k - 1];
+      image[0](i / cols, i % cols) = (rgb[3 * p] + rgb[3 * p + 1] + rgb[3 * p + 2]) / 3.0;
     }
     const Plane relit = relit_factor(range_map, dataset.lights()[l].vector(), light_z_floor);
     const double relit_mean = relit.mean();
     if (relit_mean <= 0.0) continue;
-    measured += grey;
-    explained += relit * (grey.mean() / relit_mean);
+    for (std::size_t k = 0; k < 4; ++k) {
+      sums.measured[k] += image[k];
+      sums.explained[k] += relit * (image[k].mean() / relit_mean);
+    }
   }
-  if (explained.maxCoeff() <= 0.0) return Plane::Ones(rows, cols);
+  return sums;
+}
+
+}  // namespace
+
+Plane relief_tone(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor) {
+  const ToneSums sums = tone_sums(dataset, view, range_map, light_z_floor, "relief_tone");
+  const Plane& measured = sums.measured[0];
+  const Plane& explained = sums.explained[0];
+  if (explained.maxCoeff() <= 0.0) return Plane::Ones(measured.rows(), measured.cols());
   // Where no light reaches a texel by the range map's account, nothing is known about its tone.
   return (explained > 0.0).select(measured / explained.max(1e-30), 1.0).max(kReliefToneFloor).min(kReliefToneCeiling);
 }
@@ -56,31 +76,15 @@ void clamp_remainder(std::vector<Plane>& channels, double k) {
 
 std::array<float, 3> relief_tone_chroma(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor,
                                         const Plane& tone) {
-  const auto rows = static_cast<Eigen::Index>(dataset.height()), cols = static_cast<Eigen::Index>(dataset.width());
-  if (range_map.rows() != rows || range_map.cols() != cols || tone.rows() != rows || tone.cols() != cols) {
-    throw std::invalid_argument("relief_tone_chroma: the range map or the tone is not the dataset's size");
-  }
-  std::array<Plane, 3> measured, explained;
-  for (int k = 0; k < 3; ++k) measured[k] = explained[k] = Plane::Zero(rows, cols);
-  std::vector<float> rgb(dataset.pixel_count() * 3);
-  Plane channel(rows, cols);
-  for (std::uint32_t l = 0; l < dataset.lights().size(); ++l) {
-    const LightView pair{l, view};
-    if (!dataset.has_image(pair)) continue;
-    dataset.linear_rgb(pair, rgb);
-    const Plane relit = relit_factor(range_map, dataset.lights()[l].vector(), light_z_floor);
-    const double relit_mean = relit.mean();
-    if (relit_mean <= 0.0) continue;
-    for (int k = 0; k < 3; ++k) {
-      for (Eigen::Index i = 0; i < channel.size(); ++i) channel(i / cols, i % cols) = rgb[static_cast<std::size_t>(i) * 3 + k];
-      measured[k] += channel;
-      explained[k] += relit * (channel.mean() / relit_mean);
-    }
-  }
+  if (tone.rows() != range_map.rows() || tone.cols() != range_map.cols()) throw std::invalid_argument("relief_tone_chroma: the tone is not the range map's size");
+  const Eigen::Index cols = tone.cols();
+  const ToneSums sums = tone_sums(dataset, view, range_map, light_z_floor, "relief_tone_chroma");
+  const auto& measured = sums.measured;
+  const auto& explained = sums.explained;
   // The least-squares slope of each channel's tone on the grey tone, over the texels both are known at,
   // and how much of the channels' departure from the grey tone the slopes explain.
   auto own_tone = [&](int k, Eigen::Index r, Eigen::Index c) {
-    return std::clamp(measured[k](r, c) / explained[k](r, c), kReliefToneFloor, kReliefToneCeiling);
+    return std::clamp(measured[k + 1](r, c) / explained[k + 1](r, c), kReliefToneFloor, kReliefToneCeiling);
   };
   std::array<float, 3> chroma{1.0f, 1.0f, 1.0f};
   double as_grey = 0.0, as_coloured = 0.0;
@@ -88,7 +92,7 @@ std::array<float, 3> relief_tone_chroma(const BtfDataset& dataset, std::uint32_t
     double across = 0.0, grey = 0.0;
     for (Eigen::Index i = 0; i < tone.size(); ++i) {
       const Eigen::Index r = i / cols, c = i % cols;
-      if (!(explained[k](r, c) > 0.0)) continue;
+      if (!(explained[k + 1](r, c) > 0.0)) continue;
       across += (own_tone(k, r, c) - 1.0) * (tone(r, c) - 1.0);
       grey += (tone(r, c) - 1.0) * (tone(r, c) - 1.0);
     }
@@ -97,7 +101,7 @@ std::array<float, 3> relief_tone_chroma(const BtfDataset& dataset, std::uint32_t
     }
     for (Eigen::Index i = 0; i < tone.size(); ++i) {
       const Eigen::Index r = i / cols, c = i % cols;
-      if (!(explained[k](r, c) > 0.0)) continue;
+      if (!(explained[k + 1](r, c) > 0.0)) continue;
       const double own = own_tone(k, r, c);
       const double coloured = 1.0 + chroma[static_cast<std::size_t>(k)] * (tone(r, c) - 1.0);
       as_grey += (own - tone(r, c)) * (own - tone(r, c));

@@ -33,9 +33,12 @@ struct AnalysisOptions {
   // Store the relief tone (model/relief_tone.hpp) with the range tiles and divide it out of the
   // subspace images before their fit.
   bool relief_tone = true;
-  // Each colour channel follows the tone by its own measured slope (RangeTiles::tone_chroma); off, the
-  // tone is grey.
-  bool coloured_tone = true;
+  // Each colour channel follows the tone by its own measured slope (RangeTiles::tone_chroma) where
+  // those slopes explain the colour (model/relief_tone.hpp); off, the tone is grey. Opt-in: on fabric
+  // at 256^2 it gives the threads their blue and white (mean rel 0.457 -> 0.415), but at 64^2 the
+  // model's noise is then too strong (the same model with every sigma halved scores 0.470 against its
+  // 0.506), which a fitted model must not be.
+  bool coloured_tone = false;
   // With the relief tone: the smooth remainder is clamped to its median +- k robust standard
   // deviations before the fit (model/relief_tone.hpp; k = 0: not clamped). Per subspace, the k of
   // this list whose model image (CPU synthesis x tone x relit factor) is nearest the measured image
