@@ -90,8 +90,8 @@ double join_cost(const Plane& map, PatchOrigin h, PatchOrigin v, Eigen::Index ha
 // best with the patches of the other orientation already placed (join_cost) where that join is close:
 // a mean cost under kCloseJoin, a correlation of about 0.75 or more. Its tiles then show no cut. A
 // stochastic material has no such place (its best joins cost 1.5-1.7, measured on the samples) and keeps
-// its random patches, and its variety. Places are scored on a 4-texel grid of samples, the best few again
-// on every texel.
+// its random patches, and its variety. Places are scored on a grid of samples (every 4th texel, sparser
+// for tiles over 256 texels), the best few again on every texel.
 constexpr double kCloseJoin = 0.5;
 std::vector<PatchOrigin> choose_patch_origins(const Plane& map, std::uint32_t size, std::uint32_t colours, std::mt19937_64& rng) {
   const auto rows = static_cast<Eigen::Index>(map.rows()) - size + 1;
@@ -113,6 +113,8 @@ std::vector<PatchOrigin> choose_patch_origins(const Plane& map, std::uint32_t si
     return cost;
   };
   constexpr std::size_t kRefined = 16;
+  // At most 32 x 32 samples per quadrant in the first scoring: every 4th texel up to 256-texel tiles.
+  const Eigen::Index coarse = std::max<Eigen::Index>(4, half / 32);
   // Beyond this many places (a map over about 380^2 with 128-texel tiles), a seeded random sample of
   // them: a period's worth of places holds several in step, so the sample still finds one.
   constexpr Eigen::Index kMostPlaces = 65536;
@@ -122,14 +124,14 @@ std::vector<PatchOrigin> choose_patch_origins(const Plane& map, std::uint32_t si
     if (rows * cols <= kMostPlaces) {
       scored.reserve(static_cast<std::size_t>(rows * cols));
       for (Eigen::Index r = 0; r < rows; ++r) {
-        for (Eigen::Index c = 0; c < cols; ++c) scored.push_back({cost_of(patch, {r, c}, 4), {r, c}});
+        for (Eigen::Index c = 0; c < cols; ++c) scored.push_back({cost_of(patch, {r, c}, coarse), {r, c}});
       }
     } else {
       scored.reserve(static_cast<std::size_t>(kMostPlaces));
       for (Eigen::Index i = 0; i < kMostPlaces; ++i) {
         const PatchOrigin at{static_cast<Eigen::Index>(rng() % static_cast<std::uint64_t>(rows)),
                              static_cast<Eigen::Index>(rng() % static_cast<std::uint64_t>(cols))};
-        scored.push_back({cost_of(patch, at, 4), at});
+        scored.push_back({cost_of(patch, at, coarse), at});
       }
     }
     const std::size_t keep = std::min(kRefined, scored.size());
