@@ -5,6 +5,8 @@
 #include <sys/stat.h>
 #include <zip.h>
 
+#include <OpenImageIO/imageio.h>
+
 #include <cstring>
 
 #include <cmath>
@@ -289,6 +291,20 @@ TEST_CASE("bad input: NaN or Inf in an EXR", "[btf][bad-input]") {
     require_input_error(folder, {name_of(1, 0, ".exr"), std::isnan(bad) ? "NaN" : "Inf", "(5, 2)"});
     fs::remove_all(folder);
   }
+}
+
+TEST_CASE("bad input: an image of more than 16 channels", "[btf][bad-input]") {
+  const fs::path folder = scratch_folder("channels");
+  write_uniform(folder / name_of(0, 0, ".exr"), 8, 0.5f);
+  auto out = OIIO::ImageOutput::create((folder / name_of(1, 0, ".exr")).string());
+  REQUIRE(out);
+  const OIIO::ImageSpec spec(8, 8, 17, OIIO::TypeDesc::FLOAT);
+  REQUIRE(out->open((folder / name_of(1, 0, ".exr")).string(), spec));
+  const std::vector<float> values(8 * 8 * 17, 0.5f);
+  REQUIRE(out->write_image(OIIO::TypeDesc::FLOAT, values.data()));
+  REQUIRE(out->close());
+  require_input_error(folder, {name_of(1, 0, ".exr"), "has 17 channels", "up to 16"});
+  fs::remove_all(folder);
 }
 
 TEST_CASE("bad input: an empty zip, and a file that is no zip", "[btf][bad-input]") {
