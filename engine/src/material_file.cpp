@@ -13,6 +13,7 @@
 
 #include "byte_stream.hpp"
 #include "raster_prediction.hpp"
+#include "raster_windows.hpp"
 
 namespace carbtf {
 namespace {
@@ -39,10 +40,17 @@ constexpr std::array<std::string_view, static_cast<std::size_t>(Chunk::count)> k
 //             (raster_prediction.hpp), modulo 2^(8 value bytes), zigzag-mapped (0, -1, 1, -2, ... to 0,
 //             1, 2, 3, ...), low bytes of every value first, then high bytes; the bytes after the
 //             rasters take the Sub filter of `rest stride` (0..8).
+//   10 (1.5)  windows: the raster filter's parameters, then u32 source width, u32 source height, and
+//             per raster u32 column, u32 row: each raster is the window of one source raster at that
+//             texel (raster_windows.hpp), so texels several rasters share are stored once. The stream
+//             holds the `skip` bytes, the source raster under the raster filter (one raster of the
+//             source's size), then the bytes after the rasters under their Sub filter; the source has at
+//             most the rasters' texels.
 constexpr std::string_view kDeflatedTag = "DEFL";
 constexpr std::uint32_t kMaxInflatedBytes = 64u << 20;  // far above any valid chunk (material.hpp limits)
 constexpr std::uint8_t kMaxFilterStride = 8;
 constexpr std::uint8_t kRasterFilter = 9;
+constexpr std::uint8_t kWindowFilter = 10;
 
 struct RasterLayout {
   std::uint32_t skip = 0;
@@ -142,8 +150,36 @@ void run_filter(std::vector<std::uint8_t>& bytes, std::uint8_t filter, const Ras
   sub(std::span(bytes).subspan(static_cast<std::size_t>(layout.end())), layout.rest_stride);
 }
 
+// The layout of the window filter's stream: the source as one raster between the same bytes.
+RasterLayout source_layout(const RasterLayout& rasters, const detail::RasterWindows& windows) {
+  return {rasters.skip, rasters.value_bytes, windows.source_width, windows.source_height, 1, rasters.rest_stride};
+}
+
+std::vector<std::uint32_t> load_raster_values(std::span<const std::uint8_t> payload, const RasterLayout& layout) {
+  std::vector<std::uint32_t> values(static_cast<std::size_t>(layout.values()));
+  for (std::size_t i = 0; i < values.size(); ++i) values[i] = load_value(payload.data() + layout.skip + i * layout.value_bytes, layout.value_bytes);
+  return values;
+}
+
+void store_value(std::vector<std::uint8_t>& out, std::uint32_t value, std::uint8_t value_bytes) {
+  for (std::uint8_t k = 0; k < value_bytes; ++k) out.push_back(static_cast<std::uint8_t>(value >> (8 * k)));
+}
+
+// The window filter's stream before deflate, or nullopt where the rasters share no texels.
+std::optional<std::pair<detail::RasterWindows, std::vector<std::uint8_t>>> window_filtered(std::span<const std::uint8_t> payload,
+                                                                                             const RasterLayout& layout) {
+  const std::vector<std::uint32_t> values = load_raster_values(payload, layout);
+  std::optional<detail::RasterWindows> windows = detail::find_raster_windows(values, layout.width, layout.height, layout.rasters);
+  if (!windows) return std::nullopt;
+  std::vector<std::uint8_t> stream(payload.begin(), payload.begin() + layout.skip);
+  for (std::uint32_t v : detail::compose_window_source(values, layout.width, layout.height, *windows)) store_value(stream, v, layout.value_bytes);
+  stream.insert(stream.end(), payload.begin() + static_cast<std::ptrdiff_t>(layout.end()), payload.end());
+  run_filter(stream, kRasterFilter, source_layout(layout, *windows), FilterDirection::apply);
+  return std::make_pair(std::move(*windows), std::move(stream));
+}
+
 // The smallest of the filtered deflations of `payload`, or empty when none is smaller than it. `rasters`
-// (optional) is where the payload holds rasters, for the raster filter.
+// (optional) is where the payload holds rasters, for the raster and window filters.
 // One zlib deflate stream, reset for each payload: a material's chunks and filters are many small
 // payloads, and a fresh stream per payload costs more in allocation than in compression.
 class Deflater {
@@ -176,12 +212,22 @@ class Deflater {
 std::vector<std::uint8_t> deflate_chunk(Deflater& deflater, std::string_view tag, std::span<const std::uint8_t> payload,
                                         const std::optional<RasterLayout>& rasters) {
   std::vector<std::uint8_t> best;
+  const bool has_rasters = rasters && rasters->fits(payload.size());
   std::vector<std::uint8_t> filters{0, 1, 2};
-  if (rasters && rasters->fits(payload.size())) filters.push_back(kRasterFilter);
+  if (has_rasters) filters.insert(filters.end(), {kRasterFilter, kWindowFilter});
   for (std::uint8_t filter : filters) {
-    const RasterLayout layout = filter == kRasterFilter ? *rasters : RasterLayout{};
-    std::vector<std::uint8_t> filtered(payload.begin(), payload.end());
-    run_filter(filtered, filter, layout, FilterDirection::apply);
+    const RasterLayout layout = filter >= kRasterFilter ? *rasters : RasterLayout{};
+    std::vector<std::uint8_t> filtered;
+    detail::RasterWindows windows;
+    if (filter == kWindowFilter) {
+      auto windowed = window_filtered(payload, layout);
+      if (!windowed) continue;
+      windows = std::move(windowed->first);
+      filtered = std::move(windowed->second);
+    } else {
+      filtered.assign(payload.begin(), payload.end());
+      run_filter(filtered, filter, layout, FilterDirection::apply);
+    }
     std::vector<std::uint8_t> packed;
     if (!deflater.pack(filtered, packed)) continue;
     std::vector<std::uint8_t> chunk;
@@ -189,13 +235,21 @@ std::vector<std::uint8_t> deflate_chunk(Deflater& deflater, std::string_view tag
     w.bytes(std::span(reinterpret_cast<const std::uint8_t*>(tag.data()), 4));
     w.u32(static_cast<std::uint32_t>(payload.size()));
     w.u8(filter);
-    if (filter == kRasterFilter) {
+    if (filter >= kRasterFilter) {
       w.u32(layout.skip);
       w.u8(layout.value_bytes);
       w.u32(layout.width);
       w.u32(layout.height);
       w.u32(layout.rasters);
       w.u8(layout.rest_stride);
+    }
+    if (filter == kWindowFilter) {
+      w.u32(windows.source_width);
+      w.u32(windows.source_height);
+      for (std::size_t r = 0; r < windows.rows.size(); ++r) {
+        w.u32(windows.cols[r]);
+        w.u32(windows.rows[r]);
+      }
     }
     w.bytes(packed);
     if (chunk.size() < payload.size() && (best.empty() || chunk.size() < best.size())) best = std::move(chunk);
@@ -237,6 +291,49 @@ bool inflate_exactly(std::span<const std::uint8_t> packed, std::uint32_t size, s
   return true;
 }
 
+// The window filter's placement, checked: every window inside the source, and the source no larger
+// than the rasters it replaces (so the stream is no longer than the payload).
+bool read_windows(ByteReader& r, const RasterLayout& layout, detail::RasterWindows& windows, std::string& problem) {
+  windows.source_width = r.u32();
+  windows.source_height = r.u32();
+  if (r.failed() || !r.can_read(layout.rasters, 8)) {
+    problem = "is truncated in its window placement";
+    return false;
+  }
+  windows.cols.resize(layout.rasters);
+  windows.rows.resize(layout.rasters);
+  bool inside = true;
+  for (std::uint32_t i = 0; i < layout.rasters; ++i) {
+    windows.cols[i] = r.u32();
+    windows.rows[i] = r.u32();
+    inside = inside && std::uint64_t{windows.cols[i]} + layout.width <= windows.source_width &&
+             std::uint64_t{windows.rows[i]} + layout.height <= windows.source_height;
+  }
+  if (!inside || windows.source_texels() > layout.values()) {
+    problem = "has a window placement outside its " + std::to_string(windows.source_width) + " x " +
+              std::to_string(windows.source_height) + " source, or a source larger than its rasters";
+    return false;
+  }
+  return true;
+}
+
+// The payload from the window filter's unfiltered stream (the skip bytes, the source values, the rest).
+std::vector<std::uint8_t> expand_windows(const std::vector<std::uint8_t>& stream, const RasterLayout& layout,
+                                         const detail::RasterWindows& windows, std::uint32_t size) {
+  std::vector<std::uint8_t> out(stream.begin(), stream.begin() + layout.skip);
+  out.reserve(size);
+  const std::size_t row_bytes = std::size_t{layout.width} * layout.value_bytes;
+  const std::uint8_t* source = stream.data() + layout.skip;
+  for (std::uint32_t i = 0; i < layout.rasters; ++i) {
+    for (std::uint32_t y = 0; y < layout.height; ++y) {
+      const std::uint8_t* row = source + ((std::size_t{windows.rows[i]} + y) * windows.source_width + windows.cols[i]) * layout.value_bytes;
+      out.insert(out.end(), row, row + row_bytes);
+    }
+  }
+  out.insert(out.end(), source + windows.source_texels() * layout.value_bytes, stream.data() + stream.size());
+  return out;
+}
+
 // Inflates a DEFL payload into its inner tag and payload; false with `problem` set when it is malformed.
 bool inflate_chunk(std::span<const std::uint8_t> payload, std::array<std::uint8_t, 4>& tag, std::vector<std::uint8_t>& out,
                    std::string& problem) {
@@ -245,7 +342,7 @@ bool inflate_chunk(std::span<const std::uint8_t> payload, std::array<std::uint8_
   const std::uint32_t size = r.u32();
   const std::uint8_t filter = r.u8();
   RasterLayout layout;
-  if (filter == kRasterFilter) {
+  if (filter == kRasterFilter || filter == kWindowFilter) {
     layout.skip = r.u32();
     layout.value_bytes = r.u8();
     layout.width = r.u32();
@@ -258,25 +355,36 @@ bool inflate_chunk(std::span<const std::uint8_t> payload, std::array<std::uint8_
     return false;
   }
   std::copy(inner.begin(), inner.end(), tag.begin());
-  if (filter > kMaxFilterStride && filter != kRasterFilter) {
-    problem = "has unknown filter " + std::to_string(filter) + " (this carbtf knows 0-" + std::to_string(kRasterFilter) + ")";
+  if (filter > kMaxFilterStride && filter != kRasterFilter && filter != kWindowFilter) {
+    problem = "has unknown filter " + std::to_string(filter) + " (this carbtf knows 0-" + std::to_string(kWindowFilter) + ")";
     return false;
   }
-  if (filter == kRasterFilter && !layout.fits(size)) {
+  if (filter >= kRasterFilter && !layout.fits(size)) {
     problem = "has a raster filter that does not fit its " + std::to_string(size) + " bytes (skip " + std::to_string(layout.skip) +
               ", " + std::to_string(layout.value_bytes) + "-byte values, " + std::to_string(layout.width) + " x " +
               std::to_string(layout.height) + " x " + std::to_string(layout.rasters) + ", rest stride " +
               std::to_string(layout.rest_stride) + ")";
     return false;
   }
+  detail::RasterWindows windows;
+  std::uint64_t stream_size = size;
+  if (filter == kWindowFilter) {
+    if (!read_windows(r, layout, windows, problem)) return false;
+    stream_size = size - (layout.values() - windows.source_texels()) * layout.value_bytes;
+  }
   const std::size_t packed = r.remaining();
   // zlib expands at most about 1032:1, so a larger claim is a lie; refusing it bounds the allocation.
-  if (size > kMaxInflatedBytes || size > packed * 1100 + 64) {
-    problem = "claims " + std::to_string(size) + " inflated bytes from " + std::to_string(packed);
+  if (size > kMaxInflatedBytes || stream_size > packed * 1100 + 64) {
+    problem = "claims " + std::to_string(stream_size) + " inflated bytes from " + std::to_string(packed);
     return false;
   }
-  if (!inflate_exactly(r.bytes(packed), size, out, problem)) return false;
-  run_filter(out, filter, layout, FilterDirection::undo);
+  if (!inflate_exactly(r.bytes(packed), static_cast<std::uint32_t>(stream_size), out, problem)) return false;
+  if (filter != kWindowFilter) {
+    run_filter(out, filter, layout, FilterDirection::undo);
+    return true;
+  }
+  run_filter(out, kRasterFilter, source_layout(layout, windows), FilterDirection::undo);
+  out = expand_windows(out, layout, windows, size);
   return true;
 }
 

@@ -2,6 +2,7 @@
 
 #include <carbtf_gpu_shared.h>
 
+#include <algorithm>
 #include <vector>
 
 #include "raster_prediction.hpp"
@@ -110,6 +111,57 @@ void fill_unseen_patch_texels(RangeTiles& tiles) {
         if (seen[texel]) continue;
         tiles.patches[texel] = static_cast<std::uint16_t>(detail::raster_prediction(tiles.patches.data() + p * texels, size, x, y));
         if (!tiles.tone.empty()) tiles.tone[texel] = static_cast<std::uint8_t>(detail::raster_prediction(tiles.tone.data() + p * texels, size, x, y));
+      }
+    }
+  }
+}
+
+void fill_unseen_patch_texels(RangeTiles& tiles, std::span<const PatchWindow> windows) {
+  const std::uint32_t size = tiles.tile_size;
+  if (size == 0) return;
+  const std::size_t texels = std::size_t{size} * size;
+  if (windows.size() * texels != tiles.patches.size()) return fill_unseen_patch_texels(tiles);
+  std::vector<bool> seen(tiles.patches.size(), false);
+  for (std::uint32_t t = 0; t < range_tile_count(tiles); ++t) {
+    for_each_tile_texel(tiles, t, [&](std::uint32_t x, std::uint32_t y, std::uint32_t patch) { seen[patch_texel(tiles, patch, x, y)] = true; });
+  }
+  std::uint32_t rows = 0, cols = 0;
+  for (const PatchWindow& w : windows) {
+    rows = std::max(rows, w.row + size);
+    cols = std::max(cols, w.col + size);
+  }
+  const auto source_texel = [&](std::size_t patch, std::uint32_t x, std::uint32_t y) {
+    return std::size_t{windows[patch].row + y} * cols + windows[patch].col + x;
+  };
+  std::vector<std::uint16_t> heights(std::size_t{rows} * cols);
+  std::vector<std::uint8_t> tone(tiles.tone.empty() ? 0 : heights.size());
+  std::vector<bool> shown(heights.size(), false);
+  for (std::size_t p = 0; p < windows.size(); ++p) {
+    for (std::uint32_t y = 0; y < size; ++y) {
+      for (std::uint32_t x = 0; x < size; ++x) {
+        const std::size_t texel = p * texels + std::size_t{y} * size + x;
+        if (!seen[texel]) continue;
+        const std::size_t at = source_texel(p, x, y);
+        shown[at] = true;
+        heights[at] = tiles.patches[texel];
+        if (!tone.empty()) tone[at] = tiles.tone[texel];
+      }
+    }
+  }
+  for (std::uint32_t y = 0; y < rows; ++y) {
+    for (std::uint32_t x = 0; x < cols; ++x) {
+      const std::size_t at = std::size_t{y} * cols + x;
+      if (shown[at]) continue;
+      heights[at] = static_cast<std::uint16_t>(detail::raster_prediction(heights.data(), cols, x, y));
+      if (!tone.empty()) tone[at] = static_cast<std::uint8_t>(detail::raster_prediction(tone.data(), cols, x, y));
+    }
+  }
+  for (std::size_t p = 0; p < windows.size(); ++p) {
+    for (std::uint32_t y = 0; y < size; ++y) {
+      for (std::uint32_t x = 0; x < size; ++x) {
+        const std::size_t texel = p * texels + std::size_t{y} * size + x;
+        tiles.patches[texel] = heights[source_texel(p, x, y)];
+        if (!tone.empty()) tiles.tone[texel] = tone[source_texel(p, x, y)];
       }
     }
   }

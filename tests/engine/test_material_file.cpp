@@ -232,8 +232,32 @@ std::size_t deflated_chunk_at(const std::vector<std::uint8_t>& bytes, const std:
   return std::string::npos;
 }
 
+// A relief rough at the texel scale, as measured leather is, cut into 32^2 patches of a 64 x 56 map,
+// which overlap: what the window filter (format 1.5) is for.
+Material rough_relief_material(bool fill_each_patch = false) {
+  Material m = sample_material();
+  Plane heights(64, 56);
+  for (Eigen::Index r = 0; r < heights.rows(); ++r) {
+    for (Eigen::Index c = 0; c < heights.cols(); ++c) heights(r, c) = reference::gaussian_noise(3, 0, static_cast<std::int32_t>(r), static_cast<std::int32_t>(c));
+  }
+  const Plane tone = 1.0 + 0.2 * heights.abs();
+  RangeTileOptions options;
+  options.tile_size = 32;
+  m.range = build_range_tiles(heights, options, &tone);
+  if (fill_each_patch) fill_unseen_patch_texels(m.range);
+  return m;
+}
+
+// The same relief with each patch filled on its own (format 1.3's filling), so its patches no longer
+// agree where one shows a texel and another does not: the raster filter's case, not the window filter's.
+Material patch_filled_material() {
+  Material m = smooth_relief_material();
+  fill_unseen_patch_texels(m.range);
+  return m;
+}
+
 TEST_CASE("heights and tone are stored as residuals of a raster predictor and read back exactly", "[material_file][deflate][raster]") {
-  const Material m = smooth_relief_material();
+  const Material m = patch_filled_material();
   const std::vector<std::uint8_t> packed = deflated(m);
   Material back;
   REQUIRE(decode_material(packed, "x.cbtf", back).ok());
@@ -258,7 +282,7 @@ TEST_CASE("heights and tone are stored as residuals of a raster predictor and re
     REQUIRE_FALSE(s.ok());
     return s.message();
   };
-  SECTION("an unknown filter") { CHECK_THAT(refused(range_at + 16, 10, 1), Catch::Contains("bad.cbtf: deflated chunk has unknown filter 10")); }
+  SECTION("an unknown filter") { CHECK_THAT(refused(range_at + 16, 11, 1), Catch::Contains("bad.cbtf: deflated chunk has unknown filter 11")); }
   SECTION("3-byte values") { CHECK_THAT(refused(range_at + 21, 3, 1), Catch::Contains("raster filter that does not fit")); }
   SECTION("rasters whose size overflows 64 bits") {
     std::vector<std::uint8_t> bytes = packed;
@@ -274,8 +298,86 @@ TEST_CASE("heights and tone are stored as residuals of a raster predictor and re
   SECTION("a rest stride beyond 8") { CHECK_THAT(refused(range_at + 34, 9, 1), Catch::Contains("rest stride 9")); }
 }
 
+TEST_CASE("patches cut from overlapping places of one map are stored once (the window filter)", "[material_file][deflate][raster]") {
+  const Material m = rough_relief_material();
+  const std::vector<std::uint8_t> packed = deflated(m);
+  Material back;
+  REQUIRE(decode_material(packed, "x.cbtf", back).ok());
+  CHECK(back == m);
+  const std::size_t range_at = deflated_chunk_at(packed, "RNGE");
+  const std::size_t tone_at = deflated_chunk_at(packed, "TONE");
+  REQUIRE(range_at != std::string::npos);
+  REQUIRE(tone_at != std::string::npos);
+  CHECK(packed[range_at + 16] == 10);
+  CHECK(packed[tone_at + 16] == 10);
+  // The same tiles filled patch by patch cannot share the texels one patch shows and another does not,
+  // so they fall back to the raster filter and take more room.
+  const std::vector<std::uint8_t> per_patch = deflated(rough_relief_material(true));
+  CHECK(per_patch[deflated_chunk_at(per_patch, "RNGE") + 16] == 9);
+  CHECK(static_cast<double>(packed.size()) < 0.9 * static_cast<double>(per_patch.size()));
+
+  const auto u32_at = [&](std::size_t at) {
+    return static_cast<std::uint32_t>(packed[at]) | static_cast<std::uint32_t>(packed[at + 1]) << 8 |
+           static_cast<std::uint32_t>(packed[at + 2]) << 16 | static_cast<std::uint32_t>(packed[at + 3]) << 24;
+  };
+  const std::size_t source_at = range_at + 35;  // after the raster filter's parameters
+  const std::uint32_t source_width = u32_at(source_at);
+  const std::uint32_t source_height = u32_at(source_at + 4);
+  CHECK(std::uint64_t{source_width} * source_height < 4u * 32u * 32u);
+  auto refused = [&](std::size_t at, std::uint32_t value) {
+    std::vector<std::uint8_t> bytes = packed;
+    for (int i = 0; i < 4; ++i) bytes[at + i] = static_cast<std::uint8_t>(value >> (8 * i));
+    fix_crcs(bytes);
+    Material damaged;
+    const Status s = decode_material(bytes, "bad.cbtf", damaged);
+    REQUIRE_FALSE(s.ok());
+    return s.message();
+  };
+  SECTION("a window past the source's right edge") {
+    CHECK_THAT(refused(source_at + 8, source_width - 31), Catch::Contains("bad.cbtf: deflated chunk has a window placement outside its"));
+  }
+  SECTION("a window past the source's bottom edge, by 2^32") {
+    CHECK_THAT(refused(source_at + 12, 0xFFFFFFFFu), Catch::Contains("window placement outside"));
+  }
+  SECTION("a source larger than the rasters it replaces") {
+    CHECK_THAT(refused(source_at, 0x10000u), Catch::Contains("a source larger than its rasters"));
+  }
+  SECTION("a source that does not match its stream") {
+    CHECK_THAT(refused(source_at + 4, source_height - 1), Catch::Contains("bad.cbtf: deflated chunk"));
+  }
+  SECTION("a placement cut short") {
+    std::vector<std::uint8_t> bytes = packed;
+    for (int i = 0; i < 4; ++i) bytes[range_at + 30 + i] = static_cast<std::uint8_t>(i == 0 ? 200 : 0);  // 200 rasters
+    fix_crcs(bytes);
+    Material damaged;
+    const Status s = decode_material(bytes, "bad.cbtf", damaged);
+    REQUIRE_FALSE(s.ok());
+    CHECK_THAT(s.message(), Catch::Contains("bad.cbtf: deflated chunk"));
+  }
+}
+
+TEST_CASE("patches that agree almost everywhere are encoded within bounded work", "[material_file][deflate][raster]") {
+  // Every offset of these patches agrees until the last texel, which defeats the window search's early
+  // exits; its work bound makes it give up, and the file is still exact.
+  Material m = sample_material();
+  RangeTiles& r = m.range;
+  r.tile_size = 256;
+  const std::size_t texels = std::size_t{r.tile_size} * r.tile_size;
+  r.patches.assign(4 * texels, 7);
+  for (std::size_t p = 0; p < 4; ++p) r.patches[(p + 1) * texels - 1] = static_cast<std::uint16_t>(8 + p);
+  r.tone.assign(r.patches.size(), 3);
+  r.cuts.assign(std::size_t{range_tile_count(r)} * 4 * (r.tile_size / 2), 1);
+  for (std::size_t i = r.tile_size / 2 - 1; i < r.cuts.size(); i += r.tile_size / 2) r.cuts[i] = static_cast<std::uint16_t>(r.tile_size / 2);
+  for (std::size_t i = 0; i < r.cuts.size(); i += r.tile_size / 2) r.cuts[i] = 0;
+  REQUIRE(validate_material(m).ok());
+  const std::vector<std::uint8_t> packed = deflated(m);
+  Material back;
+  REQUIRE(decode_material(packed, "x.cbtf", back).ok());
+  CHECK(back == m);
+}
+
 TEST_CASE("patch texels that no tile shows are filled so they cost nothing and no tile changes", "[material_file][raster]") {
-  const Material filled = smooth_relief_material();
+  const Material filled = patch_filled_material();
   const RangeTiles& tiles = filled.range;
   const std::size_t tile_texels = std::size_t{tiles.tile_size} * tiles.tile_size;
   auto composed = [&](const RangeTiles& t, RangeChannel channel) {
@@ -309,6 +411,28 @@ TEST_CASE("patch texels that no tile shows are filled so they cost nothing and n
   CHECK(refilled == tiles);  // only the shown texels decide the filling
   for (RangeChannel channel : {RangeChannel::height, RangeChannel::tone}) CHECK(composed(unfilled.range, channel) == composed(tiles, channel));
   CHECK(deflated(filled).size() < deflated(unfilled).size());
+}
+
+TEST_CASE("windows of one map are filled as one map and show the same tiles", "[material_file][raster]") {
+  const Material windows = smooth_relief_material();
+  const Material patches = patch_filled_material();
+  const RangeTiles& tiles = windows.range;
+  REQUIRE(tiles.patches != patches.range.patches);
+  const std::size_t tile_texels = std::size_t{tiles.tile_size} * tiles.tile_size;
+  for (RangeChannel channel : {RangeChannel::height, RangeChannel::tone}) {
+    for (std::uint32_t i = 0; i < range_tile_count(tiles); ++i) {
+      std::vector<float> a(tile_texels), b(tile_texels);
+      compose_range_tile(tiles, i, a, channel);
+      compose_range_tile(patches.range, i, b, channel);
+      CHECK(a == b);
+    }
+  }
+  SECTION("windows that do not match the patches fall back to filling each patch") {
+    RangeTiles refilled = tiles;
+    const std::vector<PatchWindow> too_few{{0, 0}, {4, 4}};
+    fill_unseen_patch_texels(refilled, too_few);
+    CHECK(refilled == patches.range);
+  }
 }
 
 TEST_CASE("a format 1.0 file (plain chunks, no relief tone) still reads", "[material_file][compatibility]") {

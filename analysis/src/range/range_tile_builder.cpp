@@ -203,7 +203,9 @@ RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& optio
       std::copy(cut.begin(), cut.end(), tiles.cuts.begin() + static_cast<std::ptrdiff_t>((std::size_t{t} * 4 + q) * half));
     }
   }
-  fill_unseen_patch_texels(tiles);
+  std::vector<PatchWindow> windows;
+  for (const PatchOrigin& o : origins) windows.push_back({static_cast<std::uint32_t>(o.row), static_cast<std::uint32_t>(o.col)});
+  fill_unseen_patch_texels(tiles, windows);
   return tiles;
 }
 

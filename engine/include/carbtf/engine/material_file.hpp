@@ -14,8 +14,9 @@
 //         u16 patches[2 * colours * size^2], u16 cuts[colours^4 * 4 * size / 2] (tile_size 0: none)
 //   DEFL  (1.1) any chunk but SETT deflated: 4-byte inner tag, u32 inner payload size, u8 filter
 //         (0 none, s <= 8: each byte minus the one s before, as PNG's Sub; 9, format 1.3: the raster
-//         filter, with its parameters, for the heights and tone: residuals of a median edge predictor,
-//         see material_file.cpp), one zlib stream; the reader bounds the claimed size (64 MiB, and
+//         filter, with its parameters, for the heights and tone: residuals of a median edge predictor;
+//         10, format 1.5: the window filter, which stores patches cut from overlapping places of one
+//         map as that map's texels, once; see material_file.cpp), one zlib stream; the reader bounds the claimed size (64 MiB, and
 //         1100:1 over the stream) and checks the filter's layout before it allocates
 //   TONE  (1.1, optional) f32 tone_offset, f32 tone_scale, u32 count, u8 tone[count]: the relief tone
 //         per patch texel (count = the patches' texel count). A 1.0 reader skips it and renders the
@@ -41,7 +42,7 @@
 namespace carbtf {
 
 inline constexpr std::uint16_t kMaterialFormatMajor = 1;
-inline constexpr std::uint16_t kMaterialFormatMinor = 4;
+inline constexpr std::uint16_t kMaterialFormatMinor = 5;
 
 struct MaterialEncoding {
   // Deflate every chunk but SETT where that is smaller (format 1.1). Off, every chunk is stored plain:

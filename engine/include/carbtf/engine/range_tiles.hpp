@@ -79,6 +79,18 @@ void compose_range_tile(const RangeTiles& tiles, std::uint32_t tile, std::span<f
 // included).
 void fill_unseen_patch_texels(RangeTiles& tiles);
 
+// Where a patch was cut from its source map: the texel of the map at its top-left corner.
+struct PatchWindow {
+  std::uint32_t row = 0, col = 0;
+};
+
+// As above, for patches that are windows of one source map (`windows`, one per patch), as the analysis
+// cuts them: texels the windows share hold one value, so the material file stores them once (its
+// window filter). A texel one patch does not show takes the value another patch shows there; one no
+// patch shows takes the raster filter's prediction over the source map, in its raster order. Requires
+// that texels which several patches show agree in heights and tone, as windows of one map do.
+void fill_unseen_patch_texels(RangeTiles& tiles, std::span<const PatchWindow> windows);
+
 // The tile laid at tile coordinates (tile_row, tile_col) of the enlarged map for `seed`.
 std::uint32_t range_tile_at(const RangeTiles& tiles, std::uint64_t seed, std::int32_t tile_row, std::int32_t tile_col);
 
