@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <optional>
 #include <sstream>
@@ -46,6 +47,29 @@ std::string join_numbers(const std::vector<double>& values) {
 
 MaterialDirection to_material(const Direction& d) { return {static_cast<float>(d.theta), static_cast<float>(d.phi)}; }
 
+// Significant bits kept of each colour and band number (mean, transform, band mean, std, sigma): a
+// relative change of at most 2^-13, far below an 8-bit output step (2^-8) and the numbers' own
+// estimation error, while the cleared low mantissa bits let the file deflate them (about 1 KB of a
+// 256^2 material). Gammas are rounded by their own posterior error (car_fit.cpp).
+constexpr int kStoredSignificantBits = 12;
+
+float to_stored_precision(float value) {
+  if (value == 0.0f || !std::isfinite(value)) return value;
+  int exponent = 0;
+  const double fraction = std::frexp(static_cast<double>(value), &exponent);  // value = fraction 2^exponent, |fraction| in [0.5, 1)
+  return static_cast<float>(std::ldexp(std::round(std::ldexp(fraction, kStoredSignificantBits)), exponent - kStoredSignificantBits));
+}
+
+void round_to_stored_precision(SubspaceModel& model) {
+  for (float& v : model.colour_mean) v = to_stored_precision(v);
+  for (float& v : model.colour_transform) v = to_stored_precision(v);
+  for (CarBandModel& band : model.bands) {
+    band.mean = to_stored_precision(band.mean);
+    band.band_std = to_stored_precision(band.band_std);
+    band.sigma = to_stored_precision(band.sigma);
+  }
+}
+
 // The model of prepared channels (the smooth texture the CAR is to reproduce); notes name the band
 // they concern.
 SubspaceModel fit_channels(const std::vector<Plane>& channels, LightView pair, const AnalysisOptions& options,
@@ -73,6 +97,7 @@ SubspaceModel fit_channels(const std::vector<Plane>& channels, LightView pair, c
     }
   }
   if (options.calibrate_collapse) calibrate_collapse_variance(model, bands, pyramids);
+  round_to_stored_precision(model);
   return model;
 }
 

@@ -42,12 +42,17 @@ const std::vector<ModelVariant>& model_variants() {
       {"tone64", "relief tone, 64-texel tiles", [](AnalysisOptions& o) { o.tiles.tile_size = 64; }},
       {"tone96", "relief tone, 96-texel tiles", [](AnalysisOptions& o) { o.tiles.tile_size = 96; }},
       {"tone128_12bit", "relief tone, 128-texel tiles, 12-bit heights", [](AnalysisOptions& o) { o.tiles.height_bits = 12; }},
-      {"compact", "the default with 6-bit heights and a 5-bit tone",
+      {"fine", "the default with 8-bit heights and a 7-bit tone (the default before format 1.5)",
        [](AnalysisOptions& o) {
-         o.tiles.height_bits = 6;
-         o.tiles.tone_bits = 5;
+         o.tiles.height_bits = 8;
+         o.tiles.tone_bits = 7;
        }},
-      {"default", "relief tone, 128-texel tiles, 8-bit heights, 7-bit tone, remainder clamp chosen per subspace", [](AnalysisOptions&) {}},
+      {"compact", "the default with 5-bit heights and a 3-bit tone",
+       [](AnalysisOptions& o) {
+         o.tiles.height_bits = 5;
+         o.tiles.tone_bits = 3;
+       }},
+      {"default", "relief tone, 128-texel tiles, 6-bit heights, 4-bit tone, remainder clamp chosen per subspace", [](AnalysisOptions&) {}},
       {"tone_weights", "the default with each subspace's share of the relief tone (0 or 1) chosen with its clamp",
        [](AnalysisOptions& o) { o.tone_weights = {0.0, 1.0}; }},
       {"fixed_clamp", "the default with the remainder clamp fixed at 1.5", [](AnalysisOptions& o) { o.remainder_clamps = {1.5}; }},

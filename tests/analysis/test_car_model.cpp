@@ -81,9 +81,9 @@ TEST_CASE("the CAR estimator recovers gamma and sigma^2 of synthetic fields with
       INFO("gamma " << k << ": fitted " << fit.model.gamma[k] << ", true " << known.gamma[k] << ", se " << fit.gamma_standard_error[k]);
       CHECK(std::abs(fit.model.gamma[k] - known.gamma[k]) <= 5.0 * fit.gamma_standard_error[k]);
       CHECK(fit.gamma_standard_error[k] < 0.01);
-      // Stored to the precision of its estimate: a multiple of the power-of-two step at most 1/32 of
+      // Stored to the precision of its estimate: a multiple of the power-of-two step at most 1/8 of
       // its standard error, so the bits below carry nothing the file has to keep.
-      const double step = std::exp2(std::floor(std::log2(fit.gamma_standard_error[k] / 32.0)));
+      const double step = std::exp2(std::floor(std::log2(fit.gamma_standard_error[k] / 8.0)));
       CHECK(std::fmod(double{fit.model.gamma[k]}, step) == 0.0);
     }
     const double sigma2 = double{fit.model.sigma} * fit.model.sigma;

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstring>
 
 #include "carbtf/analysis/analyze.hpp"
 #include "carbtf/analysis/reference/subspace_synthesis.hpp"
@@ -159,6 +160,30 @@ TEST_CASE("a synthesized subspace image keeps the analysed image's colour statis
     reference::interpolate_subspaces(m, w, images, out);
     CHECK(out == images[subspace_of(m, 30, 70)]);
   }
+}
+
+TEST_CASE("an analysed model keeps 12 significant bits of its colour and band numbers", "[synthesis][size]") {
+  // The low mantissa bits carry only estimation noise; cleared, they deflate (material file size).
+  const Material m = analysed_leather().material;
+  std::size_t numbers = 0, nonzero = 0;
+  auto check = [&](float v) {
+    std::uint32_t bits = 0;
+    std::memcpy(&bits, &v, sizeof bits);
+    INFO("value " << v);
+    CHECK((bits & 0xFFFu) == 0u);
+    ++numbers;
+    nonzero += v != 0.0f;
+  };
+  for (const SubspaceModel& s : m.subspaces) {
+    for (float v : s.colour_mean) check(v);
+    for (float v : s.colour_transform) check(v);
+    for (const CarBandModel& b : s.bands) {
+      check(b.mean);
+      check(b.band_std);
+      check(b.sigma);
+    }
+  }
+  CHECK(nonzero > numbers / 2);
 }
 
 TEST_CASE("block-wise synthesis from stored initialization values equals the whole synthesis",
