@@ -22,8 +22,20 @@ namespace {
 using detail::lower_extension;
 
 bool is_float_format(const std::string& ext) { return ext == ".exr" || ext == ".tif" || ext == ".tiff" || ext == ".pfm"; }
-bool is_8bit_format(const std::string& ext) {
-  return ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".bmp";
+
+// The OpenImageIO reader for each extension carbtf reads, or nullptr. Only that reader is tried:
+// ImageInput::open() would otherwise try every installed reader on a file its own one refuses, FFmpeg's
+// video readers included, which a hostile dataset has no business reaching (a manifest naming
+// "c.png\0.qt" did, and FFmpeg leaked on it under the fuzzer).
+const char* image_reader(const std::string& ext) {
+  if (ext == ".png") return "png";
+  if (ext == ".jpg" || ext == ".jpeg") return "jpeg";
+  if (ext == ".bmp") return "bmp";
+  if (ext == ".exr") return "openexr";
+  if (ext == ".tif" || ext == ".tiff") return "tiff";
+  if (ext == ".pfm") return "pnm";
+  if (ext == ".webp") return "webp";  // the built-in sample materials' maps (assets/materials)
+  return nullptr;
 }
 
 }  // namespace
@@ -32,7 +44,7 @@ bool is_float_image_extension(const std::filesystem::path& path) { return is_flo
 
 bool is_supported_image_extension(const std::filesystem::path& path) {
   const std::string ext = lower_extension(path);
-  return is_float_format(ext) || is_8bit_format(ext);
+  return is_float_format(ext) || ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".bmp";
 }
 
 void create_folder(const std::filesystem::path& folder) {
@@ -114,8 +126,13 @@ RgbImage decode_rgb_image(const std::string& name, std::span<const std::byte> by
   if (bytes.empty()) throw InputError(name, "empty file, not an image");
   // IOMemReader takes a non-const pointer but only reads.
   OIIO::Filesystem::IOMemReader memory(const_cast<std::byte*>(bytes.data()), bytes.size());
-  auto input = OIIO::ImageInput::open(name, nullptr, &memory);
-  if (!input) throw InputError(name, "not a readable image (" + OIIO::geterror() + ")");
+  const char* reader = image_reader(lower_extension(name));
+  if (reader == nullptr) throw InputError(name, "is not named as an image carbtf reads (.png, .jpg, .jpeg, .bmp, .exr, .tif, .tiff, .pfm, .webp)");
+  auto input = OIIO::ImageInput::create(reader);
+  if (!input) throw InputError(name, std::string("no ") + reader + " reader in this OpenImageIO (" + OIIO::geterror() + ")");
+  if (!input->set_ioproxy(&memory)) throw InputError(name, std::string("the ") + reader + " reader cannot read from memory");
+  OIIO::ImageSpec opened;
+  if (!input->open(name, opened)) throw InputError(name, "not a readable image (" + input->geterror() + ")");
   const OIIO::ImageSpec& spec = input->spec();
   const std::string size_text = std::to_string(spec.width) + "x" + std::to_string(spec.height);
   if (spec.width <= 0 || spec.height <= 0) throw InputError(name, "implausible image size " + size_text);

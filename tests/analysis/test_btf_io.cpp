@@ -517,6 +517,18 @@ TEST_CASE("bad input: an image header claiming 16384x16384 is refused before any
   check_input_error([&] { decode_rgb_image("other.png", png_claiming(4000, 4000), &first); }, "other.png", "but the others are 64x64");
 }
 
+TEST_CASE("bad input: an image is read only by the reader its name gives", "[btf][bad-input]") {
+  const std::vector<float> grey(8 * 8 * 3, 0.5f);
+  const std::vector<std::byte> png = encode_rgb_image("x.png", grey, 8, 8);
+  const std::vector<std::byte> jpeg = encode_rgb_image("x.jpg", grey, 8, 8);
+  CHECK(decode_rgb_image("x.png", png).width == 8);
+  // No other installed reader (FFmpeg's video readers among them) is tried on what the name does not
+  // promise: a name the fuzzer found, with a NUL byte before a QuickTime extension, reached FFmpeg.
+  check_input_error([&] { decode_rgb_image("clip.qt", png); }, "clip.qt", "is not named as an image carbtf reads (.png");
+  check_input_error([&] { decode_rgb_image(std::string("c.png\0.qt", 9), png); }, "c.png?.qt", "is not named as an image carbtf reads");
+  check_input_error([&] { decode_rgb_image("mislabelled.png", jpeg); }, "mislabelled.png", "not a readable image");
+}
+
 TEST_CASE("bad input: a FIFO in a dataset folder is refused, not waited on", "[btf][bad-input]") {
   const fs::path folder = scratch_folder("fifo");
   const fs::path fifo = folder / "image.png";
