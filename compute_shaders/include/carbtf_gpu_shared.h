@@ -276,27 +276,29 @@ struct MaterialTablesHeader {
   float reserved2;
 };
 
-// carbtf's own mesh pipeline (material_vertex.vert / material_fragment.frag): per-draw uniforms, std140.
 #ifdef __cplusplus
-struct RenderFrameUniforms {
-  float view_projection[16];  // column-major, world -> clip
-  float model[16];            // column-major, object -> world (rotation, translation, uniform scale)
-  float camera[4];            // w = 1: camera position; w = 0: direction towards an orthographic camera
-  float light_position[4 * CARBTF_RENDER_MAX_LIGHTS];  // w = 1: point light; w = 0: direction to the light
-  float light_colour[4 * CARBTF_RENDER_MAX_LIGHTS];    // linear RGB scale (point lights: at distance 1)
-  uint light_count;
-  uint reserved[3];
+// C++ stand-ins of the GLSL types the uniform block below uses, with their std140 size and alignment
+// (16 bytes), so that the block has one definition for both languages.
+struct alignas(16) vec4 {
+  float x, y, z, w;
 };
-#else
-struct RenderFrameUniforms {
-  mat4 view_projection;
-  mat4 model;
-  vec4 camera;
-  vec4 light_position[CARBTF_RENDER_MAX_LIGHTS];
-  vec4 light_colour[CARBTF_RENDER_MAX_LIGHTS];
-  uvec4 counts;  // x: light count
+struct alignas(16) uvec4 {
+  uint x, y, z, w;
+};
+struct alignas(16) mat4 {
+  float columns[16];  // column-major, as GLSL's
 };
 #endif
+
+// carbtf's own mesh pipeline (material_vertex.vert / material_fragment.frag): per-draw uniforms, std140.
+struct RenderFrameUniforms {
+  mat4 view_projection;  // world -> clip
+  mat4 model;            // object -> world (rotation, translation, uniform scale)
+  vec4 camera;           // w = 1: camera position; w = 0: direction towards an orthographic camera
+  vec4 light_position[CARBTF_RENDER_MAX_LIGHTS];  // w = 1: point light; w = 0: direction to the light
+  vec4 light_colour[CARBTF_RENDER_MAX_LIGHTS];    // linear RGB scale (point lights: at distance 1)
+  uvec4 counts;                                   // x: light count
+};
 
 #ifdef __cplusplus
 static_assert(sizeof(NoiseFieldParams) == 36, "NoiseFieldParams must match the GLSL push-constant layout");
@@ -311,7 +313,8 @@ static_assert(sizeof(DirectionLookupGpu) == 32 && sizeof(MaterialTablesHeader) =
 static_assert(offsetof(MaterialTablesHeader, layer_table) == 64 && offsetof(MaterialTablesHeader, parallax_scale) == 80);
 static_assert(offsetof(MaterialTablesHeader, tone_chroma) == 96);
 static_assert(sizeof(RenderFrameUniforms) == 160 + 32 * CARBTF_RENDER_MAX_LIGHTS, "RenderFrameUniforms must match std140");
-static_assert(offsetof(RenderFrameUniforms, light_count) == 144 + 32 * CARBTF_RENDER_MAX_LIGHTS);
+static_assert(offsetof(RenderFrameUniforms, camera) == 128 && offsetof(RenderFrameUniforms, light_position) == 144);
+static_assert(offsetof(RenderFrameUniforms, counts) == 144 + 32 * CARBTF_RENDER_MAX_LIGHTS);
 }  // namespace carbtf::gpu
 #endif
 

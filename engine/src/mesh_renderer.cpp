@@ -325,16 +325,14 @@ Status MeshRenderer::record(VkCommandBuffer cb, const RenderScene& scene) noexce
 
   gpu::RenderFrameUniforms frame{};
   const std::array<float, 16> vp = view_projection(scene.camera, aspect);
-  std::copy(vp.begin(), vp.end(), frame.view_projection);
-  std::copy(scene.model.begin(), scene.model.end(), frame.model);
+  std::copy(vp.begin(), vp.end(), frame.view_projection.columns);
+  std::copy(scene.model.begin(), scene.model.end(), frame.model.columns);
   const auto& c = scene.camera;
   if (c.fov_y_degrees > 0.0f) {
-    frame.camera[0] = c.eye[0], frame.camera[1] = c.eye[1], frame.camera[2] = c.eye[2],
-    frame.camera[3] = 1.0f;
+    frame.camera = {c.eye[0], c.eye[1], c.eye[2], 1.0f};
   } else {
     const glm::vec3 towards = glm::normalize(vec3_of(c.eye) - vec3_of(c.target));
-    frame.camera[0] = towards.x, frame.camera[1] = towards.y, frame.camera[2] = towards.z,
-    frame.camera[3] = 0.0f;
+    frame.camera = {towards.x, towards.y, towards.z, 0.0f};
   }
   const std::uint32_t lights =
       std::min<std::uint32_t>(static_cast<std::uint32_t>(scene.lights.size()), gpu::CARBTF_RENDER_MAX_LIGHTS);
@@ -342,12 +340,10 @@ Status MeshRenderer::record(VkCommandBuffer cb, const RenderScene& scene) noexce
     const RenderLight& light = scene.lights[i];
     glm::vec3 p = vec3_of(light.position);
     if (!light.point) p = glm::normalize(p);
-    frame.light_position[4 * i] = p.x, frame.light_position[4 * i + 1] = p.y,
-                             frame.light_position[4 * i + 2] = p.z;
-    frame.light_position[4 * i + 3] = light.point ? 1.0f : 0.0f;
-    for (int k = 0; k < 3; ++k) frame.light_colour[4 * i + k] = light.colour[k];
+    frame.light_position[i] = {p.x, p.y, p.z, light.point ? 1.0f : 0.0f};
+    frame.light_colour[i] = {light.colour[0], light.colour[1], light.colour[2], 0.0f};
   }
-  frame.light_count = lights;
+  frame.counts.x = lights;
   std::memcpy(r.uniforms.mapped(), &frame, sizeof frame);
 
   VkClearValue clears[2]{};
