@@ -3,7 +3,7 @@
 // only its handles (Context::adopt). carbtf synthesizes the material into the host's command buffer
 // and gives it a descriptor set; the host's own fragment shader (shaders/host_mesh_fragment.frag) includes
 // carbtf_material.glsl and draws the material on the host's mesh in the host's render pass.
-// `carbtf_example_host` runs its render loop; tests/engine/test_embedding.cpp runs it headless.
+// `carbtf_example_host` runs its render loop; tests/host/test_embedding.cpp runs it headless.
 // Errors throw std::runtime_error naming the failing call (it is an example program, not the engine).
 #pragma once
 
