@@ -24,10 +24,13 @@ std::vector<Offset> overlapping_offsets(std::uint32_t width, std::uint32_t heigh
   offsets.reserve((2 * std::size_t{width} - 1) * (2 * std::size_t{height} - 1));
   for (std::int64_t dr = 1 - std::int64_t{height}; dr < height; ++dr) {
     for (std::int64_t dc = 1 - std::int64_t{width}; dc < width; ++dc) {
-      offsets.push_back({dr, dc, static_cast<std::uint64_t>(height - std::llabs(dr)) * static_cast<std::uint64_t>(width - std::llabs(dc))});
+      offsets.push_back({dr, dc,
+                         static_cast<std::uint64_t>(height - std::llabs(dr)) *
+                             static_cast<std::uint64_t>(width - std::llabs(dc))});
     }
   }
-  std::stable_sort(offsets.begin(), offsets.end(), [](const Offset& a, const Offset& b) { return a.area > b.area; });
+  std::stable_sort(offsets.begin(), offsets.end(),
+                   [](const Offset& a, const Offset& b) { return a.area > b.area; });
   return offsets;
 }
 
@@ -78,9 +81,11 @@ class WindowSearch {
 
 }  // namespace
 
-std::optional<RasterWindows> find_raster_windows(const std::vector<std::uint32_t>& values, std::uint32_t width,
-                                                 std::uint32_t height, std::uint32_t count) {
-  if (count < 2 || width == 0 || height == 0 || values.size() != std::size_t{width} * height * count) return std::nullopt;
+std::optional<RasterWindows> find_raster_windows(const std::vector<std::uint32_t>& values,
+                                                 std::uint32_t width, std::uint32_t height,
+                                                 std::uint32_t count) {
+  if (count < 2 || width == 0 || height == 0 || values.size() != std::size_t{width} * height * count)
+    return std::nullopt;
   const std::vector<Offset> offsets = overlapping_offsets(width, height);
   WindowSearch search(values, width, height);
   search.place(0, 0);
@@ -117,8 +122,9 @@ std::optional<RasterWindows> find_raster_windows(const std::vector<std::uint32_t
   return windows;
 }
 
-std::vector<std::uint32_t> compose_window_source(const std::vector<std::uint32_t>& values, std::uint32_t width,
-                                                 std::uint32_t height, const RasterWindows& windows) {
+std::vector<std::uint32_t> compose_window_source(const std::vector<std::uint32_t>& values,
+                                                 std::uint32_t width, std::uint32_t height,
+                                                 const RasterWindows& windows) {
   const std::size_t source_width = windows.source_width;
   std::vector<std::uint32_t> source(static_cast<std::size_t>(windows.source_texels()));
   std::vector<bool> covered(source.size(), false);

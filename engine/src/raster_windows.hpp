@@ -21,12 +21,14 @@ struct RasterWindows {
 // them, or nullopt when none found is smaller than the rasters side by side. Each raster goes where it
 // shares the most texels with those placed before it (a greedy search, bounded in work so that no
 // input makes it slow; the bound makes it give up, never err). Deterministic.
-std::optional<RasterWindows> find_raster_windows(const std::vector<std::uint32_t>& values, std::uint32_t width,
-                                                 std::uint32_t height, std::uint32_t count);
+std::optional<RasterWindows> find_raster_windows(const std::vector<std::uint32_t>& values,
+                                                 std::uint32_t width, std::uint32_t height,
+                                                 std::uint32_t count);
 
 // The source raster of a placement: each texel a window covers holds that window's value; the rest
 // hold the raster filter's prediction (raster_prediction.hpp), so they cost nearly nothing.
-std::vector<std::uint32_t> compose_window_source(const std::vector<std::uint32_t>& values, std::uint32_t width,
-                                                 std::uint32_t height, const RasterWindows& windows);
+std::vector<std::uint32_t> compose_window_source(const std::vector<std::uint32_t>& values,
+                                                 std::uint32_t width, std::uint32_t height,
+                                                 const RasterWindows& windows);
 
 }  // namespace carbtf::detail
