@@ -42,9 +42,10 @@ const char* image_reader(const std::string& ext) {
 
 bool is_float_image_extension(const std::filesystem::path& path) { return is_float_format(lower_extension(path)); }
 
+// Datasets and outputs: every format there is a reader for but WebP, which only the built-in assets use.
 bool is_supported_image_extension(const std::filesystem::path& path) {
   const std::string ext = lower_extension(path);
-  return is_float_format(ext) || ext == ".png" || ext == ".jpg" || ext == ".jpeg" || ext == ".bmp";
+  return image_reader(ext) != nullptr && ext != ".webp";
 }
 
 void create_folder(const std::filesystem::path& folder) {

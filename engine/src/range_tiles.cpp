@@ -95,13 +95,23 @@ void compose_range_tile(const RangeTiles& tiles, std::uint32_t tile, std::span<f
   });
 }
 
+namespace {
+
+// Which patch texels some tile shows.
+std::vector<bool> shown_patch_texels(const RangeTiles& tiles) {
+  std::vector<bool> shown(tiles.patches.size(), false);
+  for (std::uint32_t t = 0; t < range_tile_count(tiles); ++t) {
+    for_each_tile_texel(tiles, t, [&](std::uint32_t x, std::uint32_t y, std::uint32_t patch) { shown[patch_texel(tiles, patch, x, y)] = true; });
+  }
+  return shown;
+}
+
+}  // namespace
+
 void fill_unseen_patch_texels(RangeTiles& tiles) {
   const std::uint32_t size = tiles.tile_size;
   if (size == 0) return;
-  std::vector<bool> seen(tiles.patches.size(), false);
-  for (std::uint32_t t = 0; t < range_tile_count(tiles); ++t) {
-    for_each_tile_texel(tiles, t, [&](std::uint32_t x, std::uint32_t y, std::uint32_t patch) { seen[patch_texel(tiles, patch, x, y)] = true; });
-  }
+  const std::vector<bool> seen = shown_patch_texels(tiles);
   // Raster order, so each prediction reads texels already final, as the file's decoder will.
   const std::size_t texels = std::size_t{size} * size;
   for (std::size_t p = 0; p * texels < tiles.patches.size(); ++p) {
@@ -121,10 +131,7 @@ void fill_unseen_patch_texels(RangeTiles& tiles, std::span<const PatchWindow> wi
   if (size == 0) return;
   const std::size_t texels = std::size_t{size} * size;
   if (windows.size() * texels != tiles.patches.size()) return fill_unseen_patch_texels(tiles);
-  std::vector<bool> seen(tiles.patches.size(), false);
-  for (std::uint32_t t = 0; t < range_tile_count(tiles); ++t) {
-    for_each_tile_texel(tiles, t, [&](std::uint32_t x, std::uint32_t y, std::uint32_t patch) { seen[patch_texel(tiles, patch, x, y)] = true; });
-  }
+  const std::vector<bool> seen = shown_patch_texels(tiles);
   std::uint32_t rows = 0, cols = 0;
   for (const PatchWindow& w : windows) {
     rows = std::max(rows, w.row + size);
