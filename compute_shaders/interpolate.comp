@@ -1,7 +1,7 @@
 #version 450
 // The 9-weight interpolation of synthesized subspace images into one (light, view) image:
 // out = sum_k weight[k] * layer[k], summed from 0 in k order, terms of weight 0 skipped, as the CPU
-// reference (analysis/src/reference/subspace_synthesis.cpp) does.
+// reference (analysis/reference/src/subspace_synthesis.cpp) does.
 #extension GL_GOOGLE_include_directive : require
 #include "carbtf_gpu_shared.h"
 

@@ -15,10 +15,10 @@
 #include "carbtf/analysis/model/relief_tone.hpp"
 #include "carbtf/analysis/progress.hpp"
 #include "carbtf/analysis/quality/texture_similarity.hpp"
-#include "carbtf/analysis/reference/subspace_synthesis.hpp"
+#include "carbtf/reference/subspace_synthesis.hpp"
 #include "carbtf/analysis/range/surface_integration.hpp"
 #include "carbtf/analysis/resource_usage.hpp"
-#include "parallel_for.hpp"
+#include "carbtf/reference/parallel_for.hpp"
 
 namespace carbtf {
 namespace {

@@ -1,6 +1,6 @@
 // One pixel of a CAR recursion, shared by car_serial.comp and car_wavefront.comp: region pixel (r, c)
 // becomes y = sum_k gamma[k] y(neighbour k) + sigma e, summed from 0 in neighbour order with no fused
-// multiply-add, as the CPU reference does (analysis/src/reference/car_synthesis.cpp). The noise e is
+// multiply-add, as the CPU reference does (analysis/reference/src/car_synthesis.cpp). The noise e is
 // drawn here rather than read from memory: one pass less over every field. The taps are unrolled
 // because lavapipe caps loop iterations per invocation (DESIGN.md 6), and the frame makes every
 // neighbour read in bounds. Needs `params` (SynthPassParams, for the seed) and `arena`.

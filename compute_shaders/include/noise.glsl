@@ -1,4 +1,4 @@
-// Counter-based Gaussian noise, the GLSL twin of analysis/src/reference/noise.cpp. Every float
+// Counter-based Gaussian noise, the GLSL twin of analysis/reference/src/noise.cpp. Every float
 // operation is `precise` (no fused multiply-add) and limited to +, -, *, so that the result is the
 // same bit pattern as the CPU float32 reference. Spec: carbtf_gpu_shared.h, "Gaussian noise".
 #ifndef CARBTF_NOISE_GLSL

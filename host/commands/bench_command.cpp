@@ -10,7 +10,7 @@
 
 #include "carbtf/analysis/btf/btf_reader.hpp"
 #include "carbtf/analysis/btf/ubo2003_writer.hpp"
-#include "carbtf/analysis/reference/noise.hpp"
+#include "carbtf/reference/noise.hpp"
 #include "carbtf/analysis/resource_usage.hpp"
 #include "carbtf/analysis/sample/height_field_renderer.hpp"
 #include "carbtf/analysis/sample/sample_materials.hpp"

@@ -15,7 +15,7 @@
 #include "carbtf/analysis/analyze.hpp"
 #include "carbtf/analysis/btf/btf_reader.hpp"
 #include "carbtf/analysis/image_io.hpp"
-#include "carbtf/analysis/reference/subspace_synthesis.hpp"
+#include "carbtf/reference/subspace_synthesis.hpp"
 #include "carbtf/analysis/sample/sample_materials.hpp"
 #include "carbtf/engine/material_binding.hpp"
 #include "carbtf/engine/material_file.hpp"

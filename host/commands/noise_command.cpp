@@ -6,7 +6,7 @@
 
 #include "carbtf/analysis/field_statistics.hpp"
 #include "carbtf/analysis/image_io.hpp"
-#include "carbtf/analysis/reference/noise.hpp"
+#include "carbtf/reference/noise.hpp"
 #include "carbtf/engine/noise_generator.hpp"
 #include "cli/cli_support.hpp"
 #include "commands/commands.hpp"

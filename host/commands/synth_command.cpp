@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "carbtf/analysis/image_io.hpp"
-#include "carbtf/analysis/reference/subspace_synthesis.hpp"
+#include "carbtf/reference/subspace_synthesis.hpp"
 #include "carbtf/engine/direction_interpolation.hpp"
 #include "carbtf/engine/material_file.hpp"
 #include "carbtf/engine/subspace_synthesizer.hpp"

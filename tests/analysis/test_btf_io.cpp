@@ -13,6 +13,7 @@
 #include <filesystem>
 
 #include "scratch_folder.hpp"
+#include "test_materials.hpp"
 #include <fstream>
 #include <limits>
 #include <map>
@@ -108,6 +109,11 @@ void srgb_difference(const BtfDataset& dataset, LightView pair, const std::vecto
 TEST_CASE("the UBO2003 direction table and names agree with the database's conventions", "[btf]") {
   const auto& d = ubo2003_directions();
   REQUIRE(d.size() == 81);
+  const auto stored = test::ubo2003_material_directions();  // the engine tests' copy of the set
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    CHECK(stored[i].theta == static_cast<float>(d[i].theta));
+    CHECK(stored[i].phi == static_cast<float>(d[i].phi));
+  }
   CHECK(ubo2003_index(0, 0) == 0u);
   CHECK(ubo2003_index(15, 60) == 2u);
   CHECK(ubo2003_index(75, 345) == 80u);

@@ -1,13 +1,13 @@
 // The CAR estimator, neighbourhood selection and stability repair (analysis/model/car_fit.hpp), on
-// fields made by the CPU reference recursion (analysis/reference/car_synthesis.hpp).
+// fields made by the CPU reference recursion (analysis/reference/include/carbtf/reference/car_synthesis.hpp).
 #include <catch2/catch.hpp>
 
 #include <cmath>
 #include <vector>
 
 #include "carbtf/analysis/model/car_fit.hpp"
-#include "carbtf/analysis/reference/car_synthesis.hpp"
-#include "carbtf/analysis/reference/noise.hpp"
+#include "carbtf/reference/car_synthesis.hpp"
+#include "carbtf/reference/noise.hpp"
 
 namespace carbtf {
 namespace {

@@ -5,7 +5,7 @@
 
 #include "carbtf/analysis/model/colour_pca.hpp"
 #include "carbtf/analysis/model/pyramid.hpp"
-#include "carbtf/analysis/reference/noise.hpp"
+#include "carbtf/reference/noise.hpp"
 
 namespace carbtf {
 namespace {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "carbtf/analysis/field_statistics.hpp"
-#include "carbtf/analysis/reference/noise.hpp"
+#include "carbtf/reference/noise.hpp"
 
 using namespace carbtf;
 

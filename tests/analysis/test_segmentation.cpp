@@ -5,7 +5,7 @@
 #include <set>
 
 #include "carbtf/analysis/btf/btf_dataset.hpp"
-#include "carbtf/analysis/reference/noise.hpp"
+#include "carbtf/reference/noise.hpp"
 #include "carbtf/analysis/sample/height_field_renderer.hpp"
 #include "carbtf/analysis/sample/sample_materials.hpp"
 #include "carbtf/analysis/segmentation/btf_segmentation.hpp"

@@ -6,10 +6,10 @@
 #include <cstring>
 
 #include "carbtf/analysis/analyze.hpp"
-#include "carbtf/analysis/reference/subspace_synthesis.hpp"
+#include "carbtf/reference/subspace_synthesis.hpp"
 #include "carbtf/analysis/sample/height_field_renderer.hpp"
 #include "carbtf/analysis/sample/sample_materials.hpp"
-#include "carbtf/analysis/sample/synthetic_material.hpp"
+#include "carbtf/reference/synthetic_material.hpp"
 #include "test_support.hpp"
 
 namespace carbtf {

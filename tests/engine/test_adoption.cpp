@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "carbtf/analysis/reference/noise.hpp"
+#include "carbtf/reference/noise.hpp"
 #include "carbtf/engine/noise_generator.hpp"
 #include "test_support.hpp"
 

@@ -6,8 +6,9 @@
 #include <cmath>
 #include <limits>
 
-#include "carbtf/analysis/reference/subspace_synthesis.hpp"
-#include "carbtf/analysis/sample/synthetic_material.hpp"
+#include "carbtf/reference/conformance_procedure.hpp"
+#include "carbtf/reference/subspace_synthesis.hpp"
+#include "carbtf/reference/synthetic_material.hpp"
 #include "carbtf/engine/subspace_synthesizer.hpp"
 #include "test_support.hpp"
 
@@ -215,14 +216,8 @@ TEST_CASE("run() leaves the images on the device: its captures and interpolation
 TEST_CASE("a near-unit-root band stays bounded and equal to the CPU", "[gpu_synthesis][gpu][stiff]") {
   test::ValidatedContext context;
   auto synthesizer = make_synthesizer(*context);
-  Material m = synthetic_material(1, 1);
-  // Spectral radius 0.99 along rows and columns: y = 0.99 y(r - 1) ... the repaired ceiling of analysis.
-  for (CarBandModel& band : m.subspaces[0].bands) {
-    band.neighbourhood = {{0, -1}, {-1, 0}, {-1, -1}};
-    band.gamma = {0.99f, 0.99f, -0.9801f};  // separable: (1 - 0.99 z1)(1 - 0.99 z2)
-    band.sigma = 1.0f;
-    band.band_std = 1.0f / (1.0f - 0.99f * 0.99f);  // the stationary std of the separable field
-  }
+  // Spectral radius 0.99 along rows and columns: the repaired ceiling of analysis.
+  const Material m = reference::near_unit_root_material();
   SynthesisRequest request;
   request.seed = 3;
   request.width = 512;
@@ -343,5 +338,88 @@ TEST_CASE("GPU block-wise synthesis from stored initialization values equals the
   }
   synthesizer->set_max_batch_bytes(0);
   synthesizer->set_max_loop_iterations(0);
+  context.require_clean();
+}
+
+namespace {
+
+// The GPU synthesizer with one value of one stage's bands changed after the fact: an implementation
+// that does not conform, in that stage only.
+class OneWrongValue final : public reference::SynthesisUnderTest {
+ public:
+  OneWrongValue(SubspaceSynthesizer& synthesizer, SynthesisStage wrong_stage) : gpu_(synthesizer), wrong_stage_(wrong_stage) {}
+  Status run(const Material& material, const SynthesisRequest& request) override {
+    stage_ = request.capture;
+    return gpu_.run(material, request);
+  }
+  Status read_band(std::uint32_t subspace, std::uint32_t level, std::uint32_t channel, std::vector<float>& out, std::uint32_t& rows,
+                   std::uint32_t& cols) override {
+    const Status status = gpu_.read_band(subspace, level, channel, out, rows, cols);
+    if (status.ok() && stage_ == wrong_stage_ && subspace == 0 && level == 0 && channel == 0) out[out.size() / 2] += 0.5f;
+    return status;
+  }
+  Status synthesize(const Material& material, const SynthesisRequest& request, SynthesizedImages& out, SynthesisTiming* timing) override {
+    return gpu_.synthesize(material, request, out, timing);
+  }
+  Status interpolate(const Material& material, const PairWeights& weights, std::vector<float>& out) override {
+    return gpu_.interpolate(material, weights, out);
+  }
+  void release() override { gpu_.release(); }
+
+ private:
+  reference::SynthesisAdapter<SubspaceSynthesizer> gpu_;
+  SynthesisStage wrong_stage_;
+  SynthesisStage stage_ = SynthesisStage::none;
+};
+
+}  // namespace
+
+TEST_CASE("the conformance procedure finds the GPU exact in every stage and names a stage that is not",
+          "[gpu_synthesis][gpu][conformance]") {
+  test::ValidatedContext context;
+  auto synthesizer = make_synthesizer(*context);
+  const reference::ConformanceCase small{"two subspaces, 2 levels, 48x48", synthetic_material(2, 2), 48};
+  const reference::ConformanceSettings settings{.seed = 5, .margin = 16};
+  reference::SynthesisAdapter<SubspaceSynthesizer> gpu(*synthesizer);
+  const reference::CaseConformance exact = reference::run_conformance_case(small, settings, gpu);
+  REQUIRE(exact.stages.size() == 6);
+  for (const auto& stage : exact.stages) {
+    INFO(stage.stage);
+    CHECK(stage.items > 0);
+    CHECK(stage.identical);
+    CHECK(stage.error.max_relative == 0.0);
+  }
+  CHECK(exact.failures(1e-5) == 0);
+  CHECK(exact.float32_vs_float64.max_relative < 1e-3);
+
+  const std::pair<SynthesisStage, const char*> wrong[] = {{SynthesisStage::noise, "noise"}, {SynthesisStage::car, "band fields"},
+                                                         {SynthesisStage::collapse, "collapse"}};
+  for (const auto& [stage, name] : wrong) {
+    INFO("wrong " << name);
+    OneWrongValue faulty(*synthesizer, stage);
+    const reference::CaseConformance report = reference::run_conformance_case(small, settings, faulty);
+    CHECK(report.failures(1e-5) == 1);
+    for (const auto& s : report.stages) {
+      INFO(s.stage);
+      CHECK(s.identical == (s.stage != name));
+    }
+  }
+  context.require_clean();
+}
+
+TEST_CASE("the float32 growth study reports the GPU equal to the CPU float32 reference", "[gpu_synthesis][gpu][conformance]") {
+  test::ValidatedContext context;
+  auto synthesizer = make_synthesizer(*context);
+  reference::SynthesisAdapter<SubspaceSynthesizer> gpu(*synthesizer);
+  std::vector<std::uint32_t> reported;
+  const auto rows = reference::float32_growth({32, 64}, {.seed = 2, .margin = 32}, gpu,
+                                              [&](const reference::GrowthRow& row) { reported.push_back(row.size); });
+  REQUIRE(rows.size() == 2);
+  CHECK(reported == std::vector<std::uint32_t>{32, 64});
+  for (const auto& row : rows) {
+    CHECK(row.implementation_bits);
+    CHECK(row.float32_vs_float64.max_relative > 0.0);  // float32 rounds; the study measures how much
+    CHECK(row.float32_vs_float64.max_relative < 1e-2);
+  }
   context.require_clean();
 }

@@ -9,25 +9,26 @@
 #include <filesystem>
 #include <random>
 
-#include "carbtf/analysis/model/car_fit.hpp"
-#include "carbtf/analysis/range/range_tile_builder.hpp"
-#include "carbtf/analysis/reference/noise.hpp"
+#include "carbtf/reference/noise.hpp"
+#include "carbtf/reference/synthetic_material.hpp"
+#include "carbtf/engine/car_stability.hpp"
 #include "carbtf/engine/material_file.hpp"
 #include "carbtf/engine/range_tiles.hpp"
 #include "material_bytes.hpp"
 #include "scratch_folder.hpp"
+#include "test_range_tiles.hpp"
 
 namespace carbtf {
 namespace {
 
 using test::fix_crcs;
 
-// A valid material exercising every chunk: odd counts, negative and extreme floats, all candidates.
+// A valid material exercising every chunk: odd counts, negative and extreme floats, every neighbourhood shape.
 Material sample_material() {
   Material m;
   for (int i = 0; i < 7; ++i) m.lights.push_back({0.2f * static_cast<float>(i), 0.9f * static_cast<float>(i)});
   for (int i = 0; i < 5; ++i) m.views.push_back({0.3f * static_cast<float>(i), -1.5f + static_cast<float>(i)});
-  const auto& candidates = car_candidate_neighbourhoods();
+  const auto candidates = neighbourhood_shapes();
   for (std::uint32_t s = 0; s < 3; ++s) {
     SubspaceModel sub;
     sub.light = s;
@@ -51,13 +52,9 @@ Material sample_material() {
     m.subspaces.push_back(sub);
   }
   for (std::size_t i = 0; i < m.lights.size() * m.views.size(); ++i) m.subspace_index.push_back(static_cast<std::uint8_t>(i % 3));
-  Plane heights(24, 20);
-  for (Eigen::Index r = 0; r < heights.rows(); ++r)
-    for (Eigen::Index c = 0; c < heights.cols(); ++c) heights(r, c) = reference::gaussian_noise(1, 0, static_cast<std::int32_t>(r), static_cast<std::int32_t>(c));
-  RangeTileOptions tiles;
-  tiles.tile_size = 8;
-  const Plane tone = heights.abs() * 0.5 + 0.5;
-  m.range = build_range_tiles(heights, tiles, &tone);
+  const auto noise = [](std::uint32_t r, std::uint32_t c) { return double{reference::gaussian_noise(1, 0, static_cast<std::int32_t>(r), static_cast<std::int32_t>(c))}; };
+  m.range = test::windowed_range_tiles(noise, [&](std::uint32_t r, std::uint32_t c) { return std::abs(noise(r, c)) * 0.5 + 0.5; },
+                                       {.map_rows = 24, .map_cols = 20, .tile_size = 8});
   m.settings = {{"source", "unit test"}, {"seed", "1"}, {"empty", ""}};
   return m;
 }
@@ -208,17 +205,12 @@ TEST_CASE("deflated chunks read back exactly, and a lying one is refused before 
 // case the raster filter (format 1.3) is for.
 Material smooth_relief_material() {
   Material m = sample_material();
-  Plane heights(80, 72);
-  for (Eigen::Index r = 0; r < heights.rows(); ++r) {
-    for (Eigen::Index c = 0; c < heights.cols(); ++c) {
-      heights(r, c) = 3.0 * std::sin(0.21 * static_cast<double>(r)) * std::cos(0.17 * static_cast<double>(c)) +
-                      0.05 * reference::gaussian_noise(2, 0, static_cast<std::int32_t>(r), static_cast<std::int32_t>(c));
-    }
-  }
-  const Plane tone = 1.0 + 0.1 * heights;
-  RangeTileOptions options;
-  options.tile_size = 32;
-  m.range = build_range_tiles(heights, options, &tone);
+  const auto height = [](std::uint32_t r, std::uint32_t c) {
+    return 3.0 * std::sin(0.21 * static_cast<double>(r)) * std::cos(0.17 * static_cast<double>(c)) +
+           0.05 * reference::gaussian_noise(2, 0, static_cast<std::int32_t>(r), static_cast<std::int32_t>(c));
+  };
+  m.range = test::windowed_range_tiles(height, [&](std::uint32_t r, std::uint32_t c) { return 1.0 + 0.1 * height(r, c); },
+                                       {.map_rows = 80, .map_cols = 72, .tile_size = 32});
   return m;
 }
 
@@ -236,14 +228,9 @@ std::size_t deflated_chunk_at(const std::vector<std::uint8_t>& bytes, const std:
 // which overlap: what the window filter (format 1.5) is for.
 Material rough_relief_material(bool fill_each_patch = false) {
   Material m = sample_material();
-  Plane heights(64, 56);
-  for (Eigen::Index r = 0; r < heights.rows(); ++r) {
-    for (Eigen::Index c = 0; c < heights.cols(); ++c) heights(r, c) = reference::gaussian_noise(3, 0, static_cast<std::int32_t>(r), static_cast<std::int32_t>(c));
-  }
-  const Plane tone = 1.0 + 0.2 * heights.abs();
-  RangeTileOptions options;
-  options.tile_size = 32;
-  m.range = build_range_tiles(heights, options, &tone);
+  const auto noise = [](std::uint32_t r, std::uint32_t c) { return double{reference::gaussian_noise(3, 0, static_cast<std::int32_t>(r), static_cast<std::int32_t>(c))}; };
+  m.range = test::windowed_range_tiles(noise, [&](std::uint32_t r, std::uint32_t c) { return 1.0 + 0.2 * std::abs(noise(r, c)); },
+                                       {.map_rows = 64, .map_cols = 56, .tile_size = 32});
   if (fill_each_patch) fill_unseen_patch_texels(m.range);
   return m;
 }

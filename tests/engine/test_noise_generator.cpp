@@ -1,7 +1,7 @@
 // GPU Gaussian noise against the CPU float32 reference: bit for bit.
 #include <catch2/catch.hpp>
 
-#include "carbtf/analysis/reference/noise.hpp"
+#include "carbtf/reference/noise.hpp"
 #include "carbtf/engine/buffer.hpp"
 #include "carbtf/engine/noise_generator.hpp"
 #include "test_support.hpp"

@@ -1,6 +1,6 @@
 // The render pass: the fragment stage's direction lookup grids against the triangulation search, and
 // a plane rendered on the GPU against the CPU reference of the fragment stage
-// (analysis/src/reference/render_reference.cpp).
+// (analysis/reference/src/render_reference.cpp).
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -9,10 +9,8 @@
 #include <map>
 #include <random>
 
-#include "carbtf/analysis/btf/directions.hpp"
-#include "carbtf/analysis/range/range_tile_builder.hpp"
-#include "carbtf/analysis/reference/render_reference.hpp"
-#include "carbtf/analysis/sample/synthetic_material.hpp"
+#include "carbtf/reference/render_reference.hpp"
+#include "carbtf/reference/synthetic_material.hpp"
 #include "carbtf/engine/direction_lookup.hpp"
 #include "carbtf/engine/material_binding.hpp"
 #include "carbtf/engine/mesh_renderer.hpp"
@@ -24,14 +22,6 @@
 using namespace carbtf;
 
 namespace {
-
-std::vector<MaterialDirection> ubo_set() {
-  std::vector<MaterialDirection> out;
-  for (const Direction& d : ubo2003_directions()) {
-    out.push_back({static_cast<float>(d.theta), static_cast<float>(d.phi)});
-  }
-  return out;
-}
 
 std::map<std::uint32_t, double> as_map(const DirectionWeights& w) {
   std::map<std::uint32_t, double> m;
@@ -66,7 +56,7 @@ std::vector<float> as_floats(const RenderedImage& image) {
 
 TEST_CASE("lookup grids give the triangulation's weights, inside and beyond the measured directions",
           "[render]") {
-  for (const auto& directions : {ubo_set(), synthetic_material(1, 1).lights}) {
+  for (const auto& directions : {test::ubo2003_material_directions(), synthetic_material(1, 1).lights}) {
     DirectionTriangulation triangulation;
     REQUIRE(build_direction_triangulation(directions, triangulation).ok());
     for (std::uint32_t grid_size : {1u, 7u, 32u}) {
@@ -220,7 +210,7 @@ Material ubo_material() {
   Material m = test::bumpy_material();
   const Material twenty = synthetic_material(20, 2);
   m.subspaces = twenty.subspaces;
-  m.lights = m.views = ubo_set();
+  m.lights = m.views = test::ubo2003_material_directions();
   m.subspace_index.clear();
   auto ring = [](const MaterialDirection& d) {
     return static_cast<std::uint32_t>(std::lround(d.theta / 0.2617994f));
@@ -278,10 +268,9 @@ TEST_CASE("scene pruning: a scene seen from above needs fewer subspace images an
     mesh = make_plane(4);
     scene.camera.eye = {0.1f, 0.2f, 2.8f};
     scene.camera.up = {0, 1, 0};
-    const Direction light = Direction::from_degrees(45, 60);
-    const auto d = light.vector();
-    scene.lights = {
-        {false, {static_cast<float>(d[0]), static_cast<float>(d[1]), static_cast<float>(d[2])}, {1, 1, 1}}};
+    // Towards the light at theta 45, phi 60 degrees.
+    const float s45 = std::sqrt(0.5f);
+    scene.lights = {{false, {s45 * 0.5f, s45 * std::sqrt(0.75f), s45}, {1, 1, 1}}};
     expect_fewer = true;
   }
   SECTION("a sphere from the side, a point light and a grazing light") {

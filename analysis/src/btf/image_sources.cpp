@@ -6,7 +6,7 @@
 #include "carbtf/analysis/image_io.hpp"
 #include "carbtf/analysis/input_error.hpp"
 #include "carbtf/analysis/progress.hpp"
-#include "../parallel_for.hpp"
+#include "carbtf/reference/parallel_for.hpp"
 
 namespace carbtf::detail {
 

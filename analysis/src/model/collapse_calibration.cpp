@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "carbtf/analysis/model/pyramid.hpp"
-#include "carbtf/analysis/reference/car_synthesis.hpp"
+#include "carbtf/reference/car_synthesis.hpp"
 
 namespace carbtf {
 namespace {

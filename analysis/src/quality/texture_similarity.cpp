@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "carbtf/analysis/btf/btf_dataset.hpp"  // the sRGB transfer function
-#include "carbtf/analysis/reference/noise.hpp"
+#include "carbtf/reference/noise.hpp"
 #include "carbtf/analysis/segmentation/lab_histogram.hpp"
 #include "fourier_2d.hpp"
 

@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 #include "../btf/image_sources.hpp"
-#include "../parallel_for.hpp"
+#include "carbtf/reference/parallel_for.hpp"
 
 namespace carbtf {
 namespace {

@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "carbtf/analysis/progress.hpp"
-#include "../parallel_for.hpp"
+#include "carbtf/reference/parallel_for.hpp"
 
 namespace carbtf {
 

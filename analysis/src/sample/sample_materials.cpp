@@ -11,7 +11,7 @@
 #include "carbtf/analysis/btf/btf_dataset.hpp"
 #include "carbtf/analysis/image_io.hpp"
 #include "carbtf/analysis/input_error.hpp"
-#include "carbtf/analysis/reference/noise.hpp"
+#include "carbtf/reference/noise.hpp"
 
 namespace carbtf {
 

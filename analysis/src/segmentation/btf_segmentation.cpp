@@ -6,7 +6,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "../parallel_for.hpp"
+#include "carbtf/reference/parallel_for.hpp"
 #include "carbtf/analysis/progress.hpp"
 #include "carbtf/analysis/segmentation/kmeans.hpp"
 #include "carbtf/analysis/segmentation/lab_histogram.hpp"

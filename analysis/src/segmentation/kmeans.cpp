@@ -8,7 +8,7 @@
 #include <random>
 #include <stdexcept>
 
-#include "../parallel_for.hpp"
+#include "carbtf/reference/parallel_for.hpp"
 
 namespace carbtf {
 namespace {

@@ -1,6 +1,6 @@
 // GPU synthesis of subspace images (DESIGN.md 4.4): for a material, a seed and a block of the unbounded
 // texture, every requested subspace image, computed to the CPU reference's specification
-// (analysis/include/carbtf/analysis/reference/subspace_synthesis.hpp): noise, one CAR recursion per
+// (analysis/reference/include/carbtf/reference/subspace_synthesis.hpp): noise, one CAR recursion per
 // band and level, pyramid collapse, inverse colour transform. Then the 9-weight interpolation of those
 // images for any (light, view).
 //
@@ -25,60 +25,10 @@
 #include "carbtf/engine/context.hpp"
 #include "carbtf/engine/direction_interpolation.hpp"
 #include "carbtf/engine/material.hpp"
+#include "carbtf/engine/synthesis_request.hpp"
 #include "carbtf/engine/synthesis_layout.hpp"
 
 namespace carbtf {
-
-// How CAR recursions run on the device. serial: one invocation per field, pixels in row order (CPU
-// devices such as lavapipe, where barriers are costly); wavefront: one workgroup per field, pixels of a
-// step t = a * row + col in parallel with a barrier per step (GPUs). automatic picks by device type.
-enum class CarScheme { automatic, serial, wavefront };
-const char* car_scheme_name(CarScheme scheme) noexcept;
-
-// The channels a GPU synthesis supports per subspace image (its output is RGBA32F).
-inline constexpr std::uint32_t kMaxGpuChannels = 4;
-// Neighbours per CAR band a GPU synthesis supports (the analysis fits at most 12).
-inline constexpr std::uint32_t kMaxGpuNeighbours = 16;
-
-// The stages of a synthesis, in order; a request may capture the work buffer after one of them.
-enum class SynthesisStage { none, noise, car, collapse };
-
-// The block to synthesize (synthesis_layout.hpp) and what to synthesize of it.
-struct SynthesisRequest : SynthesisBlock {
-  // Which subspace images, in output-layer order; empty means all of them.
-  std::vector<std::uint32_t> subspaces;
-  CarScheme scheme = CarScheme::automatic;
-  // Fill the work buffer and the output image with NaN first, so that anything left unwritten shows
-  // (tests and conformance use it).
-  bool poison = false;
-  // Conformance: after this stage of every batch, copy the bands to host memory for read_band().
-  SynthesisStage capture = SynthesisStage::none;
-  // Block-wise synthesis: block initialization values laid out by block_frame_layout(material, *this,
-  // subspaces as resolved), e.g. from the CPU reference's block_initial_values(). Every band's
-  // recursion then starts from them instead of zeros, so the block equals the same region of the
-  // larger synthesis they came from. Empty: zeros. Read during prepare() only.
-  std::span<const float> initial_values;
-};
-
-// GPU time per stage, summed over batches, in milliseconds (0 where the queue has no timestamps).
-struct SynthesisTiming {
-  double prepare_ms = 0.0;  // frames (and the noise of a noise capture)
-  double car_ms = 0.0;
-  double collapse_ms = 0.0;
-  double colour_ms = 0.0;
-  double total_ms = 0.0;
-  std::uint32_t batches = 0;
-  std::uint32_t dispatches = 0;
-};
-
-// Subspace images read back to the host: images[s] holds subspace s as width * height * channels
-// floats (row-major, channels interleaved), or is empty when s was not requested.
-struct SynthesizedImages {
-  std::uint32_t width = 0;
-  std::uint32_t height = 0;
-  std::vector<std::uint32_t> channels;  // per subspace
-  std::vector<std::vector<float>> images;
-};
 
 class SubspaceSynthesizer {
  public:

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "carbtf/engine/material.hpp"
-#include "carbtf/engine/mesh_renderer.hpp"
-#include "carbtf/engine/subspace_synthesizer.hpp"
+#include "carbtf/engine/render_scene.hpp"
+#include "carbtf/engine/synthesis_request.hpp"
 
 namespace carbtf::reference {
 

@@ -1,4 +1,4 @@
-#include "carbtf/analysis/reference/render_reference.hpp"
+#include "carbtf/reference/render_reference.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,6 @@
 #include <glm/glm.hpp>
 
 #include "carbtf/engine/direction_interpolation.hpp"
-#include "carbtf/engine/material_binding.hpp"
 
 namespace carbtf::reference {
 

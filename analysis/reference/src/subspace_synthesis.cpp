@@ -1,12 +1,12 @@
-#include "carbtf/analysis/reference/subspace_synthesis.hpp"
+#include "carbtf/reference/subspace_synthesis.hpp"
 
 #include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
 
-#include "../parallel_for.hpp"
-#include "carbtf/analysis/reference/car_synthesis.hpp"
+#include "carbtf/reference/parallel_for.hpp"
+#include "carbtf/reference/car_synthesis.hpp"
 #include "carbtf/engine/synthesis_layout.hpp"
 
 namespace carbtf::reference {

@@ -1,9 +1,9 @@
-#include "carbtf/analysis/reference/car_synthesis.hpp"
+#include "carbtf/reference/car_synthesis.hpp"
 
 #include <stdexcept>
 #include <string>
 
-#include "carbtf/analysis/reference/noise.hpp"
+#include "carbtf/reference/noise.hpp"
 
 namespace carbtf::reference {
 namespace {

@@ -1,4 +1,4 @@
-#include "carbtf/analysis/reference/noise.hpp"
+#include "carbtf/reference/noise.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -7,7 +7,7 @@
 
 #include <carbtf_gpu_shared.h>
 
-#include "../parallel_for.hpp"
+#include "carbtf/reference/parallel_for.hpp"
 
 namespace carbtf::reference {
 

@@ -1,4 +1,4 @@
-#include "carbtf/analysis/reference/conformance.hpp"
+#include "carbtf/reference/conformance.hpp"
 
 #include <algorithm>
 #include <cmath>
