@@ -1,0 +1,65 @@
+#include "carbtf/analysis/quality/subspace_fidelity.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "carbtf/analysis/model/deshade.hpp"
+#include "carbtf/analysis/model/relief_tone.hpp"
+#include "carbtf/engine/range_tiles.hpp"
+
+namespace carbtf {
+
+std::vector<RgbField> representative_images(const BtfDataset& dataset, const Material& material) {
+  std::vector<RgbField> measured;
+  for (const SubspaceModel& s : material.subspaces) {
+    if (!dataset.has_image({s.light, s.view})) {
+      throw std::invalid_argument(dataset.source + ": the image of light " + std::to_string(s.light) +
+                                  " view " + std::to_string(s.view) + " is missing");
+    }
+    RgbField image{std::vector<float>(dataset.pixel_count() * 3), dataset.width(), dataset.height()};
+    dataset.linear_rgb({s.light, s.view}, image.rgb);
+    measured.push_back(std::move(image));
+  }
+  return measured;
+}
+
+SubspaceFidelity subspace_fidelity(const Material& material, const SynthesizedImages& images,
+                                   const std::vector<RgbField>& measured) {
+  const std::uint32_t w = images.width, h = images.height;
+  std::vector<float> heights(std::size_t{w} * h, 0.0f), tones(heights.size(), 1.0f);
+  if (material.range.tile_size > 0) {
+    enlarge_range_map(material.range, 1, 0, 0, w, h, heights);
+    enlarge_range_map(material.range, 1, 0, 0, w, h, tones, RangeChannel::tone);
+  }
+  Plane height_plane(h, w), tone(h, w);
+  for (std::size_t p = 0; p < heights.size(); ++p) {
+    height_plane(static_cast<Eigen::Index>(p / w), static_cast<Eigen::Index>(p % w)) = heights[p];
+    tone(static_cast<Eigen::Index>(p / w), static_cast<Eigen::Index>(p % w)) = tones[p];
+  }
+  SubspaceFidelity result;
+  for (std::size_t s = 0; s < measured.size() && s < images.images.size(); ++s) {
+    if (images.images[s].empty() || material.subspaces[s].channels != 3) continue;
+    const MaterialDirection& l = material.lights[material.subspaces[s].light];
+    const std::array<double, 3> light{std::sin(l.theta) * std::cos(l.phi),
+                                      std::sin(l.theta) * std::sin(l.phi), std::cos(l.theta)};
+    RgbField model{images.images[s], w, h};
+    apply_relief(model.rgb,
+                 weighted_tone(tone, material.subspaces[s].tone_weight, material.range.tone_chroma),
+                 relit_factor(height_plane, light, relight_floor(material)));
+    const CalibratedFidelity f = calibrated_fidelity(model, measured[s]);
+    result.mean_rel += f.rel;
+    result.mean_gaussian_rel += f.gaussian_rel;
+    result.worst_rel = result.pairs == 0 ? f.rel : std::max(result.worst_rel, f.rel);
+    ++result.pairs;
+  }
+  if (result.pairs > 0) {
+    result.mean_rel /= result.pairs;
+    result.mean_gaussian_rel /= result.pairs;
+  }
+  return result;
+}
+
+}  // namespace carbtf
