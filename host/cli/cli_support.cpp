@@ -149,4 +149,26 @@ double percentile(std::vector<double> samples, double fraction) {
   return samples[below] + (position - static_cast<double>(below)) * (samples[above] - samples[below]);
 }
 
+void parse_frame_size(const std::string& text, const std::string& option, std::uint32_t& width, std::uint32_t& height) {
+  // Digits only, at most 5 each: sscanf's %u would wrap 4294967297 to 1 and accept a sign.
+  const std::size_t x = text.find_first_of("xX");
+  const auto digits = [](std::string_view part) {
+    return !part.empty() && part.size() <= 5 && part.find_first_not_of("0123456789") == std::string_view::npos;
+  };
+  const std::string_view all(text);
+  const bool shaped = x != std::string::npos && digits(all.substr(0, x)) && digits(all.substr(x + 1));
+  const unsigned w = shaped ? static_cast<unsigned>(std::stoul(text.substr(0, x))) : 0;
+  const unsigned h = shaped ? static_cast<unsigned>(std::stoul(text.substr(x + 1))) : 0;
+  if (!shaped || w == 0 || h == 0 || w > 16384 || h > 16384) {
+    throw CommandError(option + " " + text + ": expected WIDTHxHEIGHT, each 1 to 16384 (e.g. 1920x1080)");
+  }
+  width = w;
+  height = h;
+}
+
+
+std::filesystem::path with_stem_suffix(const std::filesystem::path& file, const std::string& suffix) {
+  return std::filesystem::path(file).replace_filename(file.stem().string() + suffix + file.extension().string());
+}
+
 }  // namespace carbtf::cli

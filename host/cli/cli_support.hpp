@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 
 #include <chrono>
+#include <filesystem>
 #include <memory>
 #include <span>
 #include <stdexcept>
@@ -56,6 +57,12 @@ void check_validation(const Context& context);
 void check(const Status& status, const std::string& what);
 
 double seconds_since(std::chrono::steady_clock::time_point start);
+
+// `file` with `suffix` after its stem: ("out/frame.png", "_measured") gives "out/frame_measured.png".
+std::filesystem::path with_stem_suffix(const std::filesystem::path& file, const std::string& suffix);
+
+// "WIDTHxHEIGHT" (digits only, each 1 to 16384) into width and height, or CommandError naming `option`.
+void parse_frame_size(const std::string& text, const std::string& option, std::uint32_t& width, std::uint32_t& height);
 
 // The `fraction` quantile of benchmark samples, interpolating linearly between order statistics
 // (0.5: the median, the mean of the two middle samples for an even count); 0 for no samples.

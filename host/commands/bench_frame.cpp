@@ -26,6 +26,7 @@
 #include "cli/owned_folder.hpp"
 #include "cli/sample_btf.hpp"
 #include "commands/commands.hpp"
+#include "scene/material_render.hpp"
 #include "scene/orbit.hpp"
 #include "scene/scene_mesh.hpp"
 
@@ -111,10 +112,8 @@ void run_bench_frame(const FrameBenchOptions& options) {
               options.frames, options.width, options.height, options.mesh.c_str(), material.subspaces.size(),
               context->device_info().name.c_str());
   std::fflush(stdout);
-  PruningOptions pruning;
-  pruning.max_texture_size = 1024;
-  std::unique_ptr<ScenePruner> pruner;
-  check(ScenePruner::create(material, pruning, pruner), "cannot prune scenes of this material");
+  // Only what the frame can use: the subspace images its (light, view) pairs fall in.
+  const std::unique_ptr<ScenePruner> pruner = make_scene_pruner(material);
   for (std::uint32_t i = 0; i < options.frames; ++i) {
     const RenderScene scene = orbit_scene(i, options.frames);
     const auto start = std::chrono::steady_clock::now();

@@ -1,20 +1,16 @@
 // `carbtf render material.cbtf --mesh sphere --out frame.png`: the material synthesized on the GPU and
 // drawn on a mesh by the render pass (parallax, 9-weight interpolation, relit range map), headless.
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <numbers>
 #include <optional>
 
 #include "carbtf/analysis/btf/btf_dataset.hpp"
 #include "carbtf/analysis/image_io.hpp"
-#include "carbtf/engine/material_binding.hpp"
 #include "carbtf/engine/material_file.hpp"
 #include "carbtf/engine/mesh_renderer.hpp"
 #include "carbtf/engine/scene_pruning.hpp"
 #include "carbtf/engine/subspace_synthesizer.hpp"
-#include "carbtf/engine/texture_array.hpp"
 #include "cli/cli_support.hpp"
 #include "cli/measurement.hpp"
 #include "commands/commands.hpp"
@@ -47,69 +43,23 @@ struct RenderOptions {
   std::string compare;  // a measured BTF to render beside the model
 };
 
-void parse_size(const std::string& text, std::uint32_t& width, std::uint32_t& height) {
-  // Digits only, at most 5 each: sscanf's %u would wrap 4294967297 to 1 and accept a sign.
-  const std::size_t x = text.find_first_of("xX");
-  const auto digits = [](std::string_view part) {
-    return !part.empty() && part.size() <= 5 && part.find_first_not_of("0123456789") == std::string_view::npos;
-  };
-  const std::string_view all(text);
-  const bool shaped = x != std::string::npos && digits(all.substr(0, x)) && digits(all.substr(x + 1));
-  const unsigned w = shaped ? static_cast<unsigned>(std::stoul(text.substr(0, x))) : 0;
-  const unsigned h = shaped ? static_cast<unsigned>(std::stoul(text.substr(x + 1))) : 0;
-  if (!shaped || w == 0 || h == 0 || w > 16384 || h > 16384) {
-    throw CommandError("--size " + text + ": expected WIDTHxHEIGHT, each 1 to 16384 (e.g. 1920x1080)");
-  }
-  width = w;
-  height = h;
-}
-
-RenderScene make_scene(const RenderOptions& options) {
-  RenderScene scene;
-  const float distance = options.camera.size() > 2 ? static_cast<float>(options.camera[2]) : 3.6f;
-  if (!(distance > 0.0f)) throw CommandError("--camera: the distance must be above 0");
-  scene.camera = orbit_camera(options.camera[0], options.camera[1], distance, options.fov);
-  for (const auto& light : options.lights) {
-    const float intensity = light.size() > 2 ? static_cast<float>(light[2]) : 1.0f;
-    scene.lights.push_back(
-        {false, unit_vector_degrees(light[0], light[1]), {intensity, intensity, intensity}});
-  }
-  for (const auto& light : options.point_lights) {
-    const float intensity = light.size() > 3 ? static_cast<float>(light[3]) : 1.0f;
-    scene.lights.push_back(
-        {true,
-         {static_cast<float>(light[0]), static_cast<float>(light[1]), static_cast<float>(light[2])},
-         {intensity, intensity, intensity}});
-  }
-  if (scene.lights.empty()) scene.lights.push_back({false, unit_vector_degrees(45.0, 120.0), {1, 1, 1}});
-  if (scene.lights.size() > kMaxRenderLights) {
-    throw CommandError("at most " + std::to_string(kMaxRenderLights) +
-                       " lights (--light and --point-light together)");
-  }
-  return scene;
-}
-
 void run_render(const RenderOptions& options) {
   std::uint32_t width = 0, height = 0;
-  parse_size(options.size, width, height);
+  parse_frame_size(options.size, "--size", width, height);
   check_image_output_path(options.out, "--out");
   Material material;
   check(read_material_file(options.material, material), "cannot read the material");
   Mesh mesh = load_mesh(options.mesh);
-  const RenderScene scene = make_scene(options);
+  const RenderScene scene =
+      scene_from_options(options.camera, options.fov, options.lights, options.point_lights);
   std::optional<BtfDataset> measured;
   if (!options.compare.empty()) {
     measured = load_measurement_of(material, options.compare, "--compare");
   }
 
   auto context = make_context(options.device);
-  // Only what the frame can use: the subspace images its (light, view) pairs fall in, at the texel
-  // density of most of its pixels.
-  PruningOptions pruning;
-  // Beyond 1024 only on request (--texture-size): 20 x 2048^2 takes 16 s on lavapipe.
-  pruning.max_texture_size = 1024;
-  std::unique_ptr<ScenePruner> pruner;
-  check(ScenePruner::create(material, pruning, pruner), "cannot prune scenes of this material");
+  // Only what the frame can use: the subspace images its (light, view) pairs fall in.
+  const std::unique_ptr<ScenePruner> pruner = make_scene_pruner(material);
   SceneNeeds needs;
   check(pruner->needs(mesh, scene, width, height, needs), "cannot work out what the scene needs");
   SynthesisRequest request;
@@ -128,11 +78,7 @@ void run_render(const RenderOptions& options) {
   std::unique_ptr<SubspaceSynthesizer> synthesizer;
   check(SubspaceSynthesizer::create(*context, synthesizer), "cannot build the synthesis pipelines");
   auto synthesize = [&](const SynthesisRequest& r) {
-    const auto begin = std::chrono::steady_clock::now();
-    check(synthesizer->prepare(material, r), "cannot plan the synthesis");
-    check(context->submit_and_wait([&](VkCommandBuffer cb) { return synthesizer->record(cb); }),
-          "synthesis failed");
-    return seconds_since(begin) * 1e3;
+    return timed_synthesis(*context, *synthesizer, material, r);
   };
   double full_ms = 0.0;
   if (options.measure_savings && options.prune) {
@@ -154,11 +100,8 @@ void run_render(const RenderOptions& options) {
 
   std::printf("[2/3] range map, lookup tables and render pipeline\n");
   std::fflush(stdout);
-  const MaterialRender model = prepare_material_render(*context, material, *synthesizer, options.seed, options.parallax, width, height, mesh);
-  RenderTargetInfo target;  // the measurement's render (--compare), alike
-  target.width = width;
-  target.height = height;
-  target.colour_format = VK_FORMAT_R32G32B32A32_SFLOAT;
+  const MaterialRender model = prepare_material_render(*context, material, *synthesizer, options.seed,
+                                                       options.parallax, width, height, mesh);
 
   std::printf("[3/3] rendering %ux%u, %zu triangles, %zu light(s)\n", width, height, mesh.indices.size() / 3,
               scene.lights.size());
@@ -174,28 +117,9 @@ void run_render(const RenderOptions& options) {
   const fs::path out = options.out;
   if (out.has_parent_path()) create_folder(out.parent_path());
   write_rgb_image(out, rgb, width, height, true);
-  if (measured) {
-    std::printf("rendering the measured BTF (%zu of its images) on the same mesh\n", needs.pairs.size());
-    std::fflush(stdout);
-    const std::vector<float> other =
-        rendered_rgb(render_measured(*context, material, *measured, needs.pairs, mesh, scene, target));
-    check_validation(*context);
-    const fs::path measured_path =
-        fs::path(out).replace_filename(out.stem().string() + "_measured" + out.extension().string());
-    write_rgb_image(measured_path, other, width, height, true);
-    // Model left, measurement right.
-    std::vector<float> both(rgb.size() * 2);
-    for (std::uint32_t y = 0; y < height; ++y) {
-      std::copy_n(&rgb[std::size_t{y} * width * 3], width * 3, &both[std::size_t{y} * width * 6]);
-      std::copy_n(&other[std::size_t{y} * width * 3], width * 3,
-                  &both[std::size_t{y} * width * 6 + width * 3]);
-    }
-    const fs::path compare_path =
-        fs::path(out).replace_filename(out.stem().string() + "_compare" + out.extension().string());
-    write_rgb_image(compare_path, both, 2 * width, height, true);
-    std::printf("wrote %s (measured) and %s (model | measured)\n", measured_path.string().c_str(),
-                compare_path.string().c_str());
-  }
+  if (measured)
+    write_measured_comparison(*context, material, *measured, needs.pairs, mesh, scene, rgb, width, height,
+                              out);
   std::printf("synthesis %.1f ms, render %.1f ms (wall, with readback)\nwrote %s\n", synthesis_ms, render_ms,
               out.string().c_str());
 }

@@ -1,5 +1,6 @@
 #include "report/pictures.hpp"
 
+#include <algorithm>
 #include <cstring>
 
 namespace carbtf::cli {
@@ -29,6 +30,16 @@ std::vector<float> rendered_rgb(const RenderedImage& frame) {
 std::string two_digits(std::size_t value) {
   const std::string digits = std::to_string(value);
   return digits.size() < 2 ? "0" + digits : digits;
+}
+
+std::vector<float> side_by_side(const std::vector<float>& left, const std::vector<float>& right,
+                                std::uint32_t width, std::uint32_t height) {
+  std::vector<float> both(std::size_t{width} * height * 6);
+  for (std::uint32_t y = 0; y < height; ++y) {
+    std::copy_n(&left[std::size_t{y} * width * 3], width * 3, &both[std::size_t{y} * width * 6]);
+    std::copy_n(&right[std::size_t{y} * width * 3], width * 3, &both[std::size_t{y} * width * 6 + width * 3]);
+  }
+  return both;
 }
 
 }  // namespace carbtf::cli

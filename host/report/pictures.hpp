@@ -16,6 +16,10 @@ std::vector<float> channels_to_rgb(const std::vector<float>& values, std::uint32
 // An RGBA32F frame (MeshRenderer with VK_FORMAT_R32G32B32A32_SFLOAT) as RGB floats.
 std::vector<float> rendered_rgb(const RenderedImage& frame);
 
+// Two RGB images of width x height side by side: `left` | `right`, 2 * width wide.
+std::vector<float> side_by_side(const std::vector<float>& left, const std::vector<float>& right, std::uint32_t width,
+                                std::uint32_t height);
+
 // "07" for 7: file names that sort.
 std::string two_digits(std::size_t value);
 

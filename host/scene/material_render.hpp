@@ -9,6 +9,7 @@
 #include "carbtf/engine/material_binding.hpp"
 #include "carbtf/engine/mesh.hpp"
 #include "carbtf/engine/mesh_renderer.hpp"
+#include "carbtf/engine/scene_pruning.hpp"
 #include "carbtf/engine/subspace_synthesizer.hpp"
 
 namespace carbtf::cli {
@@ -22,5 +23,14 @@ struct MaterialRender {
 MaterialRender prepare_material_render(Context& context, const Material& material, const SubspaceSynthesizer& synthesizer,
                                        std::uint64_t seed, float parallax_scale, std::uint32_t width, std::uint32_t height,
                                        const Mesh& mesh);
+
+// The commands' scene pruner: the subspace images a frame's (light, view) pairs fall in, at the texel
+// density of most of its pixels, up to 1024 texels a side (beyond that only on request, with
+// --texture-size: 20 x 2048^2 takes 16 s on lavapipe). Throws CommandError on failure.
+std::unique_ptr<ScenePruner> make_scene_pruner(const Material& material);
+
+// Plans, records and runs one synthesis of `request` on `synthesizer`, waiting for it; the wall time in
+// milliseconds. Throws CommandError on failure.
+double timed_synthesis(Context& context, SubspaceSynthesizer& synthesizer, const Material& material, const SynthesisRequest& request);
 
 }  // namespace carbtf::cli

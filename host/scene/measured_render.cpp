@@ -2,18 +2,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <string>
 
+#include "carbtf/analysis/image_io.hpp"
 #include "carbtf/engine/material_binding.hpp"
 #include "carbtf/engine/texture_array.hpp"
 #include "cli/cli_support.hpp"
+#include "report/pictures.hpp"
 
 namespace carbtf::cli {
 
 RenderedImage render_measured(Context& context, const Material& material, const BtfDataset& dataset,
-                              const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs, const Mesh& mesh,
-                              const RenderScene& scene, const RenderTargetInfo& target) {
+                              const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs,
+                              const Mesh& mesh, const RenderScene& scene, const RenderTargetInfo& target) {
   const std::uint32_t w = dataset.width(), h = dataset.height();
   const double bytes = static_cast<double>(pairs.size()) * w * h * 4;
   if (bytes > 1.5 * 1024 * 1024 * 1024) {
@@ -28,10 +31,10 @@ RenderedImage render_measured(Context& context, const Material& material, const 
                        "; compare on a plane or a narrower view (--fov), which use fewer pairs");
   }
   std::unique_ptr<TextureArray> array;
-  check(TextureArray::create(context, w, h,
-                             static_cast<std::uint32_t>(std::max<std::size_t>(pairs.size(), 1)),
-                             VK_FORMAT_R8G8B8A8_SRGB, array),
-        "cannot hold the measured images");
+  check(
+      TextureArray::create(context, w, h, static_cast<std::uint32_t>(std::max<std::size_t>(pairs.size(), 1)),
+                           VK_FORMAT_R8G8B8A8_SRGB, array),
+      "cannot hold the measured images");
   MaterialTextures textures;
   textures.view = array->view();
   textures.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
@@ -67,6 +70,28 @@ RenderedImage render_measured(Context& context, const Material& material, const 
   RenderedImage frame;
   check(renderer->render(scene, frame), "rendering the measured BTF failed");
   return frame;
+}
+
+void write_measured_comparison(Context& context, const Material& material, const BtfDataset& dataset,
+                               const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs,
+                               const Mesh& mesh, const RenderScene& scene,
+                               const std::vector<float>& model_rgb, std::uint32_t width, std::uint32_t height,
+                               const std::filesystem::path& out) {
+  std::printf("rendering the measured BTF (%zu of its images) on the same mesh\n", pairs.size());
+  std::fflush(stdout);
+  RenderTargetInfo target;
+  target.width = width;
+  target.height = height;
+  target.colour_format = VK_FORMAT_R32G32B32A32_SFLOAT;
+  const std::vector<float> measured =
+      rendered_rgb(render_measured(context, material, dataset, pairs, mesh, scene, target));
+  check_validation(context);
+  const std::filesystem::path measured_path = with_stem_suffix(out, "_measured"),
+                              compare_path = with_stem_suffix(out, "_compare");
+  write_rgb_image(measured_path, measured, width, height, true);
+  write_rgb_image(compare_path, side_by_side(model_rgb, measured, width, height), 2 * width, height, true);
+  std::printf("wrote %s (measured) and %s (model | measured)\n", measured_path.string().c_str(),
+              compare_path.string().c_str());
 }
 
 }  // namespace carbtf::cli

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <utility>
 #include <vector>
 
@@ -20,5 +21,13 @@ namespace carbtf::cli {
 RenderedImage render_measured(Context& context, const Material& material, const BtfDataset& dataset,
                               const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs, const Mesh& mesh,
                               const RenderScene& scene, const RenderTargetInfo& target);
+
+// render --compare: the measured BTF rendered as above into an RGBA32F target of the model frame's size,
+// written beside the model's frame `out` as OUT_measured and OUT_compare (model | measured), with a line
+// saying so. Checks validation after the render.
+void write_measured_comparison(Context& context, const Material& material, const BtfDataset& dataset,
+                               const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs, const Mesh& mesh,
+                               const RenderScene& scene, const std::vector<float>& model_rgb, std::uint32_t width,
+                               std::uint32_t height, const std::filesystem::path& out);
 
 }  // namespace carbtf::cli

@@ -2,6 +2,9 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
+
+#include "cli/cli_support.hpp"
 
 namespace carbtf::cli {
 
@@ -21,6 +24,33 @@ RenderCamera orbit_camera(double theta_degrees, double phi_degrees, float distan
   camera.ortho_height = 2.4f;
   camera.far_plane = distance + 10.0f;
   return camera;
+}
+
+RenderScene scene_from_options(const std::vector<double>& camera, float fov_y_degrees,
+                               const std::vector<std::vector<double>>& lights,
+                               const std::vector<std::vector<double>>& point_lights) {
+  RenderScene scene;
+  const float distance = camera.size() > 2 ? static_cast<float>(camera[2]) : 3.6f;
+  if (!(distance > 0.0f)) throw CommandError("--camera: the distance must be above 0");
+  scene.camera = orbit_camera(camera[0], camera[1], distance, fov_y_degrees);
+  for (const auto& light : lights) {
+    const float intensity = light.size() > 2 ? static_cast<float>(light[2]) : 1.0f;
+    scene.lights.push_back(
+        {false, unit_vector_degrees(light[0], light[1]), {intensity, intensity, intensity}});
+  }
+  for (const auto& light : point_lights) {
+    const float intensity = light.size() > 3 ? static_cast<float>(light[3]) : 1.0f;
+    scene.lights.push_back(
+        {true,
+         {static_cast<float>(light[0]), static_cast<float>(light[1]), static_cast<float>(light[2])},
+         {intensity, intensity, intensity}});
+  }
+  if (scene.lights.empty()) scene.lights.push_back({false, unit_vector_degrees(45.0, 120.0), {1, 1, 1}});
+  if (scene.lights.size() > kMaxRenderLights) {
+    throw CommandError("at most " + std::to_string(kMaxRenderLights) +
+                       " lights (--light and --point-light together)");
+  }
+  return scene;
 }
 
 }  // namespace carbtf::cli

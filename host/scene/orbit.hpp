@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <vector>
 
 #include "carbtf/engine/mesh_renderer.hpp"
 
@@ -16,5 +17,12 @@ std::array<float, 3> unit_vector_degrees(double theta_degrees, double phi_degree
 // it looks straight down the z axis); perspective with `fov_y_degrees`, or orthographic for 0.
 RenderCamera orbit_camera(double theta_degrees, double phi_degrees, float distance,
                           float fov_y_degrees = 40.0f);
+
+// The scene of `carbtf render`'s options: an orbit camera (theta, phi in degrees[, distance, default
+// 3.6]), directional lights (theta, phi[, intensity]) and point lights (x, y, z[, intensity]); one
+// light at (45, 120) when none is given. CommandError for a distance not above 0 or too many lights.
+RenderScene scene_from_options(const std::vector<double>& camera, float fov_y_degrees,
+                               const std::vector<std::vector<double>>& lights,
+                               const std::vector<std::vector<double>>& point_lights);
 
 }  // namespace carbtf::cli
