@@ -10,6 +10,7 @@
 #include <carbtf_gpu_shared.h>
 
 #include "carbtf/engine/direction_lookup.hpp"
+#include "carbtf/engine/material_directions.hpp"
 #include "carbtf/engine/range_tiles.hpp"
 #include "carbtf/engine/subspace_synthesizer.hpp"
 #include "carbtf/engine/texture_array.hpp"
@@ -28,13 +29,10 @@ std::uint32_t float_bits(float value) {
 }
 
 // Appends one direction set's lookup after the header; offsets count from the data start.
-Status append_lookup(std::span<const MaterialDirection> directions, std::uint32_t grid_size,
-                     std::vector<std::uint32_t>& data, gpu::DirectionLookupGpu& out) {
-  DirectionTriangulation triangulation;
-  CARBTF_TRY(build_direction_triangulation(directions, triangulation));
-  const DirectionLookupGrid grid = build_direction_lookup(triangulation, grid_size);
+void append_lookup(const DirectionTriangulation& triangulation, const DirectionLookupGrid& grid,
+                   std::vector<std::uint32_t>& data, gpu::DirectionLookupGpu& out) {
   auto offset = [&] { return static_cast<std::uint32_t>(data.size() - kHeaderWords); };
-  out.count = static_cast<std::uint32_t>(directions.size());
+  out.count = static_cast<std::uint32_t>(triangulation.points.size());
   out.grid_size = grid.grid_size;
   out.cells = offset();
   data.insert(data.end(), grid.cell_starts.begin(), grid.cell_starts.end());
@@ -49,7 +47,6 @@ Status append_lookup(std::span<const MaterialDirection> directions, std::uint32_
   for (const auto& t : triangulation.triangles) data.insert(data.end(), t.begin(), t.end());
   out.edges = offset();
   for (const auto& e : triangulation.boundary) data.insert(data.end(), e.begin(), e.end());
-  return {};
 }
 
 }  // namespace
@@ -109,8 +106,10 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     // Host side: the tables and the range map.
     r.tables.assign(kHeaderWords, 0u);
     gpu::MaterialTablesHeader header{};
-    CARBTF_TRY(append_lookup(material.lights, info.lookup_grid_size, r.tables, header.lights));
-    CARBTF_TRY(append_lookup(material.views, info.lookup_grid_size, r.tables, header.views));
+    MaterialDirections directions;
+    CARBTF_TRY(MaterialDirections::build(material, directions, info.lookup_grid_size));
+    append_lookup(directions.light_triangulation(), directions.light_grid(), r.tables, header.lights);
+    append_lookup(directions.view_triangulation(), directions.view_grid(), r.tables, header.views);
     header.layer_table = static_cast<std::uint32_t>(r.tables.size() - kHeaderWords);
     for (std::size_t l = 0; l < material.lights.size(); ++l) {
       for (std::size_t v = 0; v < material.views.size(); ++v) {

@@ -12,6 +12,7 @@
 #include <carbtf_gpu_shared.h>
 
 #include "carbtf/engine/direction_lookup.hpp"
+#include "carbtf/engine/material_directions.hpp"
 #include "vk_check.hpp"
 
 namespace carbtf {
@@ -23,9 +24,8 @@ struct DirectionSet {
   DirectionLookupGrid grid;
   std::vector<std::array<glm::vec2, 2>> boxes;  // per triangle: its bounding box (lo, hi)
 
-  Status build(std::span<const MaterialDirection> directions, std::uint32_t grid_size) {
-    CARBTF_TRY(build_direction_triangulation(directions, triangulation));
-    grid = build_direction_lookup(triangulation, grid_size);
+  DirectionSet(const DirectionTriangulation& built, const DirectionLookupGrid& built_grid)
+      : triangulation(built), grid(built_grid) {
     for (const auto& t : triangulation.triangles) {
       glm::vec2 a(1e30f), b(-1e30f);
       for (std::uint32_t k : t) {
@@ -36,7 +36,6 @@ struct DirectionSet {
       }
       boxes.push_back({a, b});
     }
-    return {};
   }
 
   // Calls f(triangle) for the triangles listed in the grid cells that [lo, hi] meets (with repeats):
@@ -121,9 +120,8 @@ void exact_directions(const DirectionSet& set, glm::vec2 p, std::set<std::uint32
 }  // namespace
 
 struct ScenePruner::Lookups {
+  MaterialDirections directions;
   DirectionSet lights, views;
-  std::vector<std::uint8_t> subspace_index;
-  std::size_t view_count = 0;
   PruningOptions options;
 };
 
@@ -131,13 +129,12 @@ Status ScenePruner::create(const Material& material, const PruningOptions& optio
                            std::unique_ptr<ScenePruner>& out) noexcept {
   try {
     std::unique_ptr<ScenePruner> pruner(new ScenePruner());
-    pruner->lookups_ = std::make_unique<Lookups>();
-    Lookups& l = *pruner->lookups_;
-    CARBTF_TRY(l.lights.build(material.lights, options.lookup_grid_size));
-    CARBTF_TRY(l.views.build(material.views, options.lookup_grid_size));
-    l.subspace_index = material.subspace_index;
-    l.view_count = material.views.size();
-    l.options = options;
+    MaterialDirections directions;
+    CARBTF_TRY(MaterialDirections::build(material, directions, options.lookup_grid_size));
+    pruner->lookups_.reset(new Lookups{directions,
+                                       {directions.light_triangulation(), directions.light_grid()},
+                                       {directions.view_triangulation(), directions.view_grid()},
+                                       options});
     out = std::move(pruner);
     return {};
   } catch (const std::bad_alloc&) {
@@ -268,12 +265,8 @@ Status ScenePruner::needs(const Mesh& mesh, const RenderScene& scene, std::uint3
     }
 
     SceneNeeds needs;
-    std::set<std::uint32_t> subspaces;
-    for (const auto& [light, view] : pairs) {
-      subspaces.insert(lookups_->subspace_index[std::size_t{light} * lookups_->view_count + view]);
-    }
-    needs.subspaces.assign(subspaces.begin(), subspaces.end());
     needs.pairs.assign(pairs.begin(), pairs.end());
+    needs.subspaces = lookups_->directions.subspaces_of(needs.pairs);
     needs.visible_triangles = visible;
     // The density that 90% of the covered pixels need at most: a mesh's uv-degenerate corners (a sphere's
     // poles) would otherwise ask for the largest size the options allow.

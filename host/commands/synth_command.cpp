@@ -5,11 +5,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <numbers>
-#include <sstream>
 
 #include "carbtf/analysis/image_io.hpp"
 #include "carbtf/reference/subspace_synthesis.hpp"
-#include "carbtf/engine/direction_interpolation.hpp"
+#include "carbtf/engine/material_directions.hpp"
 #include "carbtf/engine/material_file.hpp"
 #include "carbtf/engine/subspace_synthesizer.hpp"
 #include "cli/cli_support.hpp"
@@ -39,33 +38,11 @@ struct SynthOptions {
   bool float64 = false;
 };
 
+// The weights of the --light/--view query and the subspace images they need.
 struct Interpolation {
   PairWeights weights;
   std::vector<std::uint32_t> subspaces;  // those with a non-zero weight
 };
-
-Interpolation plan_interpolation(const Material& material, const SynthOptions& options) {
-  constexpr double kDegree = std::numbers::pi / 180.0;
-  DirectionTriangulation lights, views;
-  check(build_direction_triangulation(material.lights, lights), "cannot triangulate the material's light directions");
-  check(build_direction_triangulation(material.views, views), "cannot triangulate the material's view directions");
-  Interpolation result;
-  result.weights = pair_weights(lights, views, options.light[0] * kDegree, options.light[1] * kDegree,
-                                options.view[0] * kDegree, options.view[1] * kDegree);
-  for (int k = 0; k < 9; ++k) {
-    if (result.weights.weight[k] == 0.0f) continue;
-    const std::uint32_t s = subspace_of(material, result.weights.light[k], result.weights.view[k]);
-    if (std::find(result.subspaces.begin(), result.subspaces.end(), s) == result.subspaces.end()) result.subspaces.push_back(s);
-  }
-  return result;
-}
-
-void write_image_pair(const fs::path& folder, const std::string& stem, const std::vector<float>& values, std::uint32_t channels,
-                      std::uint32_t width, std::uint32_t height) {
-  const std::vector<float> rgb = channels_to_rgb(values, channels, std::size_t{width} * height);
-  write_rgb_image(folder / (stem + ".png"), rgb, width, height, true);
-  write_rgb_image(folder / (stem + ".exr"), rgb, width, height, true);
-}
 
 void run_synth(const SynthOptions& options) {
   Material material;
@@ -89,7 +66,12 @@ void run_synth(const SynthOptions& options) {
   }
   Interpolation interpolation;
   if (!options.light.empty()) {
-    interpolation = plan_interpolation(material, options);
+    constexpr double kDegree = std::numbers::pi / 180.0;
+    MaterialDirections directions;
+    check(MaterialDirections::build(material, directions), "cannot interpolate the material's directions");
+    interpolation.weights = directions.weights(options.light[0] * kDegree, options.light[1] * kDegree, options.view[0] * kDegree,
+                                               options.view[1] * kDegree);
+    interpolation.subspaces = directions.subspaces_of(interpolation.weights);
     if (request.subspaces.empty()) {
       request.subspaces = interpolation.subspaces;  // only what the interpolated image needs
     } else {
@@ -151,7 +133,7 @@ void run_synth(const SynthOptions& options) {
   require_finite(interpolated, options.material + ": interpolated image");
 
   for (std::uint32_t s : listed) {
-    write_image_pair(out, "subspace_" + two_digits(s), images[s], material.subspaces[s].channels, request.width, request.height);
+    write_png_and_exr(out, "subspace_" + two_digits(s), images[s], material.subspaces[s].channels, request.width, request.height);
   }
   std::printf("synthesized %zu of %zu subspace images, %ux%u each (%.1f Mtexels), seed %llu, on %s in %.1f ms%s\n",
               listed.size(), material.subspaces.size(), request.width, request.height,
@@ -160,17 +142,11 @@ void run_synth(const SynthOptions& options) {
               gpu_ms > 0 ? (" (GPU time " + std::to_string(static_cast<int>(std::lround(gpu_ms))) + " ms)").c_str() : "");
   std::printf("wrote %s/subspace_NN.png (sRGB) and .exr (linear)\n", out.string().c_str());
   if (!interpolated.empty()) {
-    std::ostringstream weights;
-    for (int k = 0; k < 9; ++k) {
-      if (interpolation.weights.weight[k] == 0.0f) continue;
-      weights << " (light " << interpolation.weights.light[k] << ", view " << interpolation.weights.view[k] << ") "
-              << interpolation.weights.weight[k];
-    }
-    write_image_pair(out, "interpolated", interpolated, material.subspaces[interpolation.subspaces[0]].channels, request.width,
+    write_png_and_exr(out, "interpolated", interpolated, material.subspaces[interpolation.subspaces[0]].channels, request.width,
                      request.height);
     std::printf("wrote %s/interpolated.png and .exr: light (%g, %g) deg, view (%g, %g) deg, weights:%s\n",
                 out.string().c_str(), options.light[0], options.light[1], options.view[0], options.view[1],
-                weights.str().c_str());
+                describe_weights(interpolation.weights).c_str());
   }
 }
 

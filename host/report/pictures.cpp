@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cstring>
+#include <sstream>
+
+#include "carbtf/analysis/image_io.hpp"
 
 namespace carbtf::cli {
 
@@ -40,6 +43,23 @@ std::vector<float> side_by_side(const std::vector<float>& left, const std::vecto
     std::copy_n(&right[std::size_t{y} * width * 3], width * 3, &both[std::size_t{y} * width * 6 + width * 3]);
   }
   return both;
+}
+
+
+void write_png_and_exr(const std::filesystem::path& folder, const std::string& stem, const std::vector<float>& values,
+                       std::uint32_t channels, std::uint32_t width, std::uint32_t height) {
+  const std::vector<float> rgb = channels_to_rgb(values, channels, std::size_t{width} * height);
+  write_rgb_image(folder / (stem + ".png"), rgb, width, height, true);
+  write_rgb_image(folder / (stem + ".exr"), rgb, width, height, true);
+}
+
+std::string describe_weights(const PairWeights& weights) {
+  std::ostringstream text;
+  for (std::size_t k = 0; k < weights.weight.size(); ++k) {
+    if (weights.weight[k] == 0.0f) continue;
+    text << " (light " << weights.light[k] << ", view " << weights.view[k] << ") " << weights.weight[k];
+  }
+  return text.str();
 }
 
 }  // namespace carbtf::cli

@@ -8,20 +8,13 @@
 #include <random>
 
 #include "carbtf/engine/direction_interpolation.hpp"
+#include "carbtf/engine/material_directions.hpp"
+#include "test_materials.hpp"
 
 namespace carbtf {
 namespace {
 
-std::vector<MaterialDirection> ubo_directions() {
-  std::vector<MaterialDirection> directions;
-  const int counts[] = {1, 6, 12, 18, 20, 24};
-  for (int ring = 0; ring < 6; ++ring) {
-    for (int k = 0; k < counts[ring]; ++k) {
-      directions.push_back({static_cast<float>(ring * 15.0 * std::numbers::pi / 180.0), static_cast<float>(k * 2.0 * std::numbers::pi / counts[ring])});
-    }
-  }
-  return directions;
-}
+std::vector<MaterialDirection> ubo_directions() { return test::ubo2003_material_directions(); }
 
 // Weights spread over all directions, to compare two queries whatever triangles they fall in.
 std::vector<double> dense(const DirectionWeights& w, std::size_t count) {
@@ -143,6 +136,53 @@ TEST_CASE("degenerate direction sets", "[interpolation]") {
   CHECK(build_direction_triangulation(same, tri).code() == ErrorCode::invalid_argument);
   const std::vector<MaterialDirection> empty;
   CHECK_FALSE(build_direction_triangulation(empty, tri).ok());
+}
+
+
+TEST_CASE("MaterialDirections builds both sets once and answers weights and the subspaces they need", "[interpolation]") {
+  Material m = synthetic_material(3, 1);
+  MaterialDirections directions;
+  REQUIRE(MaterialDirections::build(m, directions, 16).ok());
+  CHECK(directions.light_grid().grid_size == 16);
+  CHECK(directions.view_triangulation().points.size() == m.views.size());
+  DirectionTriangulation lights, views;
+  REQUIRE(build_direction_triangulation(m.lights, lights).ok());
+  REQUIRE(build_direction_triangulation(m.views, views).ok());
+  const PairWeights expected = pair_weights(lights, views, 0.4, 1.0, 0.9, 2.5);
+  const PairWeights got = directions.weights(0.4, 1.0, 0.9, 2.5);
+  CHECK(got.light == expected.light);
+  CHECK(got.view == expected.view);
+  CHECK(got.weight == expected.weight);
+
+  std::vector<std::uint32_t> needed;
+  for (std::size_t k = 0; k < 9; ++k) {
+    const std::uint32_t s = subspace_of(m, got.light[k], got.view[k]);
+    if (got.weight[k] != 0.0f && std::find(needed.begin(), needed.end(), s) == needed.end()) needed.push_back(s);
+  }
+  CHECK(directions.subspaces_of(got) == needed);
+  const std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs = {{6, 6}, {0, 0}, {6, 6}, {1, 0}};
+  std::vector<std::uint32_t> of_pairs = {subspace_of(m, 6, 6), subspace_of(m, 0, 0), subspace_of(m, 1, 0)};
+  std::sort(of_pairs.begin(), of_pairs.end());
+  of_pairs.erase(std::unique(of_pairs.begin(), of_pairs.end()), of_pairs.end());
+  CHECK(directions.subspaces_of(pairs) == of_pairs);
+
+  SECTION("a grid size out of range") {
+    const Status s = MaterialDirections::build(m, directions, 0);
+    CHECK(s.code() == ErrorCode::invalid_argument);
+    CHECK_THAT(s.message(), Catch::Contains("outside 1..256"));
+  }
+  SECTION("an index table of the wrong size") {
+    m.subspace_index.pop_back();
+    const Status s = MaterialDirections::build(m, directions);
+    CHECK(s.code() == ErrorCode::invalid_argument);
+    CHECK_THAT(s.message(), Catch::Contains("48 entries for 7 x 7 directions"));
+  }
+  SECTION("a view set that cannot be triangulated") {
+    m.views[1] = m.views[0];
+    const Status s = MaterialDirections::build(m, directions);
+    CHECK(s.code() == ErrorCode::invalid_argument);
+    CHECK_THAT(s.message(), Catch::Contains("view directions: directions 0 and 1 are the same"));
+  }
 }
 
 }  // namespace carbtf

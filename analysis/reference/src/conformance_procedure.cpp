@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "carbtf/engine/material_directions.hpp"
 #include "carbtf/reference/noise.hpp"
 #include "carbtf/reference/subspace_synthesis.hpp"
 #include "carbtf/reference/synthetic_material.hpp"
@@ -217,11 +218,10 @@ CaseConformance run_conformance_case(const ConformanceCase& test_case, const Con
     accumulate(colour, images.images[s], cpu[s], material.subspaces[s].channels);
     std::vector<float>().swap(cpu[s]);
   }
-  DirectionTriangulation lights, views;
-  require(build_direction_triangulation(material.lights, lights), name + ": light directions");
-  require(build_direction_triangulation(material.views, views), name + ": view directions");
+  MaterialDirections directions;
+  require(MaterialDirections::build(material, directions), name);
   for (const auto& [lt, lp, vt, vp] : interpolation_queries(material)) {
-    const PairWeights weights = pair_weights(lights, views, lt, lp, vt, vp);
+    const PairWeights weights = directions.weights(lt, lp, vt, vp);
     std::vector<float> tested;
     require(implementation.interpolate(material, weights, tested), name + ": interpolation failed");
     std::vector<float> expected(tested.size());

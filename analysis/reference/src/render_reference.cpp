@@ -7,7 +7,7 @@
 
 #include <glm/glm.hpp>
 
-#include "carbtf/engine/direction_interpolation.hpp"
+#include "carbtf/engine/material_directions.hpp"
 
 namespace carbtf::reference {
 
@@ -79,10 +79,9 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
   if (!input.tone_map.empty() && input.tone_map.size() != input.range_map.size()) {
     throw std::invalid_argument("render_plane: the relief tone is not the range map's size");
   }
-  DirectionTriangulation lights, views;
-  if (!build_direction_triangulation(material.lights, lights).ok() ||
-      !build_direction_triangulation(material.views, views).ok()) {
-    throw std::invalid_argument("render_plane: the material's directions cannot be triangulated");
+  MaterialDirections directions;
+  if (const Status s = MaterialDirections::build(material, directions); !s.ok()) {
+    throw std::invalid_argument("render_plane: the material's directions: " + s.message());
   }
   const float light_z_floor = relight_floor(material);
   // The mean in double, as the binding computes it.
@@ -143,7 +142,7 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
         double lt, lp, vt, vp_angle;
         angles(l, lt, lp);
         angles(view, vt, vp_angle);
-        const PairWeights w = pair_weights(lights, views, lt, lp, vt, vp_angle);
+        const PairWeights w = directions.weights(lt, lp, vt, vp_angle);
         glm::vec3 btf(0.0f);
         const glm::vec3 tone_offset =
             glm::vec3(material.range.tone_chroma[0], material.range.tone_chroma[1], material.range.tone_chroma[2]) * (tone - 1.0f);
