@@ -5,22 +5,18 @@
 // wall time of the whole frame (pruning, recording, submit, wait; readback excluded), as a table and a CSV.
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <numbers>
 #include <set>
 
+#include "bench/frame_bench.hpp"
 #include "carbtf/analysis/analyze.hpp"
 #include "carbtf/analysis/btf/btf_reader.hpp"
-#include "carbtf/analysis/image_io.hpp"
 #include "carbtf/analysis/sample/sample_materials.hpp"
 #include "carbtf/engine/gpu_timer.hpp"
 #include "carbtf/engine/material_binding.hpp"
 #include "carbtf/engine/material_file.hpp"
 #include "carbtf/engine/mesh_renderer.hpp"
-#include "carbtf/engine/scene_pruning.hpp"
 #include "carbtf/engine/subspace_synthesizer.hpp"
 #include "cli/cli_support.hpp"
 #include "cli/owned_folder.hpp"
@@ -46,22 +42,14 @@ struct FrameBenchOptions {
   std::string out = "bench_frame";
 };
 
-struct FrameRecord {
-  std::uint32_t frame = 0;
-  std::size_t synthesized = 0;  // subspace images synthesized on this frame (0: none)
-  std::size_t resident = 0;     // subspace images available to the render
-  double synthesis_gpu_ms = 0.0;
-  double render_gpu_ms = 0.0;
-  double wall_ms = 0.0;
-};
-
 Material bench_material(const FrameBenchOptions& options, OwnedFolder& out) {
   Material material;
   if (!options.material.empty()) {
     check(read_material_file(options.material, material), "cannot read the material");
     return material;
   }
-  std::printf("no --material: analysing the leather sample (64^2) into %s\n", (out.root() / "leather.cbtf").c_str());
+  std::printf("no --material: analysing the leather sample (64^2) into %s\n",
+              (out.root() / "leather.cbtf").c_str());
   std::fflush(stdout);
   const Surface surface = make_sample_surface("leather", 64, 1);
   const fs::path btf = out.claim("leather_btf");
@@ -165,39 +153,14 @@ void run_bench_frame(const FrameBenchOptions& options) {
   }
   check_validation(*context);
 
-  std::ofstream csv(out / "bench_frame.csv");
-  csv << "frame,synthesized_subspaces,resident_subspaces,synthesis_gpu_ms,render_gpu_ms,frame_wall_ms\n";
-  for (const FrameRecord& r : records) {
-    csv << r.frame << ',' << r.synthesized << ',' << r.resident << ',' << r.synthesis_gpu_ms << ','
-        << r.render_gpu_ms << ',' << r.wall_ms << '\n';
-  }
-  std::vector<double> render_gpu, render_wall, synthesis_gpu, synthesis_wall;
-  for (const FrameRecord& r : records) {
-    render_gpu.push_back(r.render_gpu_ms);
-    (r.synthesized > 0 ? synthesis_wall : render_wall).push_back(r.wall_ms);
-    if (r.synthesized > 0) synthesis_gpu.push_back(r.synthesis_gpu_ms);
-  }
   char line[256];
-  std::string table = "| what | frames | median ms | p95 ms |\n|---|---|---|---|\n";
-  auto row = [&](const char* what, const std::vector<double>& v) {
-    if (v.empty()) return;
-    std::snprintf(line, sizeof line, "| %s | %zu | %.2f | %.2f |\n", what, v.size(), median(v),
-                  percentile(v, 0.95));
-    table += line;
-  };
-  row("render pass, GPU timestamps", render_gpu);
-  row("frame wall time, render only", render_wall);
-  row("synthesis, GPU timestamps (frames that synthesize)", synthesis_gpu);
-  row("frame wall time, with synthesis", synthesis_wall);
-  std::ofstream md(out / "bench_frame.md");
   std::snprintf(line, sizeof line,
                 "bench frame: %u frames of %ux%u, %s on %s, texture %u^2, %zu of %zu subspace images "
                 "resident at the end\n\n",
                 options.frames, options.width, options.height, options.mesh.c_str(),
                 context->device_info().name.c_str(), texture_size, resident.size(),
                 material.subspaces.size());
-  md << line << table;
-  std::printf("%s%s", line, table.c_str());
+  std::printf("%s%s", line, write_frame_bench_report(out, records, line).c_str());
   std::printf("wrote %s/bench_frame.csv and bench_frame.md\n", out.string().c_str());
 }
 

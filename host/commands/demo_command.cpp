@@ -1,32 +1,30 @@
 // `carbtf demo`: the README's main job, the whole pipeline on built-in data. A sample material is
 // rendered as a UBO2003 BTF (81 x 81 images), analysed into a material file, synthesized on the Vulkan
 // device (checked bit for bit against the CPU reference), scored for fidelity beside the measurement
-// through the same render pass, and rendered on a sphere. A report folder holds the pictures, the figures and an index.html.
+// through the same render pass, and rendered on a sphere. A report folder holds the pictures, the figures and
+// an index.html.
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <numbers>
 #include <thread>
 #include <vector>
 
 #include "carbtf/analysis/analyze.hpp"
 #include "carbtf/analysis/btf/btf_reader.hpp"
 #include "carbtf/analysis/image_io.hpp"
-#include "carbtf/reference/subspace_synthesis.hpp"
 #include "carbtf/analysis/sample/sample_materials.hpp"
-#include "carbtf/engine/material_binding.hpp"
 #include "carbtf/engine/material_file.hpp"
 #include "carbtf/engine/mesh_renderer.hpp"
 #include "carbtf/engine/subspace_synthesizer.hpp"
+#include "carbtf/reference/subspace_synthesis.hpp"
 #include "cli/cli_support.hpp"
 #include "cli/sample_btf.hpp"
 #include "commands/commands.hpp"
 #include "fidelity/fidelity_run.hpp"
 #include "report/analysis_report.hpp"
-#include "report/html_report.hpp"
+#include "report/demo_report.hpp"
 #include "report/pictures.hpp"
 #include "scene/material_render.hpp"
 #include "scene/orbit.hpp"
@@ -46,12 +44,6 @@ struct DemoOptions {
   std::uint64_t seed = 7;
 };
 
-std::string format(const char* pattern, double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, pattern, value);
-  return buffer;
-}
-
 void step(int index, const char* text) {
   std::printf("[%d/6] %s\n", index, text);
   std::fflush(stdout);
@@ -60,15 +52,16 @@ void step(int index, const char* text) {
 void run_demo(const DemoOptions& options) {
   const fs::path folder = fs::absolute(options.out);
   create_folder(folder);
-  std::vector<std::vector<std::string>> times{{"stage", "time"}};
-  auto timed = [&times](const std::string& name, double seconds) {
-    times.push_back({name, format("%.2f s", seconds)});
+  DemoFigures figures;
+  figures.material = options.material;
+  figures.sample_size = options.size, figures.texture_size = options.texture_size;
+  auto timed = [&figures](const std::string& name, double seconds) {
+    figures.stage_times.push_back({name, seconds});
   };
 
   // 1. A measured BTF to start from.
-  step(1, ("sample material '" + options.material + "': 81 x 81 images of " + std::to_string(options.size) +
-           "^2")
-              .c_str());
+  const std::string sample = std::to_string(options.size);
+  step(1, ("sample material '" + options.material + "': 81 x 81 images of " + sample + "^2").c_str());
   auto start = std::chrono::steady_clock::now();
   const Surface surface = make_sample_surface(options.material, options.size, options.seed);
   const fs::path btf_folder = folder / "btf";
@@ -89,9 +82,9 @@ void run_demo(const DemoOptions& options) {
   check(write_material_file(material_path, result.material), "cannot write the material");
   write_analysis_report(folder / "analysis", dataset, result);
   const Material& material = result.material;
-  const double raw_bytes =
+  const double raw_bytes = figures.raw_bytes =
       static_cast<double>(dataset.present_pairs().size()) * static_cast<double>(dataset.pixel_count()) * 3.0;
-  const auto file_bytes = static_cast<double>(fs::file_size(material_path));
+  const double file_bytes = figures.file_bytes = static_cast<double>(fs::file_size(material_path));
 
   // 3. Synthesis on the device, and its CPU twin.
   auto context = make_context(options.device);
@@ -131,16 +124,20 @@ void run_demo(const DemoOptions& options) {
   start = std::chrono::steady_clock::now();
   FidelityRunOptions fidelity_options;
   fidelity_options.seed = options.seed;
-  const std::vector<PairFidelity> fidelity = run_fidelity(*context, material, dataset, default_fidelity_pairs(material), fidelity_options);
+  const std::vector<PairFidelity> fidelity =
+      run_fidelity(*context, material, dataset, default_fidelity_pairs(material), fidelity_options);
   const FidelitySummaryLine fidelity_summary = summarize(fidelity);
   const RgbField grid = fidelity_grid(fidelity);
   write_rgb_image(folder / "fidelity_grid.png", grid.rgb, grid.width, grid.height, false);
   std::ofstream(folder / "fidelity.csv") << fidelity_csv(fidelity, material);
-  timed("fidelity (" + std::to_string(fidelity.size()) + " pairs: synthesis, two renders and the measure each)", seconds_since(start));
+  timed(
+      "fidelity (" + std::to_string(fidelity.size()) + " pairs: synthesis, two renders and the measure each)",
+      seconds_since(start));
 
   // 5. The material on a sphere.
   step(5, "render on a sphere, 960x640");
-  const MaterialRender sphere_render = prepare_material_render(*context, material, *synthesizer, options.seed, 1.0f, 960, 640, make_sphere());
+  const MaterialRender sphere_render =
+      prepare_material_render(*context, material, *synthesizer, options.seed, 1.0f, 960, 640, make_sphere());
   RenderScene sphere_scene;
   sphere_scene.camera.eye = {2.6f, 1.8f, 1.5f};
   sphere_scene.lights = {{false, unit_vector_degrees(50, 80), {1, 1, 1}},
@@ -154,69 +151,24 @@ void run_demo(const DemoOptions& options) {
 
   // 6. The report.
   step(6, "report");
-  HtmlReport report("carbtf demo: " + options.material);
-  report.paragraph(
-      "The whole pipeline on built-in data: a sample material rendered as a measured BTF (81 lights x 81 "
-      "views), analysed into a material file of a few tens of kilobytes, synthesized on the Vulkan device "
-      "at any size, and rendered with parallax bump mapping.");
-  report.heading("The material on a sphere");
-  report.image("sphere.png", "model, " + std::to_string(n) + "^2 synthesized texture, two directional lights",
-               960);
-  report.heading("Fidelity: model beside measurement");
-  report.paragraph(
-      "The model and the measured images drawn through the same render pass (a plane seen orthographically from "
-      "the measured view, lit from the measured light), at a spread of pairs with grazing light. The model is a "
-      "random field: it matches statistics, not pixels, so a calibrated texture-similarity measure (colour, "
-      "contrast, oriented sub-bands, orientation, structure) scores it: rel 0 is the measurement against "
-      "another region of itself, 1 is white noise of the same colours. The third column is the measurement with "
-      "random Fourier phases, the best any Gaussian field can do; the model's range map must take it past that.");
-  report.image("fidelity_grid.png", "rows: pairs; columns: model | measured | Gaussian reference", 3 * 160);
-  std::vector<std::vector<std::string>> fidelity_rows{{"pair", "rel (model)", "rel (Gaussian reference)", "model beats it"}};
-  for (const PairFidelity& r : fidelity) {
-    fidelity_rows.push_back({r.pair.label, format("%.3f", r.result.rel), format("%.3f", r.result.gaussian_rel),
-                             r.result.rel < r.result.gaussian_rel ? "yes" : "no"});
-  }
-  fidelity_rows.push_back({"mean (worst)", format("%.3f", fidelity_summary.mean_rel) + " (" + format("%.3f", fidelity_summary.worst_rel) + ")",
-                           format("%.3f", fidelity_summary.mean_gaussian_rel),
-                           std::to_string(fidelity_summary.beats_gaussian) + " of " + std::to_string(fidelity_summary.pairs)});
-  report.table(fidelity_rows);
-  report.heading("Analysis");
-  report.image_row({{"analysis/index_table.png", "subspace index table (lights x views)"},
-                    {"analysis/eigenvalues.png", "eigenvalue spectrum of the segmentation features"}},
-                   420);
-  std::vector<std::pair<std::string, std::string>> subspaces;
-  for (std::size_t s = 0; s < std::min<std::size_t>(images.images.size(), 6); ++s) {
-    subspaces.push_back(
-        {"analysis/subspace_" + two_digits(s) + ".png", "subspace " + std::to_string(s) + ", measured"});
-    subspaces.push_back(
-        {"synthesized_" + two_digits(s) + ".png", "subspace " + std::to_string(s) + ", synthesized"});
-  }
-  report.heading("Subspace images, measured and synthesized");
-  report.image_row(subspaces, 160);
-  report.heading("Figures");
-  report.table(
-      {{"figure", "value"},
-       {"device", context->device_info().name + " (" + device_type_name(context->device_info().type) + ")"},
-       {"measured BTF", std::to_string(dataset.present_pairs().size()) + " images of " +
-                            std::to_string(options.size) + "^2, " +
-                            format("%.1f MiB as 8-bit RGB", raw_bytes / 1048576.0)},
-       {"material file", format("%.1f KiB", file_bytes / 1024.0) + ", " +
-                             std::to_string(material.subspaces.size()) + " subspaces"},
-       {"compression ratio", "1 : " + format("%.0f", raw_bytes / file_bytes)},
-       {"GPU vs CPU synthesis",
-        std::to_string(texels - differing) + " of " + std::to_string(texels) + " values bit-identical"},
-       {"GPU synthesis time (timestamps)", format("%.1f ms", timing.total_ms)}});
-  report.table(times);
-  if (std::string error; !report.write(folder, error)) throw CommandError(error);
+  figures.subspaces = material.subspaces.size();
+  figures.measured_images = dataset.present_pairs().size();
+  figures.device = context->device_info().name + " (" + device_type_name(context->device_info().type) + ")";
+  figures.identical_values = texels - differing;
+  figures.values = texels;
+  figures.gpu_synthesis_ms = timing.total_ms;
+  write_demo_report(folder, figures, fidelity);
 
   std::printf(
       "material %.1f KiB, ratio 1 : %.0f; GPU synthesis %.1f ms, bit-identical to the CPU on %zu of %zu "
       "values\n",
       file_bytes / 1024.0, raw_bytes / file_bytes, timing.total_ms, texels - differing, texels);
-  std::printf("fidelity (rel: 0 = the measurement itself, 1 = white noise): mean %.3f, worst %.3f; the Gaussian reference "
-              "%.3f; the model beats it on %zu of %zu pairs\n",
-              fidelity_summary.mean_rel, fidelity_summary.worst_rel, fidelity_summary.mean_gaussian_rel, fidelity_summary.beats_gaussian,
-              fidelity_summary.pairs);
+  std::printf(
+      "fidelity (rel: 0 = the measurement itself, 1 = white noise): mean %.3f, worst %.3f; the Gaussian "
+      "reference "
+      "%.3f; the model beats it on %zu of %zu pairs\n",
+      fidelity_summary.mean_rel, fidelity_summary.worst_rel, fidelity_summary.mean_gaussian_rel,
+      fidelity_summary.beats_gaussian, fidelity_summary.pairs);
   std::printf("report: %s\n", (folder / "index.html").c_str());
   if (differing != 0) throw CommandError("the GPU synthesis differs from the CPU reference");
 }
