@@ -1,11 +1,13 @@
 #include "cli/cli_support.hpp"
 
+#include "carbtf/analysis/btf/btf_reader.hpp"
 #include "carbtf/analysis/image_io.hpp"
 
 #include <algorithm>
 #include <cerrno>
 #include <filesystem>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <iostream>
 #include <limits>
@@ -169,6 +171,15 @@ void parse_frame_size(const std::string& text, const std::string& option, std::u
 
 std::filesystem::path with_stem_suffix(const std::filesystem::path& file, const std::string& suffix) {
   return std::filesystem::path(file).replace_filename(file.stem().string() + suffix + file.extension().string());
+}
+
+
+BtfDataset load_measurement_of(const Material& material, const std::string& path, const std::string& option) {
+  std::vector<std::string> warnings;
+  BtfDataset dataset = load_btf(path, {}, warnings);
+  for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  require_directions_of(dataset, material, option + " " + path);
+  return dataset;
 }
 
 }  // namespace carbtf::cli

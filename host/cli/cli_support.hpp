@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "carbtf/analysis/btf/btf_dataset.hpp"
 #include "carbtf/engine/context.hpp"
 #include "carbtf/engine/subspace_synthesizer.hpp"
 
@@ -60,6 +61,11 @@ double seconds_since(std::chrono::steady_clock::time_point start);
 
 // `file` with `suffix` after its stem: ("out/frame.png", "_measured") gives "out/frame_measured.png".
 std::filesystem::path with_stem_suffix(const std::filesystem::path& file, const std::string& suffix);
+
+// The measured BTF a material was analysed from, loaded to compare the model with it: loads `path`
+// (printing its load warnings) and checks that its light and view directions are the material's; else
+// an error naming `option`, the path and both direction counts.
+BtfDataset load_measurement_of(const Material& material, const std::string& path, const std::string& option);
 
 // "WIDTHxHEIGHT" (digits only, each 1 to 16384) into width and height, or CommandError naming `option`.
 void parse_frame_size(const std::string& text, const std::string& option, std::uint32_t& width, std::uint32_t& height);

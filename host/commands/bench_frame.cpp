@@ -20,7 +20,7 @@
 #include "carbtf/engine/subspace_synthesizer.hpp"
 #include "cli/cli_support.hpp"
 #include "cli/owned_folder.hpp"
-#include "cli/sample_btf.hpp"
+#include "carbtf/analysis/sample/sample_btf.hpp"
 #include "commands/commands.hpp"
 #include "scene/material_render.hpp"
 #include "scene/orbit.hpp"

@@ -8,7 +8,6 @@
 #include "bench/synthesis_bench.hpp"
 #include "carbtf/engine/material_file.hpp"
 #include "cli/cli_support.hpp"
-#include "cli/measurement.hpp"
 #include "commands/commands.hpp"
 
 namespace carbtf::cli {

@@ -20,7 +20,7 @@
 #include "carbtf/engine/subspace_synthesizer.hpp"
 #include "carbtf/reference/subspace_synthesis.hpp"
 #include "cli/cli_support.hpp"
-#include "cli/sample_btf.hpp"
+#include "carbtf/analysis/sample/sample_btf.hpp"
 #include "commands/commands.hpp"
 #include "fidelity/fidelity_run.hpp"
 #include "report/analysis_report.hpp"

@@ -10,7 +10,6 @@
 #include "carbtf/analysis/image_io.hpp"
 #include "carbtf/engine/material_file.hpp"
 #include "cli/cli_support.hpp"
-#include "cli/measurement.hpp"
 #include "commands/commands.hpp"
 #include "fidelity/fidelity_run.hpp"
 

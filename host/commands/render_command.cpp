@@ -12,7 +12,6 @@
 #include "carbtf/engine/scene_pruning.hpp"
 #include "carbtf/engine/subspace_synthesizer.hpp"
 #include "cli/cli_support.hpp"
-#include "cli/measurement.hpp"
 #include "commands/commands.hpp"
 #include "report/pictures.hpp"
 #include "scene/material_render.hpp"

@@ -9,7 +9,7 @@
 #include "carbtf/analysis/image_io.hpp"
 #include "carbtf/analysis/sample/sample_materials.hpp"
 #include "cli/cli_support.hpp"
-#include "cli/sample_btf.hpp"
+#include "carbtf/analysis/sample/sample_btf.hpp"
 #include "commands/commands.hpp"
 
 namespace carbtf::cli {

@@ -4,7 +4,11 @@
 
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
+#include <string>
+
+#include "carbtf/analysis/input_error.hpp"
 
 namespace carbtf {
 
@@ -105,6 +109,31 @@ std::size_t BtfDataset::storage_bytes() const {
   for (const auto& image : srgb_) bytes += image.size();
   for (const auto& image : half_) bytes += image.size() * sizeof(std::uint16_t);
   return bytes;
+}
+
+namespace {
+
+// Within 1e-4 rad; the azimuth modulo a turn, and not at all at the pole where it means nothing.
+bool same_directions(const std::vector<Direction>& measured, const std::vector<MaterialDirection>& model) {
+  if (measured.size() != model.size()) return false;
+  for (std::size_t i = 0; i < model.size(); ++i) {
+    if (std::abs(measured[i].theta - model[i].theta) > 1e-4) return false;
+    if (measured[i].theta > 1e-6 &&
+        std::abs(std::remainder(measured[i].phi - model[i].phi, 2 * std::numbers::pi)) > 1e-4) {
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+void require_directions_of(const BtfDataset& dataset, const Material& material, const std::string& input) {
+  if (!same_directions(dataset.lights(), material.lights) || !same_directions(dataset.views(), material.views)) {
+    throw InputError(input, "its light and view directions are not the material's (" + std::to_string(dataset.lights().size()) +
+                                " x " + std::to_string(dataset.views().size()) + " against " + std::to_string(material.lights.size()) +
+                                " x " + std::to_string(material.views.size()) + "); give the BTF the material was analysed from");
+  }
 }
 
 }  // namespace carbtf

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "carbtf/analysis/btf/directions.hpp"
+#include "carbtf/engine/material.hpp"
 
 namespace carbtf {
 
@@ -75,6 +76,11 @@ class BtfDataset {
   std::vector<std::vector<std::uint8_t>> srgb_;    // per slot, empty when missing
   std::vector<std::vector<std::uint16_t>> half_;   // per slot, empty when missing
 };
+
+// Throws InputError naming `input` unless the dataset's light and view directions are the material's
+// (within 1e-4 rad; the azimuth modulo a turn, and not at all at the pole): the check before a model
+// is compared with a measurement.
+void require_directions_of(const BtfDataset& dataset, const Material& material, const std::string& input);
 
 // The sRGB transfer function and its inverse (IEC 61966-2-1), on [0, 1].
 float srgb_to_linear(float encoded);

@@ -7,10 +7,10 @@
 
 #include "carbtf/analysis/sample/surface.hpp"
 
-namespace carbtf::cli {
+namespace carbtf {
 
 // `output` is a folder, or with `zip` the archive to create; `extension` is ".jpg", ".png" or ".exr".
 void write_sample_btf(const Surface& surface, const std::filesystem::path& output,
                       const std::string& extension, bool zip);
 
-}  // namespace carbtf::cli
+}  // namespace carbtf

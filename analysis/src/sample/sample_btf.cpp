@@ -1,10 +1,10 @@
-#include "cli/sample_btf.hpp"
+#include "carbtf/analysis/sample/sample_btf.hpp"
 
 #include "carbtf/analysis/btf/directions.hpp"
 #include "carbtf/analysis/btf/ubo2003_writer.hpp"
 #include "carbtf/analysis/sample/height_field_renderer.hpp"
 
-namespace carbtf::cli {
+namespace carbtf {
 
 void write_sample_btf(const Surface& surface, const std::filesystem::path& output,
                       const std::string& extension, bool zip) {
@@ -17,4 +17,4 @@ void write_sample_btf(const Surface& surface, const std::filesystem::path& outpu
   writer.finish();
 }
 
-}  // namespace carbtf::cli
+}  // namespace carbtf
