@@ -7,7 +7,7 @@ set(CMAKE_POSITION_INDEPENDENT_CODE ON)
 add_library(carbtf_compile_options INTERFACE)
 target_compile_options(carbtf_compile_options INTERFACE
   -Wall -Wextra -Wshadow -Wnon-virtual-dtor -Wold-style-cast -Wcast-align -Woverloaded-virtual
-  # The synthesis spec (DESIGN.md 4.4) needs CPU float32 to match the GPU bit for bit: no fused
+  # The synthesis spec (docs/design.md 4.4) needs CPU float32 to match the GPU bit for bit: no fused
   # multiply-adds and no value-changing optimisations.
   -ffp-contract=off -fno-fast-math)
 if(CARBTF_WERROR)

@@ -1,6 +1,6 @@
 #version 450
 // CAR recursion, one invocation per field, pixels in row-major order: the scheme for CPU devices
-// (lavapipe), where barriers cost more than the lost parallelism inside a field (DESIGN.md 6). A
+// (lavapipe), where barriers cost more than the lost parallelism inside a field (docs/design.md 6). A
 // dispatch runs the linear pixels [begin, end) of every field, so that no invocation loops more than
 // lavapipe's 65,535 times; successive dispatches continue where the last stopped.
 #extension GL_GOOGLE_include_directive : require

@@ -3,7 +3,7 @@
 of the arctangent the render pass projects directions with (compute_shaders/include/carbtf_gpu_shared.h).
 Rerun to reproduce them; nothing reads this at build time.
 
-Why polynomials: DESIGN.md 4.4 asks for CPU float32 and GPU noise that agree bit for bit. Vulkan only
+Why polynomials: docs/design.md 4.4 asks for CPU float32 and GPU noise that agree bit for bit. Vulkan only
 guarantees correctly rounded +, - and *, so log and cos are built from those alone.
 
   ln(1+x), x in [sqrt(1/2)-1, sqrt(2)-1]: Chebyshev interpolant, degree LOG_DEGREE, as monomials in x.

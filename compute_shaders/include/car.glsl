@@ -2,7 +2,7 @@
 // becomes y = sum_k gamma[k] y(neighbour k) + sigma e, summed from 0 in neighbour order with no fused
 // multiply-add, as the CPU reference does (analysis/reference/src/car_synthesis.cpp). The noise e is
 // drawn here rather than read from memory: one pass less over every field. The taps are unrolled
-// because lavapipe caps loop iterations per invocation (DESIGN.md 6), and the frame makes every
+// because lavapipe caps loop iterations per invocation (docs/design.md 6), and the frame makes every
 // neighbour read in bounds. Needs `params` (SynthPassParams, for the seed) and `arena`.
 #ifndef CARBTF_CAR_GLSL
 #define CARBTF_CAR_GLSL

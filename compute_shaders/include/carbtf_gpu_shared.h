@@ -18,7 +18,7 @@ using uint = std::uint32_t;
 #define CARBTF_CONST_UINT(name, value) const uint name = value;
 #endif
 
-// ---- Gaussian noise (DESIGN.md 4.4) -------------------------------------------------------------
+// ---- Gaussian noise (docs/design.md 4.4) -------------------------------------------------------------
 // N(0,1) at (seed, field id, row, col): Philox4x32-10 of counter (col, row, field, 0) under key
 // (seed low, seed high) gives two 32-bit words; their top 24 bits make u1 in [2^-24, 1] and u2 in
 // [0, 1); Box-Muller z = sqrt(-2 ln u1) cos(2 pi u2). ln, cos and sqrt are built from correctly

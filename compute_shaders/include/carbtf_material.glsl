@@ -8,7 +8,7 @@
 // synthesized texture is a block of an unbounded one, not periodic, so it is never wrapped).
 //
 // Per fragment: parallax mapping with offset limiting (Welsh 2004) from the enlarged range map, the
-// 9-weight interpolation of the subspace images (DESIGN.md 4.5) through precomputed lookup grids
+// 9-weight interpolation of the subspace images (docs/design.md 4.5) through precomputed lookup grids
 // (a fixed, short list of candidates per grid cell: no search over the direction set), times the range
 // map relit for the light. The CPU twin is analysis/reference/src/render_reference.cpp.
 #ifndef CARBTF_MATERIAL_GLSL

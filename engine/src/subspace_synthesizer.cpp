@@ -22,7 +22,7 @@
 namespace carbtf {
 namespace {
 
-// lavapipe stops a loop silently past 65,535 iterations per invocation (DESIGN.md 6); stay below.
+// lavapipe stops a loop silently past 65,535 iterations per invocation (docs/design.md 6); stay below.
 constexpr std::uint32_t kSafeLoopIterations = 60000;
 // Offsets in the kernels are 32-bit element indices.
 constexpr VkDeviceSize kMaxWindowBytes = VkDeviceSize{1} << 31;

@@ -119,7 +119,7 @@ void register_bench_synth_command(CLI::App& bench) {
           "--btf", options->btf,
           "The measured BTF the --material was analysed from (folder, .zip or manifest): adds the "
           "fidelity error "
-          "of DESIGN.md 5 (calibrated rel of each subspace image against its measured pair) to each row")
+          "of docs/design.md 5 (calibrated rel of each subspace image against its measured pair) to each row")
       ->check(CLI::ExistingPath);
   command->add_option("--out", options->out, "Folder for bench_synth.csv, .md and .png")
       ->capture_default_str();

@@ -1,5 +1,5 @@
 // `carbtf fidelity material.cbtf DATASET --out DIR`: how close the model looks to the measurement it
-// was fitted to, measured (DESIGN.md 5): both drawn through the same render pass at a spread of measured
+// was fitted to, measured (docs/design.md 5): both drawn through the same render pass at a spread of measured
 // (light, view) pairs, compared by the calibrated texture-similarity measure, beside the best
 // stationary Gaussian texture. Prints rel per pair, mean and worst; writes a CSV, a markdown table and
 // a picture grid (model | measured | Gaussian reference).

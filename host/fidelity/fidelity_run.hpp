@@ -1,4 +1,4 @@
-// Fidelity of a material against the measured BTF it models, as a person would judge it (DESIGN.md 5,
+// Fidelity of a material against the measured BTF it models, as a person would judge it (docs/design.md 5,
 // issue 13): the model and the measured images are drawn through the same render pass (a plane,
 // orthographic, the measured view and light), and the calibrated texture-similarity measure
 // (analysis/quality/texture_similarity) compares them, beside the best stationary Gaussian texture.

@@ -1,4 +1,4 @@
-// GPU subspace synthesis against the CPU float32 reference (DESIGN.md 4.4). Both follow the same
+// GPU subspace synthesis against the CPU float32 reference (docs/design.md 4.4). Both follow the same
 // operation order with no contraction, so the expected agreement is bit for bit, tighter than the
 // issue's 1e-5 of the field's standard deviation; the tests say so by comparing bits.
 #include <catch2/catch.hpp>

@@ -1,4 +1,4 @@
-// The whole analysis (DESIGN.md 1): a measured BTF becomes a Material of tens of kilobytes.
+// The whole analysis (docs/design.md 1): a measured BTF becomes a Material of tens of kilobytes.
 // Stages: segmentation of the light x view space, photometric stereo on one view and its range map,
 // Wang tiles of the range map, and per subspace image colour PCA, pyramid and one CAR model per band.
 // Each stage's time and the process's peak RSS after it are recorded; anything repaired or unusual is

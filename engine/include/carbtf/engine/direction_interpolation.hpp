@@ -1,4 +1,4 @@
-// Barycentric interpolation over measured directions (paper Sec. III "BTF Interpolation", DESIGN.md 4.5).
+// Barycentric interpolation over measured directions (paper Sec. III "BTF Interpolation", docs/design.md 4.5).
 //
 // The measured directions of one set (lights or views) are mapped to the unit disk by the azimuthal
 // equidistant projection, (x, y) = theta / (pi / 2) * (cos phi, sin phi), which keeps the elevation

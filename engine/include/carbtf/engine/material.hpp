@@ -1,5 +1,5 @@
 // The compact BTF material: everything the runtime needs to synthesize and render a measured material
-// (DESIGN.md 1 and 4). Analysis fills it; the material file (material_file.hpp) stores it; synthesis
+// (docs/design.md 1 and 4). Analysis fills it; the material file (material_file.hpp) stores it; synthesis
 // and rendering read it. Plain data with no invariants beyond those validate_material() checks, so it
 // is cheap to copy and safe to share between threads for reading.
 #pragma once
@@ -49,7 +49,7 @@ struct CarBandModel {
   bool operator==(const CarBandModel&) const = default;
 };
 
-// The model of one subspace image (DESIGN.md 4.3): colour = mean + transform * bands, where the bands
+// The model of one subspace image (docs/design.md 4.3): colour = mean + transform * bands, where the bands
 // are the collapse of a Gaussian-Laplacian pyramid of `levels` levels, each level holding `channels`
 // CAR bands. bands[level * channels + channel]; level 0 is the finest.
 struct SubspaceModel {

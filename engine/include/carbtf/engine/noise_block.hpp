@@ -1,5 +1,5 @@
 // The address of a rectangular block of one random field: which field (seed, field id) and where.
-// Everything random in synthesis is a pure function of (seed, field id, row, col) (DESIGN.md 4.4), so
+// Everything random in synthesis is a pure function of (seed, field id, row, col) (docs/design.md 4.4), so
 // a block names its values completely, on the CPU and on the GPU.
 #pragma once
 

@@ -1,5 +1,5 @@
 // GPU Gaussian noise fields, the first stage of CAR synthesis: sample (row, col) of field `field_id`
-// is N(0,1) computed from (seed, field_id, row, col) alone (DESIGN.md 4.4), so any block of any field
+// is N(0,1) computed from (seed, field_id, row, col) alone (docs/design.md 4.4), so any block of any field
 // can be generated independently, and the values equal the CPU reference
 // (analysis/reference/include/carbtf/reference/noise.hpp) bit for bit.
 #pragma once

@@ -1,4 +1,4 @@
-// Only what a scene needs (DESIGN.md 4.7): before synthesis, which subspace images and what texture
+// Only what a scene needs (docs/design.md 4.7): before synthesis, which subspace images and what texture
 // resolution one frame of a mesh under a camera and lights can use.
 //
 // Per triangle of the mesh that is not outside the view frustum: the light and view directions in the

@@ -1,4 +1,4 @@
-// GPU synthesis of subspace images (DESIGN.md 4.4): for a material, a seed and a block of the unbounded
+// GPU synthesis of subspace images (docs/design.md 4.4): for a material, a seed and a block of the unbounded
 // texture, every requested subspace image, computed to the CPU reference's specification
 // (analysis/reference/include/carbtf/reference/subspace_synthesis.hpp): noise, one CAR recursion per
 // band and level, pyramid collapse, inverse colour transform. Then the 9-weight interpolation of those

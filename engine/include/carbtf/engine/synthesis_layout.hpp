@@ -1,5 +1,5 @@
 // Where each field of a subspace-image synthesis lies, shared by the CPU reference and the GPU so that
-// both compute the same regions (DESIGN.md 4.4).
+// both compute the same regions (docs/design.md 4.4).
 //
 // A block of the unbounded texture is the level-0 region. Level l + 1 covers the coarse support that
 // expanding it to level l needs: fine rows [a, b) read coarse rows [floor((a - 1) / 2),

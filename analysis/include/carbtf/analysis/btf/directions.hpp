@@ -1,6 +1,6 @@
 // Light and view directions over the upper hemisphere of the sample.
 //
-// Convention (DESIGN.md 3): theta is the angle from the surface normal (+z, towards the camera of the
+// Convention (docs/design.md 3): theta is the angle from the surface normal (+z, towards the camera of the
 // top view); phi is the azimuth from +x (image right) towards +y (image up, i.e. towards row 0).
 // Radians in code, degrees in file names and manifests.
 #pragma once

@@ -1,4 +1,4 @@
-// Fitting one 2D causal autoregressive (CAR) model to one band (paper Sec. IV, eq. 1-2; DESIGN.md 4.3).
+// Fitting one 2D causal autoregressive (CAR) model to one band (paper Sec. IV, eq. 1-2; docs/design.md 4.3).
 //
 // The band is centred and scaled to unit variance first, so every constant below is scale-free and a
 // band of 1e-6 or 1e6 fits the same as one of 1. On the normalized band:

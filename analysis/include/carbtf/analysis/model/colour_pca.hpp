@@ -1,4 +1,4 @@
-// Spectral decorrelation of a subspace image (paper Sec. IV, DESIGN.md 4.3): the channels' mean and
+// Spectral decorrelation of a subspace image (paper Sec. IV, docs/design.md 4.3): the channels' mean and
 // the eigenvectors of their covariance, so that band = basis^T (colour - mean) gives uncorrelated
 // mono-spectral bands and colour = mean + basis * band restores the image. Works for any channel count
 // (3 for RGB, N for multispectral). Bands are ordered by decreasing variance.

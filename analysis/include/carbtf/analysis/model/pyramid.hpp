@@ -1,4 +1,4 @@
-// The Gaussian-Laplacian pyramid (Burt & Adelson) a subspace band is split into (DESIGN.md 4.3).
+// The Gaussian-Laplacian pyramid (Burt & Adelson) a subspace band is split into (docs/design.md 4.3).
 // reduce: blur with the binomial kernel [1 4 6 4 1] / 16 in each direction, keep every second sample
 // (a size n becomes ceil(n / 2)). expand: the transpose, upsample by zero insertion and blur with twice
 // the kernel, to a requested size. Borders are mirrored (whole-sample symmetric), which suits measured

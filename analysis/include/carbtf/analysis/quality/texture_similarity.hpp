@@ -1,5 +1,5 @@
 // A texture-similarity measure between two images of one material that have no pixel correspondence
-// (docs: DESIGN.md 5, issue 13). A random-field model never equals its measurement pixel for pixel, so
+// (docs: docs/design.md 5, issue 13). A random-field model never equals its measurement pixel for pixel, so
 // the measure compares what the eye compares, as statistics of CIE L*a*b* (D65) images, in five groups:
 //  - colour:      the Lab mean (CIE76 delta E);
 //  - contrast:    the std of L*, its mean local (8x8) contrast, and the std of the 4x4-block means of
@@ -82,7 +82,7 @@ RgbField white_noise_like(const RgbField& image, std::uint64_t seed);
 // The region [row0, row0 + height) x [col0, col0 + width).
 RgbField crop(const RgbField& image, std::uint32_t row0, std::uint32_t col0, std::uint32_t width, std::uint32_t height);
 
-// The calibrated fidelity of a model image against a measured image (DESIGN.md 5):
+// The calibrated fidelity of a model image against a measured image (docs/design.md 5):
 //  - the measured image is split into two halves along its longer side; half A is the reference;
 //  - floor:    d(half B, A), what "the same material" scores;
 //  - ceiling:  d(white noise like B, A);

@@ -1,4 +1,4 @@
-// Photometric stereo (Woodham 1980; paper Sec. III, DESIGN.md 4.2): per-pixel normals and albedo from
+// Photometric stereo (Woodham 1980; paper Sec. III, docs/design.md 4.2): per-pixel normals and albedo from
 // the images of one view under many distant lights.
 //
 // Per pixel, on the grey value (mean of linear R, G, B) of each light l:

@@ -1,4 +1,4 @@
-// Segmentation of a BTF's light x view space into subspaces (paper Sec. III, DESIGN.md 4.1): K-means on
+// Segmentation of a BTF's light x view space into subspaces (paper Sec. III, docs/design.md 4.1): K-means on
 // the Lab cumulative-histogram feature of every image. Also measures the eigenvalue spectrum of the
 // BTF space (paper Fig. 4): the eigenvalues of the covariance of all images, each reduced to a
 // thumbnail of `spectrum_thumbnail`^2 linear RGB texels (box filter) to keep it a second's work.

@@ -1,4 +1,4 @@
-// The segmentation feature of one BTF image (DESIGN.md 4.1): cumulative histograms of CIE L*, a*, b*
+// The segmentation feature of one BTF image (docs/design.md 4.1): cumulative histograms of CIE L*, a*, b*
 // (D65 white, linear sRGB primaries), concatenated. L* bins span [0, 100],
 // a* and b* span
 // [-110, 110]; values outside fall in the end bins. Each cumulative histogram rises to 1, so the

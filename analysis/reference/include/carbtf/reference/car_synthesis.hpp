@@ -1,4 +1,4 @@
-// CPU reference of one CAR band's synthesis (DESIGN.md 4.4), the twin the GPU is checked against.
+// CPU reference of one CAR band's synthesis (docs/design.md 4.4), the twin the GPU is checked against.
 //
 // The block [row0, row0 + height) x [col0, col0 + width) of the band's infinite field is computed on the
 // region extended by `margin` rows above and `margin` columns on each side (burn-in, car_region()), with

@@ -1,4 +1,4 @@
-// Pixel-wise conformance of a synthesized image against a reference (DESIGN.md 5): the largest and the
+// Pixel-wise conformance of a synthesized image against a reference (docs/design.md 5): the largest and the
 // RMS absolute difference, each divided by the reference's standard deviation in the same channel, so
 // that the figures mean the same for every band, scale and material.
 #pragma once

@@ -1,4 +1,4 @@
-// CPU reference of the counter-based Gaussian noise (DESIGN.md 4.4; spec in
+// CPU reference of the counter-based Gaussian noise (docs/design.md 4.4; spec in
 // compute_shaders/include/carbtf_gpu_shared.h). Float32 results equal the GPU's bit for bit: the
 // arithmetic is the same sequence of correctly rounded +, -, * (this library is compiled with
 // -ffp-contract=off). All functions are pure and thread-safe.

@@ -1,4 +1,4 @@
-// CPU reference of subspace-image synthesis (DESIGN.md 4.4), the specification the GPU pipeline must
+// CPU reference of subspace-image synthesis (docs/design.md 4.4), the specification the GPU pipeline must
 // follow operation for operation. For subspace s of a material, seed S, output block rows
 // [row0, row0 + height) x cols [col0, col0 + width) of the unbounded texture:
 //  1. Regions: level 0 covers the output block; level l + 1 covers the coarse support its expand
