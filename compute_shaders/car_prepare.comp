@@ -6,7 +6,7 @@
 // the N(0,1) noise of every region pixel. No loops.
 #extension GL_GOOGLE_include_directive : require
 #include "carbtf_gpu_shared.h"
-#include "noise.glsl"
+#include "carbtf_noise.h"
 
 layout(local_size_x = CARBTF_SYNTH_GROUP_X, local_size_y = CARBTF_SYNTH_GROUP_Y, local_size_z = 1) in;
 
@@ -52,7 +52,7 @@ void main() {
     uint side = pc < pad ? pc : pc - cols;
     value = frame_value(f, pr < pad ? pr * pitch + pc : pad * pitch + (pr - pad) * 2u * pad + side);
   } else {
-    value = carbtf_gaussian(uvec2(params.seed_lo, params.seed_hi), fields[f].field_id, fields[f].row0 + pr - pad,
+    value = carbtf_gaussian(params.seed_lo, params.seed_hi, fields[f].field_id, fields[f].row0 + pr - pad,
                             fields[f].col0 + pc - pad);
   }
   arena[fields[f].offset + pr * pitch + pc] = value;

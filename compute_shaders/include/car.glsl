@@ -7,7 +7,7 @@
 #ifndef CARBTF_CAR_GLSL
 #define CARBTF_CAR_GLSL
 
-#include "noise.glsl"
+#include "carbtf_noise.h"
 
 #define CARBTF_CAR_TAP(k)                                                         \
   if (k < field.neighbour_count) {                                                \
@@ -20,7 +20,7 @@ void carbtf_car_pixel(in CarFieldGpu field, uint base, uint r, uint c) {
   CARBTF_CAR_TAP(4u) CARBTF_CAR_TAP(5u) CARBTF_CAR_TAP(6u) CARBTF_CAR_TAP(7u)
   CARBTF_CAR_TAP(8u) CARBTF_CAR_TAP(9u) CARBTF_CAR_TAP(10u) CARBTF_CAR_TAP(11u)
   CARBTF_CAR_TAP(12u) CARBTF_CAR_TAP(13u) CARBTF_CAR_TAP(14u) CARBTF_CAR_TAP(15u)
-  float e = carbtf_gaussian(uvec2(params.seed_lo, params.seed_hi), field.field_id, field.row0 + r, field.col0 + c);
+  float e = carbtf_gaussian(params.seed_lo, params.seed_hi, field.field_id, field.row0 + r, field.col0 + c);
   precise float value = acc + field.sigma * e;
   arena[base] = value;
 }
