@@ -1,6 +1,6 @@
 #version 450
 // carbtf's own mesh pipeline, vertex stage: world position, normal and tangent frame for the fragment
-// stage. Vertex layout: engine/include/carbtf/engine/mesh.hpp (MeshVertex).
+// stage. Vertex layout: engine/include/carbtf/engine/render/mesh.hpp (MeshVertex).
 #extension GL_GOOGLE_include_directive : require
 #include "carbtf_gpu_shared.h"
 

@@ -165,7 +165,7 @@ struct InterpolateParams {
   uint reserved;
 };
 
-// ---- Range-map tile layout (engine/include/carbtf/engine/range_tiles.hpp) ----------------------
+// ---- Range-map tile layout (engine/include/carbtf/engine/material/range_tiles.hpp) ----------------------
 // A 32-bit integer mixer ("lowbias32", C. Wellons): every output bit depends on every input bit.
 // Integer arithmetic only, so C++ and GLSL agree exactly.
 CARBTF_FUNCTION uint carbtf_hash32(uint x) {
@@ -226,7 +226,7 @@ CARBTF_FUNCTION float carbtf_polar_angle(float r, float z) {
   return z < 0.0f ? CARBTF_PI_F - from_z : from_z;
 }
 
-// ---- Material render pass (carbtf_material.glsl, engine/include/carbtf/engine/material_binding.hpp) --
+// ---- Material render pass (carbtf_material.glsl, engine/include/carbtf/engine/render/material_binding.hpp) --
 // The material descriptor set: binding 0 the subspace images (sampler2DArray, one layer per
 // synthesized subspace image), binding 1 the enlarged range map (sampler2DArray, layer 0, heights in
 // texels), binding 2 the lookup tables (readonly storage buffer: MaterialTablesHeader, then uints).
@@ -246,7 +246,7 @@ CARBTF_CONST_FLOAT(CARBTF_LOOKUP_MIN_WEIGHT, 1.0e-5f)
 // Lights one draw of carbtf's own mesh pipeline shades with.
 CARBTF_CONST_UINT(CARBTF_RENDER_MAX_LIGHTS, 4u)
 
-// One direction set's lookup (engine/include/carbtf/engine/direction_lookup.hpp): a grid of
+// One direction set's lookup (engine/include/carbtf/engine/material/direction_lookup.hpp): a grid of
 // grid_size^2 cells over the projected disk [-1, 1]^2, row y, column x; cell c lists entries
 // [cells[c], cells[c + 1]). Offsets count uints from the start of the data after the header.
 struct DirectionLookupGpu {

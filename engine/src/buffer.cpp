@@ -1,4 +1,4 @@
-#include "carbtf/engine/buffer.hpp"
+#include "carbtf/engine/vulkan/buffer.hpp"
 
 #include "vk_check.hpp"
 

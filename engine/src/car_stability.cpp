@@ -1,4 +1,4 @@
-#include "carbtf/engine/car_stability.hpp"
+#include "carbtf/engine/material/car_stability.hpp"
 
 #include <algorithm>
 #include <cmath>

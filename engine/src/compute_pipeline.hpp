@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "carbtf/engine/context.hpp"
+#include "carbtf/engine/vulkan/context.hpp"
 
 namespace carbtf::detail {
 

@@ -1,4 +1,4 @@
-#include "carbtf/engine/context.hpp"
+#include "carbtf/engine/vulkan/context.hpp"
 
 #include <algorithm>
 #include <atomic>

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "carbtf/engine/context.hpp"
+#include "carbtf/engine/vulkan/context.hpp"
 
 namespace carbtf::detail {
 

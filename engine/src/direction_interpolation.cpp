@@ -1,4 +1,4 @@
-#include "carbtf/engine/direction_interpolation.hpp"
+#include "carbtf/engine/material/direction_interpolation.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "carbtf/engine/gpu_timer.hpp"
+#include "carbtf/engine/vulkan/gpu_timer.hpp"
 
 #include "vk_check.hpp"
 

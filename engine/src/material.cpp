@@ -1,11 +1,11 @@
-#include "carbtf/engine/material.hpp"
+#include "carbtf/engine/material/material.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
-#include "carbtf/engine/car_stability.hpp"
-#include "carbtf/engine/direction_interpolation.hpp"
+#include "carbtf/engine/material/car_stability.hpp"
+#include "carbtf/engine/material/direction_interpolation.hpp"
 
 namespace carbtf {
 namespace {

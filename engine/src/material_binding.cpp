@@ -1,4 +1,4 @@
-#include "carbtf/engine/material_binding.hpp"
+#include "carbtf/engine/render/material_binding.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -9,11 +9,11 @@
 
 #include <carbtf_gpu_shared.h>
 
-#include "carbtf/engine/direction_lookup.hpp"
-#include "carbtf/engine/material_directions.hpp"
-#include "carbtf/engine/range_tiles.hpp"
-#include "carbtf/engine/subspace_synthesizer.hpp"
-#include "carbtf/engine/texture_array.hpp"
+#include "carbtf/engine/material/direction_lookup.hpp"
+#include "carbtf/engine/material/material_directions.hpp"
+#include "carbtf/engine/material/range_tiles.hpp"
+#include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
+#include "carbtf/engine/vulkan/texture_array.hpp"
 #include "vk_check.hpp"
 
 namespace carbtf {

@@ -1,4 +1,4 @@
-#include "carbtf/engine/material_directions.hpp"
+#include "carbtf/engine/material/material_directions.hpp"
 
 #include <algorithm>
 #include <new>

@@ -1,4 +1,4 @@
-#include "carbtf/engine/material_file.hpp"
+#include "carbtf/engine/material/material_file.hpp"
 
 #include <algorithm>
 #include <array>

@@ -1,4 +1,4 @@
-#include "carbtf/engine/mesh.hpp"
+#include "carbtf/engine/render/mesh.hpp"
 
 #include <cmath>
 #include <numbers>

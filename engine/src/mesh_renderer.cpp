@@ -1,4 +1,4 @@
-#include "carbtf/engine/mesh_renderer.hpp"
+#include "carbtf/engine/render/mesh_renderer.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "carbtf/engine/noise_generator.hpp"
+#include "carbtf/engine/synthesis/noise_generator.hpp"
 
 #include <algorithm>
 #include <cstdint>
@@ -7,8 +7,8 @@
 #include <carbtf_gpu_shared.h>
 #include <carbtf_spirv/noise_field.h>
 
-#include "carbtf/engine/buffer.hpp"
-#include "carbtf/engine/gpu_timer.hpp"
+#include "carbtf/engine/vulkan/buffer.hpp"
+#include "carbtf/engine/vulkan/gpu_timer.hpp"
 #include "compute_pipeline.hpp"
 #include "vk_check.hpp"
 

@@ -1,4 +1,4 @@
-#include "carbtf/engine/range_tiles.hpp"
+#include "carbtf/engine/material/range_tiles.hpp"
 
 #include <carbtf_gpu_shared.h>
 

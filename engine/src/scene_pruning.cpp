@@ -1,4 +1,4 @@
-#include "carbtf/engine/scene_pruning.hpp"
+#include "carbtf/engine/render/scene_pruning.hpp"
 
 #include <algorithm>
 #include <array>
@@ -11,8 +11,8 @@
 
 #include <carbtf_gpu_shared.h>
 
-#include "carbtf/engine/direction_lookup.hpp"
-#include "carbtf/engine/material_directions.hpp"
+#include "carbtf/engine/material/direction_lookup.hpp"
+#include "carbtf/engine/material/material_directions.hpp"
 #include "vk_check.hpp"
 
 namespace carbtf {

@@ -1,4 +1,4 @@
-#include "carbtf/engine/subspace_synthesizer.hpp"
+#include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
 
 #include <algorithm>
 #include <cstring>
@@ -14,7 +14,7 @@
 #include <carbtf_spirv/colour_transform.h>
 #include <carbtf_spirv/interpolate.h>
 
-#include "carbtf/engine/gpu_timer.hpp"
+#include "carbtf/engine/vulkan/gpu_timer.hpp"
 #include "compute_pipeline.hpp"
 #include "synthesis_plan.hpp"
 #include "vk_check.hpp"

@@ -8,10 +8,10 @@
 
 #include <carbtf_gpu_shared.h>
 
-#include "carbtf/engine/material.hpp"
+#include "carbtf/engine/material/material.hpp"
 #include "carbtf/engine/status.hpp"
-#include "carbtf/engine/subspace_synthesizer.hpp"
-#include "carbtf/engine/synthesis_layout.hpp"
+#include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
+#include "carbtf/engine/synthesis/synthesis_layout.hpp"
 
 namespace carbtf::detail {
 

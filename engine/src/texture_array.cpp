@@ -1,4 +1,4 @@
-#include "carbtf/engine/texture_array.hpp"
+#include "carbtf/engine/vulkan/texture_array.hpp"
 
 #include <cstring>
 #include <string>

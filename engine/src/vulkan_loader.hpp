@@ -2,7 +2,7 @@
 #pragma once
 
 #include "carbtf/engine/status.hpp"
-#include "carbtf/engine/vulkan_functions.hpp"
+#include "carbtf/engine/vulkan/vulkan_functions.hpp"
 
 namespace carbtf::detail {
 

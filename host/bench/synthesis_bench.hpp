@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "carbtf/analysis/quality/subspace_fidelity.hpp"
-#include "carbtf/engine/material.hpp"
-#include "carbtf/engine/subspace_synthesizer.hpp"
+#include "carbtf/engine/material/material.hpp"
+#include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
 #include "carbtf/reference/conformance.hpp"
 
 namespace carbtf::cli {

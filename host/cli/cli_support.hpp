@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "carbtf/analysis/btf/btf_dataset.hpp"
-#include "carbtf/engine/context.hpp"
-#include "carbtf/engine/subspace_synthesizer.hpp"
+#include "carbtf/engine/vulkan/context.hpp"
+#include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
 
 namespace carbtf::cli {
 

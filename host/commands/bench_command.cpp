@@ -14,7 +14,7 @@
 #include "carbtf/analysis/resource_usage.hpp"
 #include "carbtf/analysis/sample/height_field_renderer.hpp"
 #include "carbtf/analysis/sample/sample_materials.hpp"
-#include "carbtf/engine/noise_generator.hpp"
+#include "carbtf/engine/synthesis/noise_generator.hpp"
 #include "cli/cli_support.hpp"
 #include "cli/owned_folder.hpp"
 #include "commands/commands.hpp"

@@ -13,7 +13,7 @@
 #include "carbtf/analysis/btf/btf_reader.hpp"
 #include "carbtf/analysis/image_io.hpp"
 #include "carbtf/analysis/report/figures.hpp"
-#include "carbtf/engine/material_file.hpp"
+#include "carbtf/engine/material/material_file.hpp"
 #include "cli/cli_support.hpp"
 #include "cli/owned_folder.hpp"
 #include "commands/commands.hpp"

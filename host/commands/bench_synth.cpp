@@ -6,7 +6,7 @@
 #include <filesystem>
 
 #include "bench/synthesis_bench.hpp"
-#include "carbtf/engine/material_file.hpp"
+#include "carbtf/engine/material/material_file.hpp"
 #include "cli/cli_support.hpp"
 #include "commands/commands.hpp"
 

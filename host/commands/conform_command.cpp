@@ -4,8 +4,8 @@
 // and exits non-zero beyond the tolerance.
 #include <cstdio>
 
-#include "carbtf/engine/material_file.hpp"
-#include "carbtf/engine/subspace_synthesizer.hpp"
+#include "carbtf/engine/material/material_file.hpp"
+#include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
 #include "carbtf/reference/conformance_procedure.hpp"
 #include "cli/cli_support.hpp"
 #include "commands/commands.hpp"

@@ -8,7 +8,7 @@
 #include <fstream>
 
 #include "carbtf/analysis/image_io.hpp"
-#include "carbtf/engine/material_file.hpp"
+#include "carbtf/engine/material/material_file.hpp"
 #include "cli/cli_support.hpp"
 #include "commands/commands.hpp"
 #include "fidelity/fidelity_run.hpp"

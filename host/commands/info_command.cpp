@@ -9,8 +9,8 @@
 #include <set>
 
 #include "carbtf/analysis/btf/btf_reader.hpp"
-#include "carbtf/engine/material_file.hpp"
-#include "carbtf/engine/range_tiles.hpp"
+#include "carbtf/engine/material/material_file.hpp"
+#include "carbtf/engine/material/range_tiles.hpp"
 #include "cli/cli_support.hpp"
 #include "commands/commands.hpp"
 

@@ -7,7 +7,7 @@
 #include "carbtf/analysis/field_statistics.hpp"
 #include "carbtf/analysis/image_io.hpp"
 #include "carbtf/reference/noise.hpp"
-#include "carbtf/engine/noise_generator.hpp"
+#include "carbtf/engine/synthesis/noise_generator.hpp"
 #include "cli/cli_support.hpp"
 #include "commands/commands.hpp"
 

@@ -8,9 +8,9 @@
 
 #include "carbtf/analysis/image_io.hpp"
 #include "carbtf/reference/subspace_synthesis.hpp"
-#include "carbtf/engine/material_directions.hpp"
-#include "carbtf/engine/material_file.hpp"
-#include "carbtf/engine/subspace_synthesizer.hpp"
+#include "carbtf/engine/material/material_directions.hpp"
+#include "carbtf/engine/material/material_file.hpp"
+#include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
 #include "cli/cli_support.hpp"
 #include "commands/commands.hpp"
 #include "report/pictures.hpp"

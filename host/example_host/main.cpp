@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "carbtf/engine/material_file.hpp"
+#include "carbtf/engine/material/material_file.hpp"
 #include "example_host/example_host_engine.hpp"
 
 namespace {

@@ -8,10 +8,10 @@
 #include <numbers>
 #include <sstream>
 
-#include "carbtf/engine/material_binding.hpp"
-#include "carbtf/engine/mesh.hpp"
-#include "carbtf/engine/mesh_renderer.hpp"
-#include "carbtf/engine/subspace_synthesizer.hpp"
+#include "carbtf/engine/render/material_binding.hpp"
+#include "carbtf/engine/render/mesh.hpp"
+#include "carbtf/engine/render/mesh_renderer.hpp"
+#include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
 #include "cli/cli_support.hpp"
 #include "scene/material_render.hpp"
 #include "scene/measured_render.hpp"

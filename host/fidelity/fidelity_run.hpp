@@ -11,8 +11,8 @@
 
 #include "carbtf/analysis/btf/btf_dataset.hpp"
 #include "carbtf/analysis/quality/texture_similarity.hpp"
-#include "carbtf/engine/context.hpp"
-#include "carbtf/engine/material.hpp"
+#include "carbtf/engine/vulkan/context.hpp"
+#include "carbtf/engine/material/material.hpp"
 
 namespace carbtf::cli {
 

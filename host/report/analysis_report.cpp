@@ -6,7 +6,7 @@
 
 #include "carbtf/analysis/image_io.hpp"
 #include "carbtf/analysis/report/figures.hpp"
-#include "carbtf/engine/range_tiles.hpp"
+#include "carbtf/engine/material/range_tiles.hpp"
 #include "cli/cli_support.hpp"
 
 namespace carbtf::cli {

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "carbtf/engine/direction_interpolation.hpp"
-#include "carbtf/engine/mesh_renderer.hpp"
+#include "carbtf/engine/material/direction_interpolation.hpp"
+#include "carbtf/engine/render/mesh_renderer.hpp"
 
 namespace carbtf::cli {
 

@@ -5,12 +5,12 @@
 #include <cstdint>
 #include <memory>
 
-#include "carbtf/engine/context.hpp"
-#include "carbtf/engine/material_binding.hpp"
-#include "carbtf/engine/mesh.hpp"
-#include "carbtf/engine/mesh_renderer.hpp"
-#include "carbtf/engine/scene_pruning.hpp"
-#include "carbtf/engine/subspace_synthesizer.hpp"
+#include "carbtf/engine/vulkan/context.hpp"
+#include "carbtf/engine/render/material_binding.hpp"
+#include "carbtf/engine/render/mesh.hpp"
+#include "carbtf/engine/render/mesh_renderer.hpp"
+#include "carbtf/engine/render/scene_pruning.hpp"
+#include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
 
 namespace carbtf::cli {
 

@@ -7,8 +7,8 @@
 #include <string>
 
 #include "carbtf/analysis/image_io.hpp"
-#include "carbtf/engine/material_binding.hpp"
-#include "carbtf/engine/texture_array.hpp"
+#include "carbtf/engine/render/material_binding.hpp"
+#include "carbtf/engine/vulkan/texture_array.hpp"
 #include "cli/cli_support.hpp"
 #include "report/pictures.hpp"
 

@@ -8,10 +8,10 @@
 #include <vector>
 
 #include "carbtf/analysis/btf/btf_dataset.hpp"
-#include "carbtf/engine/context.hpp"
-#include "carbtf/engine/material.hpp"
-#include "carbtf/engine/mesh.hpp"
-#include "carbtf/engine/mesh_renderer.hpp"
+#include "carbtf/engine/vulkan/context.hpp"
+#include "carbtf/engine/material/material.hpp"
+#include "carbtf/engine/render/mesh.hpp"
+#include "carbtf/engine/render/mesh_renderer.hpp"
 
 namespace carbtf::cli {
 

@@ -6,7 +6,7 @@
 #include <array>
 #include <vector>
 
-#include "carbtf/engine/mesh_renderer.hpp"
+#include "carbtf/engine/render/mesh_renderer.hpp"
 
 namespace carbtf::cli {
 

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <string>
 
-#include "carbtf/engine/mesh.hpp"
+#include "carbtf/engine/render/mesh.hpp"
 
 namespace carbtf::cli {
 

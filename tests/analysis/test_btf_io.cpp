@@ -25,7 +25,7 @@
 #include "carbtf/analysis/input_error.hpp"
 #include "carbtf/analysis/sample/height_field_renderer.hpp"
 #include "carbtf/analysis/sample/sample_materials.hpp"
-#include "carbtf/engine/material_file.hpp"  // crc32, the PNG chunk checksum too
+#include "carbtf/engine/material/material_file.hpp"  // crc32, the PNG chunk checksum too
 
 using namespace carbtf;
 namespace fs = std::filesystem;

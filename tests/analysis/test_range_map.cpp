@@ -15,7 +15,7 @@
 #include "carbtf/analysis/range/surface_integration.hpp"
 #include "carbtf/analysis/sample/height_field_renderer.hpp"
 #include "carbtf/analysis/sample/sample_materials.hpp"
-#include "carbtf/engine/range_tiles.hpp"
+#include "carbtf/engine/material/range_tiles.hpp"
 
 namespace carbtf {
 namespace {

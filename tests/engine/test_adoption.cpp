@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "carbtf/reference/noise.hpp"
-#include "carbtf/engine/noise_generator.hpp"
+#include "carbtf/engine/synthesis/noise_generator.hpp"
 #include "test_support.hpp"
 
 using namespace carbtf;

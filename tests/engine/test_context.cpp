@@ -3,8 +3,8 @@
 
 #include <cstdlib>
 
-#include "carbtf/engine/buffer.hpp"
-#include "carbtf/engine/gpu_timer.hpp"
+#include "carbtf/engine/vulkan/buffer.hpp"
+#include "carbtf/engine/vulkan/gpu_timer.hpp"
 #include "test_support.hpp"
 
 using namespace carbtf;

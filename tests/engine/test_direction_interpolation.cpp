@@ -7,8 +7,8 @@
 #include <numbers>
 #include <random>
 
-#include "carbtf/engine/direction_interpolation.hpp"
-#include "carbtf/engine/material_directions.hpp"
+#include "carbtf/engine/material/direction_interpolation.hpp"
+#include "carbtf/engine/material/material_directions.hpp"
 #include "test_materials.hpp"
 
 namespace carbtf {

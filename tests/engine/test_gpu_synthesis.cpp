@@ -9,7 +9,7 @@
 #include "carbtf/reference/conformance_procedure.hpp"
 #include "carbtf/reference/subspace_synthesis.hpp"
 #include "carbtf/reference/synthetic_material.hpp"
-#include "carbtf/engine/subspace_synthesizer.hpp"
+#include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
 #include "test_support.hpp"
 
 using namespace carbtf;

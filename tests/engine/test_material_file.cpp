@@ -11,9 +11,9 @@
 
 #include "carbtf/reference/noise.hpp"
 #include "carbtf/reference/synthetic_material.hpp"
-#include "carbtf/engine/car_stability.hpp"
-#include "carbtf/engine/material_file.hpp"
-#include "carbtf/engine/range_tiles.hpp"
+#include "carbtf/engine/material/car_stability.hpp"
+#include "carbtf/engine/material/material_file.hpp"
+#include "carbtf/engine/material/range_tiles.hpp"
 #include "material_bytes.hpp"
 #include "scratch_folder.hpp"
 #include "test_range_tiles.hpp"

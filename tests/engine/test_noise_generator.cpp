@@ -2,8 +2,8 @@
 #include <catch2/catch.hpp>
 
 #include "carbtf/reference/noise.hpp"
-#include "carbtf/engine/buffer.hpp"
-#include "carbtf/engine/noise_generator.hpp"
+#include "carbtf/engine/vulkan/buffer.hpp"
+#include "carbtf/engine/synthesis/noise_generator.hpp"
 #include "test_support.hpp"
 
 using namespace carbtf;

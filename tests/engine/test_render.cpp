@@ -11,11 +11,11 @@
 
 #include "carbtf/reference/render_reference.hpp"
 #include "carbtf/reference/synthetic_material.hpp"
-#include "carbtf/engine/direction_lookup.hpp"
-#include "carbtf/engine/material_binding.hpp"
-#include "carbtf/engine/mesh_renderer.hpp"
-#include "carbtf/engine/scene_pruning.hpp"
-#include "carbtf/engine/subspace_synthesizer.hpp"
+#include "carbtf/engine/material/direction_lookup.hpp"
+#include "carbtf/engine/render/material_binding.hpp"
+#include "carbtf/engine/render/mesh_renderer.hpp"
+#include "carbtf/engine/render/scene_pruning.hpp"
+#include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
 #include "test_materials.hpp"
 #include "test_support.hpp"
 

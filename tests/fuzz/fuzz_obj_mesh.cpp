@@ -4,7 +4,7 @@
 #include <cstdlib>
 #include <exception>
 
-#include "carbtf/engine/mesh.hpp"
+#include "carbtf/engine/render/mesh.hpp"
 #include "fuzz_support.hpp"
 #include "scene/scene_mesh.hpp"
 

@@ -9,7 +9,7 @@
 #include <filesystem>
 
 #include "carbtf/analysis/image_io.hpp"
-#include "carbtf/engine/material_file.hpp"
+#include "carbtf/engine/material/material_file.hpp"
 
 #include "cli_run.hpp"
 #include "scratch_folder.hpp"

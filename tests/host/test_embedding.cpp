@@ -9,7 +9,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "carbtf/engine/mesh_renderer.hpp"
+#include "carbtf/engine/render/mesh_renderer.hpp"
 #include "example_host/example_host_engine.hpp"
 #include "test_materials.hpp"
 

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "carbtf/engine/car_stability.hpp"
-#include "carbtf/engine/material_file.hpp"
+#include "carbtf/engine/material/car_stability.hpp"
+#include "carbtf/engine/material/material_file.hpp"
 #include "cli_run.hpp"
 #include "scratch_folder.hpp"
 

@@ -13,7 +13,7 @@
 #include <string>
 
 #include "carbtf/analysis/image_io.hpp"
-#include "carbtf/engine/material_file.hpp"
+#include "carbtf/engine/material/material_file.hpp"
 #include "cli_run.hpp"
 #include "material_bytes.hpp"
 #include "scratch_folder.hpp"

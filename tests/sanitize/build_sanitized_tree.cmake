@@ -7,4 +7,4 @@ include("${CMAKE_CURRENT_LIST_DIR}/sanitized_tree.cmake")
 require_script_arguments(SOURCE_DIR WORK_DIR)
 
 configure_sanitized_tree("${SOURCE_DIR}" "${WORK_DIR}")
-build_sanitized_targets("${WORK_DIR}" analysis_tests engine_tests carbtf_fuzz_targets)
+build_sanitized_targets("${WORK_DIR}" analysis_parser_tests engine_parser_tests carbtf_fuzz_targets)

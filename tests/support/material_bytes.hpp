@@ -9,7 +9,7 @@
 #include <span>
 #include <vector>
 
-#include "carbtf/engine/material_file.hpp"
+#include "carbtf/engine/material/material_file.hpp"
 
 namespace carbtf::test {
 

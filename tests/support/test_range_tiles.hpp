@@ -12,7 +12,7 @@
 #include <random>
 #include <vector>
 
-#include "carbtf/engine/range_tiles.hpp"
+#include "carbtf/engine/material/range_tiles.hpp"
 
 namespace carbtf::test {
 

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "carbtf/engine/context.hpp"
-#include "carbtf/engine/synthesis_layout.hpp"
+#include "carbtf/engine/vulkan/context.hpp"
+#include "carbtf/engine/synthesis/synthesis_layout.hpp"
 
 namespace carbtf::test {
 

@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "carbtf/engine/material_directions.hpp"
+#include "carbtf/engine/material/material_directions.hpp"
 #include "carbtf/reference/noise.hpp"
 #include "carbtf/reference/subspace_synthesis.hpp"
 #include "carbtf/reference/synthetic_material.hpp"

@@ -7,7 +7,7 @@
 
 #include <glm/glm.hpp>
 
-#include "carbtf/engine/material_directions.hpp"
+#include "carbtf/engine/material/material_directions.hpp"
 
 namespace carbtf::reference {
 

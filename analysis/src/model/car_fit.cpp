@@ -1,6 +1,6 @@
 #include "carbtf/analysis/model/car_fit.hpp"
 
-#include "carbtf/engine/car_stability.hpp"
+#include "carbtf/engine/material/car_stability.hpp"
 
 #include <Eigen/Cholesky>
 #include <algorithm>

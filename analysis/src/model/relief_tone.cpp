@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "carbtf/analysis/model/deshade.hpp"
-#include "carbtf/engine/material.hpp"
+#include "carbtf/engine/material/material.hpp"
 
 namespace carbtf {
 

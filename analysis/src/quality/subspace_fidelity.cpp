@@ -8,7 +8,7 @@
 
 #include "carbtf/analysis/model/deshade.hpp"
 #include "carbtf/analysis/model/relief_tone.hpp"
-#include "carbtf/engine/range_tiles.hpp"
+#include "carbtf/engine/material/range_tiles.hpp"
 
 namespace carbtf {
 

@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "carbtf/engine/range_tiles.hpp"
+#include "carbtf/engine/material/range_tiles.hpp"
 
 namespace carbtf {
 namespace {

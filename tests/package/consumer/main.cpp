@@ -1,6 +1,5 @@
 // Plays an outside program: creates a validated context, generates noise, checks it, exits 0 on success.
-#include <carbtf/engine/context.hpp>
-#include <carbtf/engine/noise_generator.hpp>
+#include <carbtf/engine.hpp>  // the umbrella header, as an outside host would include it
 
 #include <cmath>
 #include <cstdio>

@@ -16,7 +16,7 @@
 #include "carbtf/analysis/range/photometric_stereo.hpp"
 #include "carbtf/analysis/range/range_tile_builder.hpp"
 #include "carbtf/analysis/segmentation/btf_segmentation.hpp"
-#include "carbtf/engine/material.hpp"
+#include "carbtf/engine/material/material.hpp"
 
 namespace carbtf {
 

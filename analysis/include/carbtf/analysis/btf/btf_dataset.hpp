@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "carbtf/analysis/btf/directions.hpp"
-#include "carbtf/engine/material.hpp"
+#include "carbtf/engine/material/material.hpp"
 
 namespace carbtf {
 

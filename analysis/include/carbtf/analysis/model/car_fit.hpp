@@ -27,8 +27,8 @@
 #include <vector>
 
 #include "carbtf/analysis/model/plane.hpp"
-#include "carbtf/engine/car_stability.hpp"  // car_spectral_radius, car_roots_within
-#include "carbtf/engine/material.hpp"
+#include "carbtf/engine/material/car_stability.hpp"  // car_spectral_radius, car_roots_within
+#include "carbtf/engine/material/material.hpp"
 
 namespace carbtf {
 

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "carbtf/analysis/model/plane.hpp"
-#include "carbtf/engine/material.hpp"
+#include "carbtf/engine/material/material.hpp"
 
 namespace carbtf {
 

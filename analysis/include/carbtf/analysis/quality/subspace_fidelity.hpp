@@ -11,8 +11,8 @@
 
 #include "carbtf/analysis/btf/btf_dataset.hpp"
 #include "carbtf/analysis/quality/texture_similarity.hpp"
-#include "carbtf/engine/material.hpp"
-#include "carbtf/engine/synthesis_request.hpp"
+#include "carbtf/engine/material/material.hpp"
+#include "carbtf/engine/synthesis/synthesis_request.hpp"
 
 namespace carbtf {
 

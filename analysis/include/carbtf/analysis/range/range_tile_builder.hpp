@@ -1,5 +1,5 @@
 // Building the Wang tiles that enlarge a range map (paper Sec. III, after Cohen et al. 2003; the
-// geometry and layout rule are in engine/include/carbtf/engine/range_tiles.hpp). Each edge colour takes
+// geometry and layout rule are in engine/include/carbtf/engine/material/range_tiles.hpp). Each edge colour takes
 // a source patch from the map at a seeded random position; each tile quadrant joins its two patches
 // along the minimum-error cut, found by dynamic programming over monotone corner-to-centre paths with
 // cost (A - B)^2 summed over the two texels either side of the cut.
@@ -8,7 +8,7 @@
 #include <cstdint>
 
 #include "carbtf/analysis/model/plane.hpp"
-#include "carbtf/engine/material.hpp"
+#include "carbtf/engine/material/material.hpp"
 
 namespace carbtf {
 

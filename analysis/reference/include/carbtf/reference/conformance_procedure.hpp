@@ -26,10 +26,10 @@
 #include <string>
 #include <vector>
 
-#include "carbtf/engine/direction_interpolation.hpp"
-#include "carbtf/engine/material.hpp"
+#include "carbtf/engine/material/direction_interpolation.hpp"
+#include "carbtf/engine/material/material.hpp"
 #include "carbtf/engine/status.hpp"
-#include "carbtf/engine/synthesis_request.hpp"
+#include "carbtf/engine/synthesis/synthesis_request.hpp"
 #include "carbtf/reference/conformance.hpp"
 
 namespace carbtf::reference {

@@ -9,9 +9,9 @@
 #include <span>
 #include <vector>
 
-#include "carbtf/engine/material.hpp"
-#include "carbtf/engine/render_scene.hpp"
-#include "carbtf/engine/synthesis_request.hpp"
+#include "carbtf/engine/material/material.hpp"
+#include "carbtf/engine/render/render_scene.hpp"
+#include "carbtf/engine/synthesis/synthesis_request.hpp"
 
 namespace carbtf::reference {
 

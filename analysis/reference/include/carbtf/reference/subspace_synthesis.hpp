@@ -18,9 +18,9 @@
 #include <span>
 #include <vector>
 
-#include "carbtf/engine/direction_interpolation.hpp"
-#include "carbtf/engine/material.hpp"
-#include "carbtf/engine/synthesis_layout.hpp"
+#include "carbtf/engine/material/direction_interpolation.hpp"
+#include "carbtf/engine/material/material.hpp"
+#include "carbtf/engine/synthesis/synthesis_layout.hpp"
 
 namespace carbtf::reference {
 

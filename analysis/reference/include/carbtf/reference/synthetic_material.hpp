@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "carbtf/engine/material.hpp"
+#include "carbtf/engine/material/material.hpp"
 
 namespace carbtf {
 

@@ -13,8 +13,8 @@
 #include <memory>
 #include <span>
 
-#include "carbtf/engine/buffer.hpp"
-#include "carbtf/engine/context.hpp"
+#include "carbtf/engine/vulkan/buffer.hpp"
+#include "carbtf/engine/vulkan/context.hpp"
 
 namespace carbtf {
 

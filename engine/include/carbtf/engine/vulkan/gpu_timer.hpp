@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "carbtf/engine/context.hpp"
+#include "carbtf/engine/vulkan/context.hpp"
 
 namespace carbtf {
 

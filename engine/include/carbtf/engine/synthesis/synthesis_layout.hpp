@@ -12,7 +12,7 @@
 #include <span>
 #include <vector>
 
-#include "carbtf/engine/material.hpp"
+#include "carbtf/engine/material/material.hpp"
 
 namespace carbtf {
 

@@ -21,7 +21,7 @@
 #include <cstdint>
 #include <span>
 
-#include "carbtf/engine/material.hpp"
+#include "carbtf/engine/material/material.hpp"
 
 namespace carbtf {
 

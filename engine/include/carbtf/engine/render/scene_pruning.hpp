@@ -20,9 +20,9 @@
 #include <utility>
 #include <vector>
 
-#include "carbtf/engine/material.hpp"
-#include "carbtf/engine/mesh.hpp"
-#include "carbtf/engine/mesh_renderer.hpp"
+#include "carbtf/engine/material/material.hpp"
+#include "carbtf/engine/render/mesh.hpp"
+#include "carbtf/engine/render/mesh_renderer.hpp"
 
 namespace carbtf {
 

@@ -17,9 +17,9 @@
 #include <memory>
 #include <vector>
 
-#include "carbtf/engine/buffer.hpp"
-#include "carbtf/engine/context.hpp"
-#include "carbtf/engine/material.hpp"
+#include "carbtf/engine/vulkan/buffer.hpp"
+#include "carbtf/engine/vulkan/context.hpp"
+#include "carbtf/engine/material/material.hpp"
 
 namespace carbtf {
 

@@ -11,9 +11,9 @@
 #include <utility>
 #include <vector>
 
-#include "carbtf/engine/direction_interpolation.hpp"
-#include "carbtf/engine/direction_lookup.hpp"
-#include "carbtf/engine/material.hpp"
+#include "carbtf/engine/material/direction_interpolation.hpp"
+#include "carbtf/engine/material/direction_lookup.hpp"
+#include "carbtf/engine/material/material.hpp"
 #include "carbtf/engine/status.hpp"
 
 namespace carbtf {

@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "carbtf/engine/direction_interpolation.hpp"
+#include "carbtf/engine/material/direction_interpolation.hpp"
 
 namespace carbtf {
 

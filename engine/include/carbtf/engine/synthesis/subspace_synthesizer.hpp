@@ -21,12 +21,12 @@
 #include <span>
 #include <vector>
 
-#include "carbtf/engine/buffer.hpp"
-#include "carbtf/engine/context.hpp"
-#include "carbtf/engine/direction_interpolation.hpp"
-#include "carbtf/engine/material.hpp"
-#include "carbtf/engine/synthesis_request.hpp"
-#include "carbtf/engine/synthesis_layout.hpp"
+#include "carbtf/engine/vulkan/buffer.hpp"
+#include "carbtf/engine/vulkan/context.hpp"
+#include "carbtf/engine/material/direction_interpolation.hpp"
+#include "carbtf/engine/material/material.hpp"
+#include "carbtf/engine/synthesis/synthesis_request.hpp"
+#include "carbtf/engine/synthesis/synthesis_layout.hpp"
 
 namespace carbtf {
 

@@ -5,7 +5,7 @@
 
 #include <utility>
 
-#include "carbtf/engine/vulkan_functions.hpp"
+#include "carbtf/engine/vulkan/vulkan_functions.hpp"
 
 namespace carbtf {
 

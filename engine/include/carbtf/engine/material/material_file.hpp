@@ -37,7 +37,7 @@
 #include <string>
 #include <vector>
 
-#include "carbtf/engine/material.hpp"
+#include "carbtf/engine/material/material.hpp"
 
 namespace carbtf {
 

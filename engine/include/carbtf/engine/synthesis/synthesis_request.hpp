@@ -8,7 +8,7 @@
 #include <span>
 #include <vector>
 
-#include "carbtf/engine/synthesis_layout.hpp"
+#include "carbtf/engine/synthesis/synthesis_layout.hpp"
 
 namespace carbtf {
 

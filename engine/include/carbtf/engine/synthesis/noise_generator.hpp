@@ -8,8 +8,8 @@
 #include <memory>
 #include <vector>
 
-#include "carbtf/engine/context.hpp"
-#include "carbtf/engine/noise_block.hpp"
+#include "carbtf/engine/vulkan/context.hpp"
+#include "carbtf/engine/synthesis/noise_block.hpp"
 
 namespace carbtf {
 

@@ -13,7 +13,7 @@
 
 #include <vector>
 
-#include "carbtf/engine/material.hpp"
+#include "carbtf/engine/material/material.hpp"
 
 namespace carbtf {
 

@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "carbtf/engine/status.hpp"
-#include "carbtf/engine/unique_handle.hpp"
-#include "carbtf/engine/vulkan_functions.hpp"
+#include "carbtf/engine/vulkan/unique_handle.hpp"
+#include "carbtf/engine/vulkan/vulkan_functions.hpp"
 
 namespace carbtf {
 
