@@ -5,6 +5,7 @@
 #include <cmath>
 #include <set>
 #include <span>
+#include <utility>
 
 #include <glm/glm.hpp>
 #include <glm/gtc/type_ptr.hpp>
@@ -19,9 +20,10 @@ namespace carbtf {
 
 namespace {
 
+// One direction set of a MaterialDirections (which outlives it), with its triangles' bounding boxes.
 struct DirectionSet {
-  DirectionTriangulation triangulation;
-  DirectionLookupGrid grid;
+  const DirectionTriangulation& triangulation;
+  const DirectionLookupGrid& grid;
   std::vector<std::array<glm::vec2, 2>> boxes;  // per triangle: its bounding box (lo, hi)
 
   DirectionSet(const DirectionTriangulation& built, const DirectionLookupGrid& built_grid)
@@ -120,7 +122,12 @@ void exact_directions(const DirectionSet& set, glm::vec2 p, std::set<std::uint32
 }  // namespace
 
 struct ScenePruner::Lookups {
-  MaterialDirections directions;
+  Lookups(MaterialDirections built, const PruningOptions& pruning)
+      : directions(std::move(built)),
+        lights(directions.light_triangulation(), directions.light_grid()),
+        views(directions.view_triangulation(), directions.view_grid()),
+        options(pruning) {}
+  MaterialDirections directions;  // before the sets, which refer to it
   DirectionSet lights, views;
   PruningOptions options;
 };
@@ -131,10 +138,7 @@ Status ScenePruner::create(const Material& material, const PruningOptions& optio
     std::unique_ptr<ScenePruner> pruner(new ScenePruner());
     MaterialDirections directions;
     CARBTF_TRY(MaterialDirections::build(material, directions, options.lookup_grid_size));
-    pruner->lookups_.reset(new Lookups{directions,
-                                       {directions.light_triangulation(), directions.light_grid()},
-                                       {directions.view_triangulation(), directions.view_grid()},
-                                       options});
+    pruner->lookups_ = std::make_unique<Lookups>(std::move(directions), options);
     out = std::move(pruner);
     return {};
   } catch (const std::bad_alloc&) {
