@@ -30,7 +30,6 @@
 #include "scene/orbit.hpp"
 
 namespace carbtf::cli {
-
 namespace {
 
 namespace fs = std::filesystem;
@@ -54,7 +53,8 @@ void run_demo(const DemoOptions& options) {
   create_folder(folder);
   DemoFigures figures;
   figures.material = options.material;
-  figures.sample_size = options.size, figures.texture_size = options.texture_size;
+  figures.sample_size = options.size;
+  figures.texture_size = options.texture_size;
   auto timed = [&figures](const std::string& name, double seconds) {
     figures.stage_times.push_back({name, seconds});
   };

@@ -14,8 +14,6 @@
 namespace carbtf {
 namespace {
 
-std::vector<MaterialDirection> ubo_directions() { return test::ubo2003_material_directions(); }
-
 // Weights spread over all directions, to compare two queries whatever triangles they fall in.
 std::vector<double> dense(const DirectionWeights& w, std::size_t count) {
   std::vector<double> d(count, 0.0);
@@ -35,7 +33,7 @@ std::pair<double, double> unproject(double x, double y) { return {std::hypot(x, 
 }  // namespace
 
 TEST_CASE("the UBO2003 directions triangulate the disk of the outer ring", "[interpolation]") {
-  const auto directions = ubo_directions();
+  const auto directions = test::ubo2003_material_directions();
   DirectionTriangulation tri;
   REQUIRE(build_direction_triangulation(directions, tri).ok());
   double area = 0.0;
@@ -52,7 +50,7 @@ TEST_CASE("the UBO2003 directions triangulate the disk of the outer ring", "[int
 }
 
 TEST_CASE("interpolation weights sum to 1 and are exact at measured directions", "[interpolation]") {
-  const auto directions = ubo_directions();
+  const auto directions = test::ubo2003_material_directions();
   DirectionTriangulation tri;
   REQUIRE(build_direction_triangulation(directions, tri).ok());
   for (std::uint32_t i = 0; i < directions.size(); ++i) {
@@ -92,7 +90,7 @@ TEST_CASE("interpolation weights sum to 1 and are exact at measured directions",
 }
 
 TEST_CASE("interpolation weights are continuous across triangle edges and the last ring", "[interpolation]") {
-  const auto directions = ubo_directions();
+  const auto directions = test::ubo2003_material_directions();
   DirectionTriangulation tri;
   REQUIRE(build_direction_triangulation(directions, tri).ok());
   std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
