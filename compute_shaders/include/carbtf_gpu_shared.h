@@ -128,7 +128,9 @@ struct CollapseItemGpu {
 };
 
 // The colour transform of channels [channel_begin, channel_end) of one subspace image: from the mean
-// when channel_begin is 0, else continuing the sums already in the output layer.
+// when channel_begin is 0, else continuing the sums already in the output layer. With overlap > 0 the
+// output is periodic: each channel's G_0 is folded first (carbtf_periodic.h), rows x cols being the
+// period and the G_0 window (rows + overlap) x (cols + overlap).
 struct ColourItemGpu {
   uint layer;
   uint channels;
@@ -136,11 +138,12 @@ struct ColourItemGpu {
   uint channel_end;
   uint rows;
   uint cols;
-  uint reserved0;
-  uint reserved1;
+  uint overlap;
+  float inv_overlap;  // 1 / overlap, rounded on the host
   uint offset[CARBTF_SYNTH_MAX_CHANNELS];  // arena element of each channel's G_0 (0, 0)
   uint pitch[CARBTF_SYNTH_MAX_CHANNELS];
   float mean[CARBTF_SYNTH_MAX_CHANNELS];
+  float fold_centre[CARBTF_SYNTH_MAX_CHANNELS];  // collapsed_band_mean() per channel
   float transform[CARBTF_SYNTH_MAX_CHANNELS * CARBTF_SYNTH_MAX_CHANNELS];  // row-major, channels x channels
 };
 
@@ -307,7 +310,7 @@ static_assert(offsetof(NoiseFieldParams, element_offset) == 32);
 static_assert(sizeof(CarFieldGpu) == 48 + 8 * CARBTF_CAR_MAX_NEIGHBOURS, "CarFieldGpu must match std430");
 static_assert(offsetof(CarFieldGpu, tap) == 48 && offsetof(CarFieldGpu, gamma) == 48 + 4 * CARBTF_CAR_MAX_NEIGHBOURS);
 static_assert(sizeof(CollapseItemGpu) == 48, "CollapseItemGpu must match std430");
-static_assert(sizeof(ColourItemGpu) == 32 + 12 * CARBTF_SYNTH_MAX_CHANNELS + 4 * CARBTF_SYNTH_MAX_CHANNELS * CARBTF_SYNTH_MAX_CHANNELS);
+static_assert(sizeof(ColourItemGpu) == 32 + 16 * CARBTF_SYNTH_MAX_CHANNELS + 4 * CARBTF_SYNTH_MAX_CHANNELS * CARBTF_SYNTH_MAX_CHANNELS);
 static_assert(sizeof(SynthPassParams) == 32 && sizeof(InterpolateParams) == 112);
 static_assert(sizeof(DirectionLookupGpu) == 32 && sizeof(MaterialTablesHeader) == 112);
 static_assert(offsetof(MaterialTablesHeader, layer_table) == 64 && offsetof(MaterialTablesHeader, parallax_scale) == 80);

@@ -17,6 +17,22 @@ std::vector<TextureRegion> level_regions(const TextureRegion& block, std::uint32
   return regions;
 }
 
+std::uint32_t default_periodic_overlap(std::uint32_t width, std::uint32_t height) {
+  return std::clamp(std::min(width, height) / 8u, 4u, 64u);
+}
+
+TextureRegion synthesized_region(const SynthesisBlock& block) {
+  return {block.row0, block.col0, std::int64_t{block.height} + block.periodic_overlap,
+          std::int64_t{block.width} + block.periodic_overlap};
+}
+
+float collapsed_band_mean(const SubspaceModel& model, std::uint32_t channel) {
+  float sum = 0.0f;
+  for (std::uint32_t level = model.levels; level-- > 0;)
+    sum += model.bands[std::size_t{level} * model.channels + channel].mean;
+  return sum;
+}
+
 std::uint32_t car_frame_pad(std::span<const CarNeighbour> neighbourhood) {
   int pad = 1;
   for (const CarNeighbour& n : neighbourhood) pad = std::max({pad, -int{n.dr}, std::abs(int{n.dc})});
@@ -49,7 +65,7 @@ BlockFrameLayout block_frame_layout(const Material& material, const SynthesisBlo
   BlockFrameLayout layout;
   for (const std::uint32_t s : subspaces) {
     const SubspaceModel& model = material.subspaces[s];
-    const auto regions = level_regions({block.row0, block.col0, block.height, block.width}, model.levels);
+    const auto regions = level_regions(synthesized_region(block), model.levels);
     for (std::uint32_t level = 0; level < model.levels; ++level) {
       for (std::uint32_t channel = 0; channel < model.channels; ++channel) {
         BlockFrameField field;

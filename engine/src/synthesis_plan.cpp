@@ -145,8 +145,11 @@ void finish_batch(const Material& material, std::vector<Stack>& stacks, const Sy
     item.channel_begin = stacks[s].channel;
     item.rows = plan.height;
     item.cols = plan.width;
+    item.overlap = plan.periodic_overlap;
+    item.inv_overlap = plan.periodic_overlap > 0 ? 1.0f / static_cast<float>(plan.periodic_overlap) : 0.0f;
     for (std::uint32_t i = 0; i < model.channels; ++i) {
       item.mean[i] = model.colour_mean[i];
+      item.fold_centre[i] = collapsed_band_mean(model, i);
       for (std::uint32_t j = 0; j < model.channels; ++j) {
         item.transform[i * model.channels + j] = model.colour_transform[std::size_t{i} * model.channels + j];
       }
@@ -178,8 +181,14 @@ Status plan_synthesis(const Material& material, const SynthesisRequest& request,
   if (request.width == 0 || request.height == 0) {
     return {ErrorCode::invalid_argument, "synthesis size must be at least 1x1"};
   }
-  if (std::int64_t{request.row0} + request.height > kMaxCoordinate ||
-      std::int64_t{request.col0} + request.width > kMaxCoordinate || request.margin > 65536) {
+  if (request.periodic_overlap > std::min(request.width, request.height)) {
+    return {ErrorCode::invalid_argument, "periodic overlap " + std::to_string(request.periodic_overlap) +
+                                             " exceeds the " + std::to_string(request.width) + "x" +
+                                             std::to_string(request.height) + " image's shorter side"};
+  }
+  const TextureRegion region = synthesized_region(request);
+  if (region.row0 + region.rows > kMaxCoordinate || region.col0 + region.cols > kMaxCoordinate ||
+      request.margin > 65536) {
     return {ErrorCode::invalid_argument, "synthesis block or margin beyond the 32-bit texture coordinates"};
   }
   if (request.subspaces.empty()) {
@@ -200,6 +209,7 @@ Status plan_synthesis(const Material& material, const SynthesisRequest& request,
   if (out.subspaces.empty()) return {ErrorCode::invalid_argument, "the material has no subspace images"};
   out.width = request.width;
   out.height = request.height;
+  out.periodic_overlap = request.periodic_overlap;
   BlockFrameLayout frames;
   if (!request.initial_values.empty()) {
     frames = block_frame_layout(material, request, out.subspaces);
@@ -226,7 +236,7 @@ Status plan_synthesis(const Material& material, const SynthesisRequest& request,
     }
     out.channels.push_back(model.channels);
     const auto regions =
-        level_regions({request.row0, request.col0, request.height, request.width}, model.levels);
+        level_regions(synthesized_region(request), model.levels);
     for (std::uint32_t c = 0; c < model.channels; ++c) {
       Stack stack;
       CARBTF_TRY(make_stack(material, s, c, regions, request.margin,

@@ -54,6 +54,7 @@ struct SynthesisPlan {
   std::vector<std::uint32_t> channels;   // per output layer
   std::uint32_t width = 0;
   std::uint32_t height = 0;
+  std::uint32_t periodic_overlap = 0;
   std::vector<PlannedBatch> batches;
   std::uint64_t window_floats = 0;  // the largest batch window
 };

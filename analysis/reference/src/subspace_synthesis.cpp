@@ -5,6 +5,8 @@
 #include <string>
 #include <type_traits>
 
+#include <carbtf_periodic.h>
+
 #include "carbtf/reference/parallel_for.hpp"
 #include "carbtf/reference/car_synthesis.hpp"
 #include "carbtf/engine/synthesis/synthesis_layout.hpp"
@@ -59,6 +61,40 @@ void add_expanded(std::vector<Real>& band, const std::vector<Real>& coarser, con
   for (std::size_t i = 0; i < band.size(); ++i) band[i] = band[i] + expanded[i];
 }
 
+// Writes the collapsed level-0 channel `g` (over synthesized_region(block)) to channel `channel` of the
+// width x height `out`; a periodic block folds its overlap onto the start (carbtf_periodic.h, the same
+// float operations as colour_transform.comp; float64 computes them in double).
+template <typename Real>
+void fold_periodic(const std::vector<Real>& g, const SubspaceBlock& block, float centre, std::span<Real> out,
+                   std::uint32_t channel, std::uint32_t channels) {
+  const std::size_t pitch = std::size_t{block.width} + block.periodic_overlap;
+  const std::uint32_t overlap = block.periodic_overlap;
+  const float inv_overlap = overlap > 0 ? 1.0f / static_cast<float>(overlap) : 0.0f;
+  for (std::uint32_t y = 0; y < block.height; ++y) {
+    const Real ky = gpu::carbtf_fold_keep(y, overlap, inv_overlap);
+    const Real ty = gpu::carbtf_fold_take(y, overlap, inv_overlap);
+    const std::size_t fold_y = y < overlap ? y + block.height : y;
+    for (std::uint32_t x = 0; x < block.width; ++x) {
+      Real value = g[y * pitch + x];
+      if (x < overlap || y < overlap) {
+        const Real kx = gpu::carbtf_fold_keep(x, overlap, inv_overlap);
+        const Real tx = gpu::carbtf_fold_take(x, overlap, inv_overlap);
+        const std::size_t fold_x = x < overlap ? x + block.width : x;
+        const Real c = centre;
+        if constexpr (std::is_same_v<Real, float>) {
+          value = gpu::carbtf_fold(c, value, g[y * pitch + fold_x], g[fold_y * pitch + x],
+                                   g[fold_y * pitch + fold_x], kx, tx, ky, ty);
+        } else {
+          const Real top = kx * (value - c) + tx * (g[y * pitch + fold_x] - c);
+          const Real bottom = kx * (g[fold_y * pitch + x] - c) + tx * (g[fold_y * pitch + fold_x] - c);
+          value = c + (ky * top + ty * bottom);
+        }
+      }
+      out[(std::size_t{y} * block.width + x) * channels + channel] = value;
+    }
+  }
+}
+
 void check_subspace(const Material& material, std::uint32_t subspace) {
   if (subspace >= material.subspaces.size())
     throw std::invalid_argument("subspace " + std::to_string(subspace) + " does not exist");
@@ -77,11 +113,13 @@ void synthesize(const Material& material, std::uint32_t subspace, const Subspace
         "subspace " + std::to_string(subspace) + ": " + std::to_string(initial_values.size()) +
         " block initialization values, the block needs " + std::to_string(frames.floats));
   }
+  if (block.periodic_overlap > std::min(block.width, block.height))
+    throw std::invalid_argument("subspace synthesis: the periodic overlap exceeds the image's shorter side");
   const std::size_t pixels = std::size_t{block.width} * block.height;
   if (out.size() < pixels * model.channels)
     throw std::invalid_argument("subspace synthesis: output span too small");
   const std::vector<TextureRegion> regions =
-      level_regions({block.row0, block.col0, block.height, block.width}, model.levels);
+      level_regions(synthesized_region(block), model.levels);
 
   if (stages) {
     stages->regions = regions;
@@ -112,8 +150,9 @@ void synthesize(const Material& material, std::uint32_t subspace, const Subspace
       if (level + 1 < model.levels) add_expanded(band, current, regions[level + 1], region);
       current = std::move(band);
     }
-    // The collapsed channel waits in `out` for the colour step: no second image-sized buffer.
-    for (std::size_t p = 0; p < pixels; ++p) out[p * model.channels + channel] = current[p];
+    // The collapsed channel, folded when periodic, waits in `out` for the colour step: no second
+    // image-sized buffer.
+    fold_periodic<Real>(current, block, collapsed_band_mean(model, channel), out, channel, model.channels);
   }
   std::vector<Real> collapsed(model.channels);
   for (std::size_t p = 0; p < pixels; ++p) {
@@ -233,7 +272,7 @@ std::vector<std::vector<float>> block_initial_values(const Material& material,
     const BlockFrameField& band = bands[i];
     const SubspaceModel& model = material.subspaces[band.subspace];
     const TextureRegion level =
-        level_regions({whole.row0, whole.col0, whole.height, whole.width}, model.levels)[band.level];
+        level_regions(synthesized_region(whole), model.levels)[band.level];
     CarFieldBlock field;
     field.seed = whole.seed;
     field.field_id = field_id_of(band.subspace, band.level, band.channel);

@@ -28,6 +28,12 @@ struct TextureRegion {
 // What a synthesis computes, on the CPU and the GPU alike: rows [row0, row0 + height) and columns
 // [col0, col0 + width) of the unbounded texture of `seed`, each level's CAR recursion started `margin`
 // rows above and columns each side of its region (burn-in) from zeros.
+//
+// With periodic_overlap p > 0 the output is periodic instead (docs/design.md 4.4): the synthesis covers
+// (width + p) x (height + p) texels from (row0, col0), and the colour step folds the last p columns and
+// rows onto the first p with variance-keeping weights, so that the width x height output tiles without
+// a seam (closed meshes: sphere, cylinder, torus). Texels at least p from the top and left edges equal
+// the non-periodic synthesis of the larger block.
 struct SynthesisBlock {
   std::uint64_t seed = 0;
   std::int32_t row0 = 0;
@@ -35,7 +41,20 @@ struct SynthesisBlock {
   std::uint32_t width = 512;
   std::uint32_t height = 512;
   std::uint32_t margin = 64;
+  std::uint32_t periodic_overlap = 0;
 };
+
+// The overlap a periodic synthesis of a width x height image uses by default: an eighth of the shorter
+// side, from 4 to 64 texels (wider than the measured materials' structures at 256^2, a small share of
+// the work at 1024^2).
+std::uint32_t default_periodic_overlap(std::uint32_t width, std::uint32_t height);
+
+// The level-0 region a block's synthesis computes: the block, grown by its periodic overlap.
+TextureRegion synthesized_region(const SynthesisBlock& block);
+
+// The value the collapsed band stack of `channel` has on average (the sum of its bands' means, coarsest
+// first): the centre the periodic fold blends around, so that it keeps the mean and the variance.
+float collapsed_band_mean(const SubspaceModel& model, std::uint32_t channel);
 
 constexpr std::uint32_t field_id_of(std::uint32_t subspace, std::uint32_t level, std::uint32_t channel) {
   return subspace * 128u + level * 16u + channel;

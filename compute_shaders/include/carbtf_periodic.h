@@ -1,0 +1,43 @@
+// The periodic fold of a synthesis (docs/design.md 4.4, "Periodic output"), written once for GLSL and
+// C++ like the noise it takes its cosine from: + - * only, `precise` in GLSL, so the GPU's periodic
+// images equal the CPU reference's bit for bit.
+#ifndef CARBTF_PERIODIC_H
+#define CARBTF_PERIODIC_H
+
+#include "carbtf_noise.h"
+
+#ifdef __cplusplus
+namespace carbtf::gpu {
+#endif
+
+// The weight output index i keeps of the field at i (sin(pi u / 2), u = (i + 1/2) / overlap), and the
+// weight it takes from the field one period further (cos(pi u / 2)); 1 and 0 from index `overlap` on.
+// inv_overlap is 1 / overlap as the host rounds it, so both languages start from the same float.
+CARBTF_FUNCTION float carbtf_fold_keep(uint i, uint overlap, float inv_overlap) {
+  if (i >= overlap) return 1.0f;
+  CARBTF_PRECISE float u = (float(i) + 0.5f) * inv_overlap;
+  CARBTF_PRECISE float t = (1.0f - u) * 0.25f;
+  return carbtf_cos2pi(t);
+}
+CARBTF_FUNCTION float carbtf_fold_take(uint i, uint overlap, float inv_overlap) {
+  if (i >= overlap) return 0.0f;
+  CARBTF_PRECISE float u = (float(i) + 0.5f) * inv_overlap;
+  CARBTF_PRECISE float t = u * 0.25f;
+  return carbtf_cos2pi(t);
+}
+
+// One folded value around `centre`: g00 at (x, y), g10 one period right, g01 one period down, g11
+// both; kx, tx the column weights and ky, ty the row weights above.
+CARBTF_FUNCTION float carbtf_fold(float centre, float g00, float g10, float g01, float g11, float kx, float tx,
+                                  float ky, float ty) {
+  CARBTF_PRECISE float top = kx * (g00 - centre) + tx * (g10 - centre);
+  CARBTF_PRECISE float bottom = kx * (g01 - centre) + tx * (g11 - centre);
+  CARBTF_PRECISE float result = centre + (ky * top + ty * bottom);
+  return result;
+}
+
+#ifdef __cplusplus
+}  // namespace carbtf::gpu
+#endif
+
+#endif  // CARBTF_PERIODIC_H
