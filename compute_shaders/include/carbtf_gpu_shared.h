@@ -274,7 +274,7 @@ struct MaterialTablesHeader {
   float parallax_scale;  // parallax offset in texels = parallax_scale * (height - range_mean) * view.xy
   float range_mean;
   float light_z_floor;  // cos of the largest measured light elevation: the relit factor's denominator floor
-  float reserved1;
+  uint wrap;            // 1: the textures tile, texel addresses wrap; 0: edge texels repeat
   float tone_chroma[3];  // RangeTiles::tone_chroma: channel c takes max(1 + tone_chroma[c] * (tone - 1), 0)
   float reserved2;
 };

@@ -4,8 +4,8 @@
 //
 // Directions are in the surface's tangent frame: x along +u (texture right), y towards texture row 0
 // (texture up, i.e. minus the v direction), z along the normal. Texture coordinates (u, v) in [0, 1]^2
-// cover the synthesized block once, v = 0 at row 0; outside that the edge texels repeat (the
-// synthesized texture is a block of an unbounded one, not periodic, so it is never wrapped).
+// cover the synthesized block once, v = 0 at row 0. Outside that the edge texels repeat, unless the
+// textures are periodic (MaterialTablesHeader::wrap, for closed meshes): then addresses wrap.
 //
 // Per fragment: parallax mapping with offset limiting (Welsh 2004) from the enlarged range map, the
 // 9-weight interpolation of the subspace images (docs/design.md 4.5) through precomputed lookup grids
@@ -39,13 +39,22 @@ struct CarbtfBilinear {
 
 CarbtfBilinear carbtf_bilinear(vec2 uv) {
   ivec2 size = ivec2(int(carbtf_header.width), int(carbtf_header.height));
-  vec2 t = uv * vec2(size) - 0.5;
+  bool wrap = carbtf_header.wrap != 0u;
+  // Periodic: the fractional part (x - floor(x) is exact), so the texel row and column stay in
+  // [-1, size - 1] and only the ends wrap.
+  vec2 u = wrap ? uv - floor(uv) : uv;
+  vec2 t = u * vec2(size) - 0.5;
   vec2 base = floor(t);
   CarbtfBilinear b;
   b.f = t - base;
   ivec2 i = ivec2(clamp(base, vec2(-1.0), vec2(size)));
-  b.i0 = clamp(i, ivec2(0), size - 1);
-  b.i1 = clamp(i + 1, ivec2(0), size - 1);
+  if (wrap) {
+    b.i0 = ivec2(i.x < 0 ? size.x - 1 : i.x, i.y < 0 ? size.y - 1 : i.y);
+    b.i1 = ivec2(i.x + 1 >= size.x ? 0 : i.x + 1, i.y + 1 >= size.y ? 0 : i.y + 1);
+  } else {
+    b.i0 = clamp(i, ivec2(0), size - 1);
+    b.i1 = clamp(i + 1, ivec2(0), size - 1);
+  }
   return b;
 }
 

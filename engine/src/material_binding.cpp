@@ -70,6 +70,7 @@ MaterialTextures material_textures(const SubspaceSynthesizer& synthesizer, const
   textures.view = synthesizer.image_view();
   textures.width = synthesizer.width();
   textures.height = synthesizer.height();
+  textures.periodic_overlap = synthesizer.periodic_overlap();
   textures.layers.resize(material.subspaces.size());
   for (std::uint32_t s = 0; s < material.subspaces.size(); ++s) textures.layers[s] = synthesizer.layer_of(s);
   return textures;
@@ -136,13 +137,12 @@ Status MaterialBinding::create(Context& context, const Material& material, const
 
     r.range_map.assign(std::size_t{textures.width} * textures.height, 0.0f);
     r.tone_map.assign(r.range_map.size(), 1.0f);
+    header.wrap = textures.periodic_overlap > 0 ? 1u : 0u;
     if (material.range.tile_size > 0) {
-      enlarge_range_map(material.range, info.seed, info.row0, info.col0, textures.width, textures.height,
-                        r.range_map);
-      if (!material.range.tone.empty()) {
-        enlarge_range_map(material.range, info.seed, info.row0, info.col0, textures.width, textures.height,
-                          r.tone_map, RangeChannel::tone);
-      }
+      const RangeBlock block{info.seed, info.row0, info.col0, textures.width, textures.height,
+                             textures.periodic_overlap};
+      enlarge_range_map(material.range, block, r.range_map);
+      if (!material.range.tone.empty()) enlarge_range_map(material.range, block, r.tone_map, RangeChannel::tone);
     }
     double sum = 0.0;
     for (float h : r.range_map) sum += h;

@@ -1,6 +1,9 @@
 #include "carbtf/engine/render/mesh.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
 #include <numbers>
 
 #include <glm/glm.hpp>
@@ -46,6 +49,12 @@ Mesh parametric(std::uint32_t columns, std::uint32_t rows, Surface surface) {
   return mesh;
 }
 
+// A shape whose texture coordinates meet themselves.
+Mesh closed(Mesh mesh) {
+  mesh.periodic_uv = true;
+  return mesh;
+}
+
 }  // namespace
 
 Mesh make_plane(std::uint32_t subdivisions) {
@@ -66,30 +75,51 @@ Mesh make_plane(std::uint32_t subdivisions) {
 // Azimuth a = 2 pi u - pi / 2 starts at -y, so u = 0 (the seam) faces away from a camera on +y... and
 // a camera on -y sees it; the CLI's default camera looks from +x +y.
 Mesh make_sphere(std::uint32_t segments, std::uint32_t rings) {
-  return parametric(
+  return closed(parametric(
       std::max(segments, 3u), std::max(rings, 2u), [](glm::vec2 uv, glm::vec3& p, glm::vec3& n) {
         const float a = 2 * kPi * uv.x - kPi / 2, polar = kPi * uv.y;
         n = glm::vec3(std::sin(polar) * std::cos(a), std::sin(polar) * std::sin(a), std::cos(polar));
         p = n;
-      });
+      }));
 }
 
 Mesh make_cylinder(std::uint32_t segments) {
-  return parametric(std::max(segments, 3u), 1, [](glm::vec2 uv, glm::vec3& p, glm::vec3& n) {
+  return closed(parametric(std::max(segments, 3u), 1, [](glm::vec2 uv, glm::vec3& p, glm::vec3& n) {
     const float a = 2 * kPi * uv.x - kPi / 2;
     n = glm::vec3(std::cos(a), std::sin(a), 0);
     p = glm::vec3(n.x, n.y, 1 - 2 * uv.y);
-  });
+  }));
 }
 
 Mesh make_torus(std::uint32_t segments, std::uint32_t tube_segments) {
-  return parametric(std::max(segments, 3u), std::max(tube_segments, 3u),
+  return closed(parametric(std::max(segments, 3u), std::max(tube_segments, 3u),
                     [](glm::vec2 uv, glm::vec3& p, glm::vec3& n) {
                       const float a = 2 * kPi * uv.x - kPi / 2, b = 2 * kPi * uv.y;
                       const glm::vec3 radial(std::cos(a), std::sin(a), 0);
                       n = std::cos(b) * radial + glm::vec3(0, 0, std::sin(b));
                       p = radial + 0.4f * n;
-                    });
+                    }));
+}
+
+bool texture_coordinates_wrap(const Mesh& mesh) {
+  float extent = 0.0f;
+  for (const MeshVertex& v : mesh.vertices) {
+    if (v.uv[0] < 0.0f || v.uv[0] > 1.0f || v.uv[1] < 0.0f || v.uv[1] > 1.0f) return true;
+    for (float x : v.position) extent = std::max(extent, std::abs(x));
+  }
+  if (!(extent > 0.0f)) return false;
+  // Seam vertices land in one cell of a grid 1e-5 of the size fine (one on either side of a cell
+  // border is missed; a seam has many vertices, so it is still found).
+  const double cell = 1e-5 * extent;
+  std::map<std::array<long long, 3>, std::array<float, 2>> first_uv;
+  for (const MeshVertex& v : mesh.vertices) {
+    std::array<long long, 3> key;
+    for (int i = 0; i < 3; ++i) key[static_cast<std::size_t>(i)] = std::llround(v.position[i] / cell);
+    const auto [at, inserted] = first_uv.try_emplace(key, std::array<float, 2>{v.uv[0], v.uv[1]});
+    if (!inserted && (std::abs(at->second[0] - v.uv[0]) >= 0.5f || std::abs(at->second[1] - v.uv[1]) >= 0.5f))
+      return true;
+  }
+  return false;
 }
 
 void generate_tangents(Mesh& mesh) {

@@ -1,6 +1,7 @@
 #include "carbtf/engine/material/range_tiles.hpp"
 
 #include <carbtf_gpu_shared.h>
+#include <carbtf_periodic.h>
 
 #include <algorithm>
 #include <vector>
@@ -13,6 +14,47 @@ namespace {
 std::int64_t floor_div(std::int64_t a, std::int64_t b) {
   const std::int64_t q = a / b;
   return (a % b != 0 && (a < 0) != (b < 0)) ? q - 1 : q;
+}
+
+// The tile at (tile_row, tile_col); with periods > 0 the tile grid repeats every `rows` x `cols` tiles
+// (edge colours taken at the wrapped coordinates, so the last tile's far edge is the first one's near edge).
+std::uint32_t tile_at(const RangeTiles& tiles, std::uint64_t seed, std::int64_t tile_row, std::int64_t tile_col,
+                      std::int64_t rows, std::int64_t cols) {
+  auto wrap = [](std::int64_t i, std::int64_t period) {
+    return static_cast<std::uint32_t>(period > 0 ? i - floor_div(i, period) * period : i);
+  };
+  const auto lo = static_cast<std::uint32_t>(seed);
+  const auto hi = static_cast<std::uint32_t>(seed >> 32);
+  const std::uint32_t c = tiles.edge_colours;
+  TileEdgeColours colours;
+  colours.north = gpu::carbtf_tile_edge_colour(lo, hi, 0u, wrap(tile_row, rows), wrap(tile_col, cols), c);
+  colours.south = gpu::carbtf_tile_edge_colour(lo, hi, 0u, wrap(tile_row + 1, rows), wrap(tile_col, cols), c);
+  colours.west = gpu::carbtf_tile_edge_colour(lo, hi, 1u, wrap(tile_row, rows), wrap(tile_col, cols), c);
+  colours.east = gpu::carbtf_tile_edge_colour(lo, hi, 1u, wrap(tile_row, rows), wrap(tile_col + 1, cols), c);
+  return range_tile_index(tiles, colours);
+}
+
+// The block of the enlarged map, the tile grid repeating every rows x cols tiles where those are > 0.
+void compose_block(const RangeTiles& tiles, const RangeBlock& block, std::int64_t rows, std::int64_t cols,
+                   std::span<float> out, RangeChannel channel) {
+  const std::uint32_t size = tiles.tile_size;
+  const std::size_t texels = std::size_t{size} * size;
+  std::vector<float> composed(texels * range_tile_count(tiles));
+  for (std::uint32_t t = 0; t < range_tile_count(tiles); ++t) {
+    compose_range_tile(tiles, t, std::span<float>(composed).subspan(t * texels, texels), channel);
+  }
+  for (std::uint32_t r = 0; r < block.height; ++r) {
+    const std::int64_t row = block.row0 + r;
+    const std::int64_t tile_row = floor_div(row, size);
+    const auto y = static_cast<std::size_t>(row - tile_row * size);
+    for (std::uint32_t c = 0; c < block.width; ++c) {
+      const std::int64_t col = block.col0 + c;
+      const std::int64_t tile_col = floor_div(col, size);
+      const auto x = static_cast<std::size_t>(col - tile_col * size);
+      const std::uint32_t tile = tile_at(tiles, block.seed, tile_row, tile_col, rows, cols);
+      out[std::size_t{r} * block.width + c] = composed[tile * texels + y * size + x];
+    }
+  }
 }
 
 }  // namespace
@@ -175,37 +217,44 @@ void fill_unseen_patch_texels(RangeTiles& tiles, std::span<const PatchWindow> wi
 }
 
 std::uint32_t range_tile_at(const RangeTiles& tiles, std::uint64_t seed, std::int32_t tile_row, std::int32_t tile_col) {
-  const auto lo = static_cast<std::uint32_t>(seed);
-  const auto hi = static_cast<std::uint32_t>(seed >> 32);
-  const auto row = static_cast<std::uint32_t>(tile_row);
-  const auto col = static_cast<std::uint32_t>(tile_col);
-  const std::uint32_t c = tiles.edge_colours;
-  TileEdgeColours colours;
-  colours.north = gpu::carbtf_tile_edge_colour(lo, hi, 0u, row, col, c);
-  colours.south = gpu::carbtf_tile_edge_colour(lo, hi, 0u, row + 1u, col, c);
-  colours.west = gpu::carbtf_tile_edge_colour(lo, hi, 1u, row, col, c);
-  colours.east = gpu::carbtf_tile_edge_colour(lo, hi, 1u, row, col + 1u, c);
-  return range_tile_index(tiles, colours);
+  return tile_at(tiles, seed, tile_row, tile_col, 0, 0);
 }
 
 void enlarge_range_map(const RangeTiles& tiles, std::uint64_t seed, std::int64_t row0, std::int64_t col0,
                        std::uint32_t width, std::uint32_t height, std::span<float> out, RangeChannel channel) {
-  const std::uint32_t size = tiles.tile_size;
-  const std::size_t texels = std::size_t{size} * size;
-  std::vector<float> composed(texels * range_tile_count(tiles));
-  for (std::uint32_t t = 0; t < range_tile_count(tiles); ++t) {
-    compose_range_tile(tiles, t, std::span<float>(composed).subspan(t * texels, texels), channel);
-  }
-  for (std::uint32_t r = 0; r < height; ++r) {
-    const std::int64_t row = row0 + r;
-    const std::int64_t tile_row = floor_div(row, size);
-    const auto y = static_cast<std::size_t>(row - tile_row * size);
-    for (std::uint32_t c = 0; c < width; ++c) {
-      const std::int64_t col = col0 + c;
-      const std::int64_t tile_col = floor_div(col, size);
-      const auto x = static_cast<std::size_t>(col - tile_col * size);
-      const std::uint32_t tile = range_tile_at(tiles, seed, static_cast<std::int32_t>(tile_row), static_cast<std::int32_t>(tile_col));
-      out[std::size_t{r} * width + c] = composed[tile * texels + y * size + x];
+  compose_block(tiles, {seed, row0, col0, width, height}, 0, 0, out, channel);
+}
+
+void enlarge_range_map(const RangeTiles& tiles, const RangeBlock& block, std::span<float> out, RangeChannel channel) {
+  const std::uint32_t size = tiles.tile_size, overlap = block.periodic_overlap;
+  if (overlap == 0) {
+    compose_block(tiles, block, 0, 0, out, channel);
+  } else if (block.width % size == 0 && block.height % size == 0) {
+    // Whole tiles per period: the tile grid itself repeats, so the relief stays whole across the wrap.
+    compose_block(tiles, block, static_cast<std::int64_t>(block.height / size),
+                  static_cast<std::int64_t>(block.width / size), out, channel);
+  } else {
+    // Otherwise the map folds as the subspace images do (carbtf_periodic.h), around its mean.
+    RangeBlock grown = block;
+    grown.width += overlap;
+    grown.height += overlap;
+    std::vector<float> whole(std::size_t{grown.width} * grown.height);
+    compose_block(tiles, grown, 0, 0, whole, channel);
+    double sum = 0.0;
+    for (float v : whole) sum += v;
+    const auto centre = static_cast<float>(sum / static_cast<double>(whole.size()));
+    const float inv_overlap = 1.0f / static_cast<float>(overlap);
+    const std::size_t pitch = grown.width;
+    for (std::uint32_t y = 0; y < block.height; ++y) {
+      const float ky = gpu::carbtf_fold_keep(y, overlap, inv_overlap), ty = gpu::carbtf_fold_take(y, overlap, inv_overlap);
+      const std::size_t below = y < overlap ? y + block.height : y;
+      for (std::uint32_t x = 0; x < block.width; ++x) {
+        const std::size_t right = x < overlap ? x + block.width : x;
+        out[std::size_t{y} * block.width + x] =
+            gpu::carbtf_fold(centre, whole[y * pitch + x], whole[y * pitch + right], whole[below * pitch + x],
+                             whole[below * pitch + right], gpu::carbtf_fold_keep(x, overlap, inv_overlap),
+                             gpu::carbtf_fold_take(x, overlap, inv_overlap), ky, ty);
+      }
     }
   }
 }

@@ -272,6 +272,7 @@ Status ScenePruner::needs(const Mesh& mesh, const RenderScene& scene, std::uint3
     needs.pairs.assign(pairs.begin(), pairs.end());
     needs.subspaces = lookups_->directions.subspaces_of(needs.pairs);
     needs.visible_triangles = visible;
+    needs.periodic = mesh.periodic_uv;
     // The density that 90% of the covered pixels need at most: a mesh's uv-degenerate corners (a sphere's
     // poles) would otherwise ask for the largest size the options allow.
     std::sort(densities.begin(), densities.end());

@@ -526,6 +526,9 @@ std::uint32_t SubspaceSynthesizer::width() const noexcept {
 std::uint32_t SubspaceSynthesizer::height() const noexcept {
   return prepared_ ? prepared_->plan.height : 0;
 }
+std::uint32_t SubspaceSynthesizer::periodic_overlap() const noexcept {
+  return prepared_ ? prepared_->plan.periodic_overlap : 0;
+}
 CarScheme SubspaceSynthesizer::scheme() const noexcept {
   return prepared_ ? prepared_->scheme : CarScheme::automatic;
 }

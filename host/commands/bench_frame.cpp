@@ -119,6 +119,7 @@ void run_bench_frame(const FrameBenchOptions& options) {
       SynthesisRequest request;
       request.seed = 1;
       request.width = request.height = texture_size;
+      if (needs.periodic) request.periodic_overlap = default_periodic_overlap(texture_size, texture_size);
       request.subspaces.assign(resident.begin(), resident.end());
       // An empty list asks for every subspace image (a first frame that sees nothing).
       record.synthesized = request.subspaces.empty() ? material.subspaces.size() : request.subspaces.size();

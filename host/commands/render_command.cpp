@@ -70,6 +70,8 @@ void run_render(const RenderOptions& options) {
     request.height = measured->height();
   }
   if (options.prune) request.subspaces = needs.subspaces;
+  // A closed mesh meets itself where u wraps: periodic images show no seam there.
+  if (needs.periodic) request.periodic_overlap = default_periodic_overlap(request.width, request.height);
   const std::size_t synthesized = options.prune ? needs.subspaces.size() : material.subspaces.size();
   std::printf("[1/3] synthesizing %zu of %zu subspace images of %ux%u on %s\n", synthesized,
               material.subspaces.size(), request.width, request.height, context->device_info().name.c_str());

@@ -36,6 +36,7 @@ struct SynthOptions {
   std::vector<double> view;
   CarScheme scheme = CarScheme::automatic;
   bool float64 = false;
+  bool periodic = false;
 };
 
 // The weights of the --light/--view query and the subspace images they need.
@@ -56,6 +57,7 @@ void run_synth(const SynthOptions& options) {
   request.row0 = options.row0;
   request.col0 = options.col0;
   request.margin = options.margin;
+  if (options.periodic) request.periodic_overlap = default_periodic_overlap(request.width, request.height);
   request.subspaces = options.subspaces;
   request.scheme = options.scheme;
   for (std::uint32_t s : request.subspaces) {
@@ -96,16 +98,15 @@ void run_synth(const SynthOptions& options) {
   std::string where;
   double gpu_ms = 0.0;
   if (on_cpu) {
-    const SynthesisBlock& block = request;
     std::printf("synthesizing %zu subspace images of %ux%u on the CPU reference (%s)...\n", listed.size(), request.width,
                 request.height, options.float64 ? "float64" : "float32");
     std::fflush(stdout);
     if (options.float64) {
-      const auto f64 = reference::synthesize_subspaces_f64(material, listed, block);
+      const auto f64 = reference::synthesize_subspaces_f64(material, listed, request);
       images.resize(f64.size());
       for (std::size_t s = 0; s < f64.size(); ++s) images[s].assign(f64[s].begin(), f64[s].end());
     } else {
-      images = reference::synthesize_subspaces(material, listed, block);
+      images = reference::synthesize_subspaces(material, listed, request);
     }
     if (!interpolation.subspaces.empty()) {
       interpolated.resize(std::size_t{request.width} * request.height * material.subspaces[interpolation.subspaces[0]].channels);
@@ -132,9 +133,8 @@ void run_synth(const SynthOptions& options) {
   for (std::uint32_t s : listed) require_finite(images[s], options.material + ": synthesized subspace image " + std::to_string(s));
   require_finite(interpolated, options.material + ": interpolated image");
 
-  for (std::uint32_t s : listed) {
+  for (std::uint32_t s : listed)
     write_png_and_exr(out, "subspace_" + two_digits(s), images[s], material.subspaces[s].channels, request.width, request.height);
-  }
   std::printf("synthesized %zu of %zu subspace images, %ux%u each (%.1f Mtexels), seed %llu, on %s in %.1f ms%s\n",
               listed.size(), material.subspaces.size(), request.width, request.height,
               static_cast<double>(listed.size()) * request.width * request.height * 1e-6,
@@ -185,6 +185,8 @@ void register_synth_command(CLI::App& app) {
       ->delimiter(',')
       ->expected(2)
       ->check(CLI::Range(-360.0, 360.0));
+  command->add_flag("--periodic", options->periodic, "Tileable images (closed meshes, repeated textures): the last "
+                    "eighth of each side (4 to 64 texels) folds onto the first, keeping the texture's statistics");
   add_car_scheme_option(*command, options->scheme);
   command->add_flag("--float64", options->float64, "With --device cpu: the float64 reference (the accuracy reference)");
   command->add_option("--device", options->device.device,

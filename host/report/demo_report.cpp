@@ -30,6 +30,9 @@ void write_demo_report(const std::filesystem::path& folder, const DemoFigures& f
   report.image("sphere.png",
                "model, " + std::to_string(f.texture_size) + "^2 synthesized texture, two directional lights",
                960);
+  report.image("sphere_back.png",
+               "the same from behind, where the texture coordinates wrap: the periodic synthesis leaves no seam",
+               960);
   report.heading("Fidelity: model beside measurement");
   report.paragraph(
       "The model and the measured images drawn through the same render pass (a plane seen orthographically "

@@ -155,6 +155,7 @@ Mesh load_obj_mesh(const std::filesystem::path& path) {
   const Status valid = validate_mesh(mesh);
   if (!valid.ok()) throw CommandError(name + ": " + valid.message());
   generate_tangents(mesh);
+  mesh.periodic_uv = texture_coordinates_wrap(mesh);
   return mesh;
 }
 

@@ -5,9 +5,11 @@
 
 #include <cmath>
 
+#include "carbtf/engine/render/mesh.hpp"
 #include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
 #include "carbtf/reference/subspace_synthesis.hpp"
 #include "carbtf/reference/synthetic_material.hpp"
+#include "test_range_tiles.hpp"
 #include "test_support.hpp"
 
 using namespace carbtf;
@@ -178,4 +180,48 @@ TEST_CASE("across the wrap a periodic image has the statistics it has inside, a 
     CHECK(fold / rest > 0.85);
     CHECK(fold / rest < 1.15);
   }
+}
+
+TEST_CASE("a periodic range map repeats its tile grid or folds and has no seam at the wrap", "[periodic]") {
+  const RangeTiles tiles = test::windowed_range_tiles(
+      [](std::uint32_t r, std::uint32_t c) { return 3 * std::sin(r / 9.0) + 2 * std::cos(c / 11.0); },
+      {});
+  REQUIRE(tiles.tile_size == 16);
+  for (const std::uint32_t width : {64u, 60u}) {
+    INFO("width " << width << (width % 16 == 0 ? ": whole tiles, the grid repeats" : ": folded"));
+    RangeBlock block{3, -5, 9, width, 48, 8};
+    std::vector<float> periodic(std::size_t{width} * 48), plain(periodic.size());
+    enlarge_range_map(tiles, block, periodic);
+    block.periodic_overlap = 0;
+    enlarge_range_map(tiles, block, plain);
+    for (bool horizontal : {true, false}) {
+      const WrapDifferences wrapped = wrap_differences(periodic, width, 48, 1, 1, horizontal);
+      const WrapDifferences cut = wrap_differences(plain, width, 48, 1, 1, horizontal);
+      INFO((horizontal ? "along rows" : "along columns") << ": periodic inside " << wrapped.inside << ", across "
+                                                         << wrapped.across << "; plain inside " << cut.inside
+                                                         << ", across " << cut.across);
+      CHECK(wrapped.across < 1.5 * wrapped.inside);
+      CHECK(cut.across > 2.0 * cut.inside);
+    }
+    if (width % 16 == 0) {
+      // The same block one period further right and down is the same map.
+      std::vector<float> shifted(periodic.size());
+      enlarge_range_map(tiles, RangeBlock{3, -5 + 48, 9 + 64, width, 48, 8}, shifted);
+      CHECK(shifted == periodic);
+    }
+  }
+}
+
+TEST_CASE("closed shapes and meshes whose texture coordinates wrap ask for periodic textures", "[periodic]") {
+  CHECK(make_sphere().periodic_uv);
+  CHECK(make_cylinder().periodic_uv);
+  CHECK(make_torus().periodic_uv);
+  CHECK_FALSE(make_plane().periodic_uv);
+  // As a file would give them: the detection finds the shapes' seams, and coordinates beyond [0, 1].
+  CHECK(texture_coordinates_wrap(make_sphere()));
+  CHECK(texture_coordinates_wrap(make_torus()));
+  CHECK_FALSE(texture_coordinates_wrap(make_plane(4)));
+  Mesh repeated = make_plane(4);
+  for (MeshVertex& v : repeated.vertices) v.uv[0] *= 3.0f;
+  CHECK(texture_coordinates_wrap(repeated));
 }

@@ -32,7 +32,7 @@ std::map<std::uint32_t, double> as_map(const DirectionWeights& w) {
 }
 
 std::unique_ptr<SubspaceSynthesizer> synthesized(Context& context, const Material& m,
-                                                 SynthesizedImages& images) {
+                                                 SynthesizedImages& images, std::uint32_t periodic_overlap = 0) {
   std::unique_ptr<SubspaceSynthesizer> synthesizer;
   REQUIRE(SubspaceSynthesizer::create(context, synthesizer).ok());
   SynthesisRequest request;
@@ -40,6 +40,7 @@ std::unique_ptr<SubspaceSynthesizer> synthesized(Context& context, const Materia
   request.width = 96;
   request.height = 80;
   request.margin = 16;
+  request.periodic_overlap = periodic_overlap;
   const Status status = synthesizer->synthesize(m, request, images);
   INFO(status.message());
   REQUIRE(status.ok());
@@ -96,8 +97,11 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
     coloured.range.tone_chroma = {2.5f, 1.0f, -0.5f};
     return coloured;
   }();
+  // Plain textures (edge texels repeat) and periodic ones (addresses wrap, the range map's tile grid
+  // repeats): the plane's edges and the parallax beyond them read across the wrap.
+  const bool periodic = GENERATE(false, true);
   SynthesizedImages images;
-  auto synthesizer = synthesized(*context, m, images);
+  auto synthesizer = synthesized(*context, m, images, periodic ? 12 : 0);
   MaterialBindingInfo binding_info;
   binding_info.seed = 42;
   std::unique_ptr<MaterialBinding> binding;
@@ -121,6 +125,7 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
   input.range_map = binding->range_map();
   input.tone_map = binding->tone_map();
   input.parallax_scale = binding_info.parallax_scale;
+  input.wrap = periodic;
 
   auto direction = [](float theta, float phi) {
     return std::array<float, 3>{std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
@@ -171,7 +176,7 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
     }
   }
   const double rms = std::sqrt(sum_squares / static_cast<double>(3 * std::max<std::size_t>(both, 1)));
-  INFO(what << ": " << both << " pixels, peak " << peak << ", max error " << worst << ", rms " << rms
+  INFO(what << (periodic ? ", periodic" : ", plain") << ": " << both << " pixels, peak " << peak << ", max error " << worst << ", rms " << rms
             << ", coverage differs at " << coverage_differs);
   REQUIRE(both > gpu.size() / 4 / 4);
   // Rasterization decides edge pixels by its own rules: at most the plane's outline may differ.

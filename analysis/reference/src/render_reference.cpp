@@ -23,11 +23,16 @@ struct Sampler {
     float fx, fy;
   };
   Bilinear bilinear(glm::vec2 uv) const {
-    const glm::vec2 t = uv * glm::vec2(static_cast<float>(width), static_cast<float>(height)) - 0.5f;
+    const glm::vec2 u = input.wrap ? uv - glm::floor(uv) : uv;
+    const glm::vec2 t = u * glm::vec2(static_cast<float>(width), static_cast<float>(height)) - 0.5f;
     const glm::vec2 base = glm::floor(t);
     const int w = static_cast<int>(width), h = static_cast<int>(height);
     const int ix = static_cast<int>(std::clamp(base.x, -1.0f, static_cast<float>(w)));
     const int iy = static_cast<int>(std::clamp(base.y, -1.0f, static_cast<float>(h)));
+    if (input.wrap) {
+      return {ix < 0 ? w - 1 : ix, iy < 0 ? h - 1 : iy, ix + 1 >= w ? 0 : ix + 1, iy + 1 >= h ? 0 : iy + 1,
+              t.x - base.x, t.y - base.y};
+    }
     return {std::clamp(ix, 0, w - 1),
             std::clamp(iy, 0, h - 1),
             std::clamp(ix + 1, 0, w - 1),

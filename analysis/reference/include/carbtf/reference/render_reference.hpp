@@ -21,6 +21,8 @@ struct ReferenceRenderInput {
   std::span<const float> range_map;           // images->width * images->height heights in texels
   std::span<const float> tone_map;            // the relief tone, the same size, or empty (1 everywhere)
   float parallax_scale = 1.0f;
+  // The textures tile (a periodic synthesis): texel addresses wrap instead of repeating the edge.
+  bool wrap = false;
 };
 
 // width * height RGBA floats, row 0 at the top: linear colour and alpha 1 where the plane covers the

@@ -100,4 +100,20 @@ void enlarge_range_map(const RangeTiles& tiles, std::uint64_t seed, std::int64_t
                        std::uint32_t width, std::uint32_t height, std::span<float> out,
                        RangeChannel channel = RangeChannel::height);
 
+
+// A block of the enlarged map for `seed`. With periodic_overlap > 0 it tiles with period width x
+// height, as a periodic synthesis of the subspace images does (docs/design.md 4.4): when the tile size
+// divides both, the tile grid repeats (tile coordinates and edge colours wrap), so every relief cell
+// stays whole; otherwise the map of (width + overlap) x (height + overlap) folds around its mean.
+struct RangeBlock {
+  std::uint64_t seed = 0;
+  std::int64_t row0 = 0;
+  std::int64_t col0 = 0;
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  std::uint32_t periodic_overlap = 0;
+};
+void enlarge_range_map(const RangeTiles& tiles, const RangeBlock& block, std::span<float> out,
+                       RangeChannel channel = RangeChannel::height);
+
 }  // namespace carbtf

@@ -31,6 +31,9 @@ struct MaterialTextures {
   VkImageLayout layout = VK_IMAGE_LAYOUT_GENERAL;  // the layout the images are in when drawn
   std::uint32_t width = 0;
   std::uint32_t height = 0;
+  // > 0: the images tile (SynthesisBlock::periodic_overlap); the range map is then made periodic too
+  // and the render pass wraps texel addresses instead of repeating the edge texels.
+  std::uint32_t periodic_overlap = 0;
   // Per subspace of the material: its layer, or UINT32_MAX when it was not synthesized (pairs that
   // fall there then contribute nothing).
   std::vector<std::uint32_t> layers;

@@ -39,6 +39,8 @@ struct SceneNeeds {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
   std::uint32_t texture_size = 0;
   std::uint32_t visible_triangles = 0;
+  // The mesh's texture coordinates wrap (Mesh::periodic_uv): synthesize periodic images.
+  bool periodic = false;
 };
 
 // Built once per material (its direction lookups), then asked once per frame.

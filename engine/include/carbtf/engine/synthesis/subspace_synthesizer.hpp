@@ -59,6 +59,8 @@ class SubspaceSynthesizer {
   std::uint32_t layer_of(std::uint32_t subspace) const noexcept;
   std::uint32_t width() const noexcept;
   std::uint32_t height() const noexcept;
+  // The prepared request's periodic overlap: > 0 when the images tile (SynthesisBlock::periodic_overlap).
+  std::uint32_t periodic_overlap() const noexcept;
   CarScheme scheme() const noexcept;  // the scheme the prepared request runs (never automatic)
   std::uint32_t batch_count() const noexcept;
 
