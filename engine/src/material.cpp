@@ -95,6 +95,8 @@ Status validate_range(const RangeTiles& r) {
                      std::to_string(int(kMaxToneChroma)) + ".." + std::to_string(int(kMaxToneChroma)));
     }
   }
+  if (r.feather > kMaxFeather)
+    return invalid("range map: feather " + std::to_string(r.feather) + " (at most " + std::to_string(kMaxFeather) + ")");
   if (r.tile_size == 0) {
     if (!r.patches.empty() || !r.cuts.empty() || !r.tone.empty()) return invalid("range map: tile size 0 but tile data present");
     return {};

@@ -99,21 +99,39 @@ std::size_t patch_texel(const RangeTiles& tiles, std::uint32_t patch, std::uint3
   return (std::size_t{patch} * size + row) * size + col;
 }
 
-// Calls shown(x, y, patch) for every texel of `tile` with the patch its cut gives it.
-template <typename Shown>
-void for_each_tile_texel(const RangeTiles& tiles, std::uint32_t tile, Shown&& shown) {
+// Calls texel(x, y, a, b, share_b) for every texel of `tile`: it shows (1 - share_b) of patch a and
+// share_b of patch b, its quadrant's horizontal- and vertical-edge patches. share_b is the fraction of
+// the (2 f + 1)^2 texels around it (within the quadrant; f = RangeTiles::feather) that lie on b's side
+// of the cut: 0 or 1 away from the cut, a ramp across it. Two patches rarely agree exactly along their
+// cut, and a hard step there shows as a line at grazing light (the normals take central differences);
+// the ramp cross-fades the two real reliefs instead, and changes nothing where they agree.
+
+template <typename Texel>
+void for_each_tile_texel(const RangeTiles& tiles, std::uint32_t tile, Texel&& texel) {
   const std::uint32_t size = tiles.tile_size;
   const std::uint32_t half = size / 2;
+  const std::int64_t feather = tiles.feather;
+  const auto window_texels = static_cast<float>((2 * feather + 1) * (2 * feather + 1));
   for (std::uint32_t q = 0; q < 4; ++q) {
     const auto quadrant = static_cast<TileQuadrant>(q);
     const QuadrantPatches patches = quadrant_patches(tiles, tile, quadrant);
     const std::uint16_t* cut = tiles.cuts.data() + (std::size_t{tile} * 4 + q) * half;
     for (std::uint32_t v = 0; v < half; ++v) {
       for (std::uint32_t u = 0; u < half; ++u) {
+        // Window texels on b's side (u' < cut[v']); texels beyond the quadrant count as the texel's own side.
+        std::uint32_t on_b = 0;
+        for (std::int64_t dv = -feather; dv <= feather; ++dv) {
+          const std::int64_t row = std::clamp<std::int64_t>(std::int64_t{v} + dv, 0, half - 1);
+          for (std::int64_t du = -feather; du <= feather; ++du) {
+            const std::int64_t col = std::int64_t{u} + du;
+            const bool inside = col >= 0 && col < std::int64_t{half};
+            on_b += inside ? (col < cut[row]) : (u < cut[v]);
+          }
+        }
         std::uint32_t x = 0;
         std::uint32_t y = 0;
         quadrant_to_tile(size, quadrant, u, v, x, y);
-        shown(x, y, u < cut[v] ? patches.b : patches.a);
+        texel(x, y, patches.a, patches.b, static_cast<float>(on_b) / window_texels);
       }
     }
   }
@@ -132,18 +150,23 @@ float patch_value_at_tile_texel(const RangeTiles& tiles, RangeChannel channel, s
 
 void compose_range_tile(const RangeTiles& tiles, std::uint32_t tile, std::span<float> out, RangeChannel channel) {
   const std::uint32_t size = tiles.tile_size;
-  for_each_tile_texel(tiles, tile, [&](std::uint32_t x, std::uint32_t y, std::uint32_t patch) {
-    out[std::size_t{y} * size + x] = patch_value_at_tile_texel(tiles, channel, patch, x, y);
+  for_each_tile_texel(tiles, tile, [&](std::uint32_t x, std::uint32_t y, std::uint32_t a, std::uint32_t b, float share_b) {
+    const float from_a = share_b < 1.0f ? patch_value_at_tile_texel(tiles, channel, a, x, y) : 0.0f;
+    const float from_b = share_b > 0.0f ? patch_value_at_tile_texel(tiles, channel, b, x, y) : 0.0f;
+    out[std::size_t{y} * size + x] = share_b == 0.0f ? from_a : share_b == 1.0f ? from_b : from_a + share_b * (from_b - from_a);
   });
 }
 
 namespace {
 
-// Which patch texels some tile shows.
+// Which patch texels some tile shows, in full or in part.
 std::vector<bool> shown_patch_texels(const RangeTiles& tiles) {
   std::vector<bool> shown(tiles.patches.size(), false);
   for (std::uint32_t t = 0; t < range_tile_count(tiles); ++t) {
-    for_each_tile_texel(tiles, t, [&](std::uint32_t x, std::uint32_t y, std::uint32_t patch) { shown[patch_texel(tiles, patch, x, y)] = true; });
+    for_each_tile_texel(tiles, t, [&](std::uint32_t x, std::uint32_t y, std::uint32_t a, std::uint32_t b, float share_b) {
+      if (share_b < 1.0f) shown[patch_texel(tiles, a, x, y)] = true;
+      if (share_b > 0.0f) shown[patch_texel(tiles, b, x, y)] = true;
+    });
   }
   return shown;
 }

@@ -75,6 +75,9 @@ void register_analyze_command(CLI::App& app) {
       ->check(CLI::Range(1, 16))
       ->capture_default_str();
   command->add_option("--tone-bits", a.tiles.tone_bits, "Relief-tone quantization in bits")->check(CLI::Range(1, 8))->capture_default_str();
+  command->add_option("--feather", a.tiles.feather, "Texels over which each range-tile cut cross-fades its two patches (0: hard cuts)")
+      ->check(CLI::Range(0, 4))
+      ->capture_default_str();
   command->add_flag("--collapse-calibration", a.calibrate_collapse,
                     "Rescale each band's sigma so that the collapsed pyramid keeps the measured contrast (the synthesized "
                     "images otherwise keep 55-80% of the measured variance)");

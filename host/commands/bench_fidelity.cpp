@@ -59,6 +59,7 @@ const std::vector<ModelVariant>& model_variants() {
       {"levels4", "the default with 4 pyramid levels", [](AnalysisOptions& o) { o.pyramid_levels = 4; }},
       {"collapse", "the default with the collapse calibration", [](AnalysisOptions& o) { o.calibrate_collapse = true; }},
       {"deshade", "the default with the relit range map divided out (floor 0.3)", [](AnalysisOptions& o) { o.deshade_floor = 0.3; }},
+      {"feather", "the default with range-tile cuts cross-faded over 3 texels", [](AnalysisOptions& o) { o.tiles.feather = 1; }},
   };
   return variants;
 }

@@ -530,6 +530,31 @@ TEST_CASE("a coloured tone reads back and is left out when grey and refused out 
   }
 }
 
+TEST_CASE("feathered cuts read back; a file without FTHR has hard cuts and a hostile feather is refused",
+          "[material_file][range_tiles]") {
+  Material m = sample_material();
+  const std::string fthr = "FTHR";
+  const std::vector<std::uint8_t> hard = encoded(m);
+  CHECK(std::search(hard.begin(), hard.end(), fthr.begin(), fthr.end()) == hard.end());
+  Material back;
+  REQUIRE(decode_material(hard, "x.cbtf", back).ok());
+  CHECK(back.range.feather == 0);
+  m.range.feather = 2;
+  for (const auto& bytes : {encoded(m), deflated(m)}) {
+    REQUIRE(decode_material(bytes, "x.cbtf", back).ok());
+    CHECK(back == m);
+  }
+  std::vector<std::uint8_t> bytes = encoded(m);
+  const auto at = static_cast<std::size_t>(std::search(bytes.begin(), bytes.end(), fthr.begin(), fthr.end()) - bytes.begin());
+  REQUIRE(at < bytes.size());
+  for (const std::uint32_t hostile : {5u, 0xFFFFFFFFu}) {
+    std::memcpy(&bytes[at + 8], &hostile, 4);  // after the tag and the size
+    fix_crcs(bytes);
+    const Status s = decode_material(bytes, "bad.cbtf", back);
+    CHECK_THAT(s.message(), Catch::Contains("bad.cbtf") && Catch::Contains("feather " + std::to_string(hostile)));
+  }
+}
+
 TEST_CASE("10,000 random corruptions and truncations are rejected or read without a crash", "[material_file][fuzz]") {
   const bool deflate = GENERATE(false, true);
   INFO("deflated chunks: " << deflate);

@@ -22,6 +22,7 @@ struct WindowedTileOptions {
   std::uint32_t edge_colours = 2;
   std::uint32_t height_bits = 6;
   std::uint32_t tone_bits = 4;
+  std::uint32_t feather = 0;  // RangeTiles::feather
   std::uint64_t seed = 1;
 };
 
@@ -50,6 +51,7 @@ inline RangeTiles windowed_range_tiles(const std::function<double(std::uint32_t,
   RangeTiles tiles;
   tiles.tile_size = size;
   tiles.edge_colours = options.edge_colours;
+  tiles.feather = options.feather;
   const auto height_level = quantizer(heights, options.height_bits, tiles.height_offset, tiles.height_scale);
   std::function<double(double)> tone_level;
   if (tone) tone_level = quantizer(tones, options.tone_bits, tiles.tone_offset, tiles.tone_scale);

@@ -161,6 +161,7 @@ RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& optio
   const auto largest = static_cast<std::uint32_t>(std::min(heights.rows(), heights.cols()));
   tiles.tile_size = std::max<std::uint32_t>(4, std::min({options.tile_size, largest, kMaxTileSize}) & ~1u);
   tiles.edge_colours = options.edge_colours;
+  tiles.feather = std::min(options.feather, kMaxFeather);
   const double low = heights.minCoeff();
   const double high = heights.maxCoeff();
   tiles.height_offset = static_cast<float>(low);

@@ -98,6 +98,10 @@ struct RangeTiles {
   // the tone is grey. A woven fabric's dark threads are blue and its bright ones white, so its tone is
   // not grey: the blue channel follows it less than the red.
   std::array<float, 3> tone_chroma{1.0f, 1.0f, 1.0f};
+  // Cuts cross-fade the two patches over the texels within `feather` of them (range_tiles.hpp), so a
+  // join shows no step; the patches then hold their real values that far beyond each cut. 0 (any file
+  // without an FTHR chunk): hard cuts.
+  std::uint32_t feather = 0;
   bool operator==(const RangeTiles&) const = default;
 };
 
@@ -122,6 +126,8 @@ inline constexpr int kMaxNeighbourReach = 16;
 inline constexpr std::uint32_t kMaxImageSize = 1u << 16;
 inline constexpr std::uint32_t kMaxTileSize = 1024;
 inline constexpr std::uint32_t kMaxEdgeColours = 4;
+// The widest cross-fade of a cut (RangeTiles::feather), in texels.
+inline constexpr std::uint32_t kMaxFeather = 4;
 inline constexpr std::uint32_t kMaxSettings = 256;
 inline constexpr std::uint32_t kMaxSettingLength = 4096;
 // Every model number (colour mean and transform, band mean, std, sigma, gamma, range heights in
