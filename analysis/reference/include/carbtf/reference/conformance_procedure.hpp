@@ -103,6 +103,7 @@ struct ConformanceCase {
   std::string name;
   Material material;
   std::uint32_t size = 0;
+  std::uint32_t periodic_overlap = 0;  // SynthesisBlock::periodic_overlap
 };
 
 // The stiff and extreme cases; the large one at `large_size`^2.
