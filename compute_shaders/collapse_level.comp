@@ -6,6 +6,7 @@
 // (one level's bands) run in one dispatch, one item per z.
 #extension GL_GOOGLE_include_directive : require
 #include "carbtf_gpu_shared.h"
+#include "carbtf_steps.h"
 
 layout(local_size_x = CARBTF_SYNTH_GROUP_X, local_size_y = CARBTF_SYNTH_GROUP_Y, local_size_z = 1) in;
 
@@ -55,10 +56,10 @@ void main() {
       for (int t = 0; t < 3; ++t) {
         uint row_start = coarse_offset + uint(r[t]) * pitch;
         precise float along_row = 0.0;
-        along_row = along_row + taps.weight.x * arena[row_start + uint(c.x)];
-        along_row = along_row + taps.weight.y * arena[row_start + uint(c.y)];
-        along_row = along_row + taps.weight.z * arena[row_start + uint(c.z)];
-        acc = acc + rows.weight[t] * along_row;
+        along_row = carbtf_weighted_add(along_row, taps.weight.x, arena[row_start + uint(c.x)]);
+        along_row = carbtf_weighted_add(along_row, taps.weight.y, arena[row_start + uint(c.y)]);
+        along_row = carbtf_weighted_add(along_row, taps.weight.z, arena[row_start + uint(c.z)]);
+        acc = carbtf_weighted_add(acc, rows.weight[t], along_row);
       }
       band = band + acc;
     }

@@ -6,6 +6,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "carbtf_gpu_shared.h"
 #include "carbtf_periodic.h"
+#include "carbtf_steps.h"
 
 layout(local_size_x = CARBTF_SYNTH_GROUP_X, local_size_y = CARBTF_SYNTH_GROUP_Y, local_size_z = 1) in;
 
@@ -25,10 +26,10 @@ layout(set = 0, binding = 2, rgba32f) uniform image2DArray images;
       g = carbtf_fold(items[i].fold_centre[j], g, arena[right], arena[below + x], arena[below + fold_x], \
                       kx, tx, ky, ty);                                                              \
     }                                                                                               \
-    acc.x = acc.x + t[0u * channels + j] * g;                                                       \
-    if (channels > 1u) acc.y = acc.y + t[1u * channels + j] * g;                                    \
-    if (channels > 2u) acc.z = acc.z + t[2u * channels + j] * g;                                    \
-    if (channels > 3u) acc.w = acc.w + t[3u * channels + j] * g;                                    \
+    acc.x = carbtf_weighted_add(acc.x, t[0u * channels + j], g);                                   \
+    if (channels > 1u) acc.y = carbtf_weighted_add(acc.y, t[1u * channels + j], g);                \
+    if (channels > 2u) acc.z = carbtf_weighted_add(acc.z, t[2u * channels + j], g);                \
+    if (channels > 3u) acc.w = carbtf_weighted_add(acc.w, t[3u * channels + j], g);                \
   }
 
 void main() {

@@ -7,11 +7,11 @@
 #ifndef CARBTF_CAR_GLSL
 #define CARBTF_CAR_GLSL
 
-#include "carbtf_noise.h"
+#include "carbtf_steps.h"
 
 #define CARBTF_CAR_TAP(k)                                                         \
   if (k < field.neighbour_count) {                                                \
-    acc = acc + field.gamma[k] * arena[uint(int(base) + field.tap[k])];           \
+    acc = carbtf_weighted_add(acc, field.gamma[k], arena[uint(int(base) + field.tap[k])]); \
   }
 
 void carbtf_car_pixel(in CarFieldGpu field, uint base, uint r, uint c) {
@@ -21,7 +21,7 @@ void carbtf_car_pixel(in CarFieldGpu field, uint base, uint r, uint c) {
   CARBTF_CAR_TAP(8u) CARBTF_CAR_TAP(9u) CARBTF_CAR_TAP(10u) CARBTF_CAR_TAP(11u)
   CARBTF_CAR_TAP(12u) CARBTF_CAR_TAP(13u) CARBTF_CAR_TAP(14u) CARBTF_CAR_TAP(15u)
   float e = carbtf_gaussian(params.seed_lo, params.seed_hi, field.field_id, field.row0 + r, field.col0 + c);
-  precise float value = acc + field.sigma * e;
+  precise float value = carbtf_car_value(acc, field.sigma, e);
   arena[base] = value;
 }
 

@@ -3,6 +3,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <carbtf_steps.h>
+
 #include "carbtf/reference/noise.hpp"
 
 namespace carbtf::reference {
@@ -56,10 +58,10 @@ PaddedField<Real> run_recursion(const CarBandModel& band, const CarFieldBlock& b
     Real* row = f.values.data() + (r + f.pad) * f.pitch + f.pad;
     for (std::int64_t c = 0; c < f.car.cols; ++c) {
       Real acc{0};
-      for (std::size_t k = 0; k < gammas; ++k) acc = acc + gamma[k] * row[c + tap[k]];
+      for (std::size_t k = 0; k < gammas; ++k) acc = gpu::carbtf_weighted_add(acc, gamma[k], row[c + tap[k]]);
       const float e = gaussian_noise(block.seed, block.field_id, static_cast<std::int32_t>(f.car.row0 + r),
                                      static_cast<std::int32_t>(f.car.col0 + c));
-      row[c] = acc + sigma * static_cast<Real>(e);
+      row[c] = gpu::carbtf_car_value(acc, sigma, static_cast<Real>(e));
     }
   }
   return f;

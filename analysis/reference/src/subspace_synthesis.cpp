@@ -6,6 +6,7 @@
 #include <type_traits>
 
 #include <carbtf_periodic.h>
+#include <carbtf_steps.h>
 
 #include "carbtf/reference/parallel_for.hpp"
 #include "carbtf/reference/car_synthesis.hpp"
@@ -32,7 +33,7 @@ std::vector<Real> expand(const std::vector<Real>& coarse, const TextureRegion& f
       for (int k = -2; k <= 2; ++k) {
         if (((i - k) & 1) != 0) continue;
         const std::int64_t j = (i - k) / 2 - from.col0;  // i - k even: exact division
-        acc = acc + kExpandWeight<Real>[k + 2] * coarse[static_cast<std::size_t>(r * from.cols + j)];
+        acc = gpu::carbtf_weighted_add(acc, kExpandWeight<Real>[k + 2], coarse[static_cast<std::size_t>(r * from.cols + j)]);
       }
       horizontal[static_cast<std::size_t>(r * to.cols + c)] = acc;
     }
@@ -45,7 +46,7 @@ std::vector<Real> expand(const std::vector<Real>& coarse, const TextureRegion& f
       for (int k = -2; k <= 2; ++k) {
         if (((i - k) & 1) != 0) continue;
         const std::int64_t j = (i - k) / 2 - from.row0;
-        acc = acc + kExpandWeight<Real>[k + 2] * horizontal[static_cast<std::size_t>(j * to.cols + c)];
+        acc = gpu::carbtf_weighted_add(acc, kExpandWeight<Real>[k + 2], horizontal[static_cast<std::size_t>(j * to.cols + c)]);
       }
       out[static_cast<std::size_t>(r * to.cols + c)] = acc;
     }
@@ -160,8 +161,8 @@ void synthesize(const Material& material, std::uint32_t subspace, const Subspace
     for (std::uint32_t i = 0; i < model.channels; ++i) {
       Real acc = static_cast<Real>(model.colour_mean[i]);
       for (std::uint32_t j = 0; j < model.channels; ++j) {
-        acc = acc + static_cast<Real>(model.colour_transform[std::size_t{i} * model.channels + j]) *
-                        collapsed[j];
+        acc = gpu::carbtf_weighted_add(acc, static_cast<Real>(model.colour_transform[std::size_t{i} * model.channels + j]),
+                                       collapsed[j]);
       }
       out[p * model.channels + i] = acc;
     }
@@ -309,7 +310,7 @@ void interpolate_subspaces(const Material& material, const PairWeights& weights,
       throw std::invalid_argument("interpolation needs subspace image " + std::to_string(s) +
                                   ", which was not synthesized");
     }
-    for (std::size_t i = 0; i < out.size(); ++i) out[i] = out[i] + weights.weight[k] * images[s][i];
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = gpu::carbtf_weighted_add(out[i], weights.weight[k], images[s][i]);
   }
 }
 
