@@ -11,6 +11,7 @@
 #include <carbtf_spirv/car_serial.h>
 #include <carbtf_spirv/car_wavefront.h>
 #include <carbtf_spirv/collapse_level.h>
+#include <carbtf_spirv/colour_fold.h>
 #include <carbtf_spirv/colour_transform.h>
 #include <carbtf_spirv/interpolate.h>
 
@@ -105,6 +106,7 @@ struct SubspaceSynthesizer::Pipelines {
   detail::ComputePipeline wavefront;
   detail::ComputePipeline collapse;
   detail::ComputePipeline colour;
+  detail::ComputePipeline colour_fold;
   detail::ComputePipeline interpolate;
 };
 
@@ -165,6 +167,8 @@ Status SubspaceSynthesizer::create(Context& context, std::unique_ptr<SubspaceSyn
                      "carbtf collapse_level", p.collapse));
     CARBTF_TRY(build(carbtf_spirv_colour_transform, sizeof(carbtf_spirv_colour_transform), 3, pass_bytes,
                      "carbtf colour_transform", p.colour, {{2, BindingKind::storage_image}}));
+    CARBTF_TRY(build(carbtf_spirv_colour_fold, sizeof(carbtf_spirv_colour_fold), 3, pass_bytes,
+                     "carbtf colour_fold", p.colour_fold, {{2, BindingKind::storage_image}}));
     CARBTF_TRY(build(carbtf_spirv_interpolate, sizeof(carbtf_spirv_interpolate), 2,
                      sizeof(gpu::InterpolateParams), "carbtf interpolate", p.interpolate,
                      {{0, BindingKind::storage_image}, {1, BindingKind::storage_image}}));
@@ -504,6 +508,15 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
                        ceil_div(plan.width, gpu::CARBTF_SYNTH_GROUP_X * gpu::CARBTF_COLOUR_SPAN),
                        ceil_div(plan.height, gpu::CARBTF_SYNTH_GROUP_Y), params.item_count);
       ++p.dispatches;
+      if (plan.periodic_overlap > 0) {
+        // The fold's texels (the first columns and rows), which the pass above leaves: disjoint texels.
+        const std::uint64_t fold_texels =
+            std::uint64_t{plan.periodic_overlap} * (plan.width + plan.height - plan.periodic_overlap);
+        pipelines.colour_fold.bind(*context_, command_buffer, resources, &params, sizeof(params));
+        vk.vkCmdDispatch(command_buffer, ceil_div(fold_texels, gpu::CARBTF_FOLD_GROUP), 1,
+                         params.item_count);
+        ++p.dispatches;
+      }
     }
     if (timed) p.timer.record_timestamp(command_buffer, stamp + 3, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
   }

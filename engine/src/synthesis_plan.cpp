@@ -186,6 +186,15 @@ Status plan_synthesis(const Material& material, const SynthesisRequest& request,
                                              " exceeds the " + std::to_string(request.width) + "x" +
                                              std::to_string(request.height) + " image's shorter side"};
   }
+  // colour_fold.comp runs one workgroup of CARBTF_FOLD_GROUP per fold texels along x, within the 65,535
+  // workgroups every device allows.
+  if (std::uint64_t{request.periodic_overlap} * (std::uint64_t{request.width} + request.height) >
+      std::uint64_t{gpu::CARBTF_FOLD_GROUP} * 65535u) {
+    return {ErrorCode::invalid_argument, "periodic overlap " + std::to_string(request.periodic_overlap) +
+                                             " is too wide for a " + std::to_string(request.width) + "x" +
+                                             std::to_string(request.height) + " image on the GPU (" +
+                                             "default_periodic_overlap() gives at most 64)"};
+  }
   const TextureRegion region = synthesized_region(request);
   if (region.row0 + region.rows > kMaxCoordinate || region.col0 + region.cols > kMaxCoordinate ||
       request.margin > 65536) {
