@@ -27,14 +27,23 @@ CARBTF_FUNCTION float carbtf_fold_take(uint i, uint overlap, float inv_overlap) 
 }
 
 // One folded value around `centre`: g00 at (x, y), g10 one period right, g01 one period down, g11
-// both; kx, tx the column weights and ky, ty the row weights above.
-CARBTF_FUNCTION float carbtf_fold(float centre, float g00, float g10, float g01, float g11, float kx, float tx,
-                                  float ky, float ty) {
-  CARBTF_PRECISE float top = kx * (g00 - centre) + tx * (g10 - centre);
-  CARBTF_PRECISE float bottom = kx * (g01 - centre) + tx * (g11 - centre);
-  CARBTF_PRECISE float result = centre + (ky * top + ty * bottom);
+// both; kx, tx the column weights and ky, ty the row weights above. In C++ a template over the float
+// type, so the float64 reference folds with the same steps.
+#ifdef __cplusplus
+template <typename real>
+inline constexpr
+#else
+#define real float
+#endif
+real carbtf_fold(real centre, real g00, real g10, real g01, real g11, real kx, real tx, real ky, real ty) {
+  CARBTF_PRECISE real top = kx * (g00 - centre) + tx * (g10 - centre);
+  CARBTF_PRECISE real bottom = kx * (g01 - centre) + tx * (g11 - centre);
+  CARBTF_PRECISE real result = centre + (ky * top + ty * bottom);
   return result;
 }
+#ifndef __cplusplus
+#undef real
+#endif
 
 #ifdef __cplusplus
 }  // namespace carbtf::gpu

@@ -530,7 +530,7 @@ TEST_CASE("a coloured tone reads back and is left out when grey and refused out 
   }
 }
 
-TEST_CASE("feathered cuts read back; a file without FTHR has hard cuts and a hostile feather is refused",
+TEST_CASE("feathered cuts read back while a file without FTHR has hard cuts and a hostile feather is refused",
           "[material_file][range_tiles]") {
   Material m = sample_material();
   const std::string fthr = "FTHR";

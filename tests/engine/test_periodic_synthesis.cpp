@@ -146,7 +146,7 @@ TEST_CASE("a periodic image keeps the plain synthesis of the larger block beyond
   CHECK(folded_differs > (std::size_t{64} * 48 - std::size_t{56} * 40) * channels * 9 / 10);
 }
 
-TEST_CASE("across the wrap a periodic image has the statistics it has inside, a plain one does not",
+TEST_CASE("across the wrap a periodic image has the statistics it has inside and a plain one does not",
           "[periodic]") {
   const Material m = synthetic_material(3, 3);
   SynthesisBlock block;

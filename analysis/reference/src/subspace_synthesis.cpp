@@ -81,15 +81,8 @@ void fold_periodic(const std::vector<Real>& g, const SubspaceBlock& block, float
         const Real kx = gpu::carbtf_fold_keep(x, overlap, inv_overlap);
         const Real tx = gpu::carbtf_fold_take(x, overlap, inv_overlap);
         const std::size_t fold_x = x < overlap ? x + block.width : x;
-        const Real c = centre;
-        if constexpr (std::is_same_v<Real, float>) {
-          value = gpu::carbtf_fold(c, value, g[y * pitch + fold_x], g[fold_y * pitch + x],
-                                   g[fold_y * pitch + fold_x], kx, tx, ky, ty);
-        } else {
-          const Real top = kx * (value - c) + tx * (g[y * pitch + fold_x] - c);
-          const Real bottom = kx * (g[fold_y * pitch + x] - c) + tx * (g[fold_y * pitch + fold_x] - c);
-          value = c + (ky * top + ty * bottom);
-        }
+        value = gpu::carbtf_fold<Real>(centre, value, g[y * pitch + fold_x], g[fold_y * pitch + x],
+                                       g[fold_y * pitch + fold_x], kx, tx, ky, ty);
       }
       out[(std::size_t{y} * block.width + x) * channels + channel] = value;
     }
