@@ -53,7 +53,8 @@ WrapDifferences wrap_differences(const std::vector<float>& image, std::uint32_t 
 
 // The variance of the first `columns` columns (where the fold blends) and of the rest.
 std::pair<double, double> fold_and_rest_variance(const std::vector<float>& image, std::uint32_t width,
-                                                 std::uint32_t height, std::uint32_t channels, std::uint32_t columns) {
+                                                 std::uint32_t height, std::uint32_t channels,
+                                                 std::uint32_t columns) {
   double sum[2] = {0, 0}, square[2] = {0, 0};
   std::size_t count[2] = {0, 0};
   for (std::uint32_t y = 0; y < height; ++y) {
@@ -112,8 +113,7 @@ TEST_CASE("periodic GPU subspace images equal the CPU reference bit for bit acro
   context.require_clean();
 }
 
-TEST_CASE("a periodic image keeps the plain synthesis of the larger block beyond its fold",
-          "[periodic]") {
+TEST_CASE("a periodic image keeps the plain synthesis of the larger block beyond its fold", "[periodic]") {
   const Material m = synthetic_material(2, 3);
   SynthesisBlock periodic;
   periodic.seed = 5;
@@ -160,11 +160,13 @@ TEST_CASE("across the wrap a periodic image has the statistics it has inside and
   plain.periodic_overlap = 0;
   for (std::uint32_t s = 0; s < 3; ++s) {
     const std::uint32_t channels = m.subspaces[s].channels;
-    const std::vector<float> periodic_image = cpu_subspace(m, s, block), plain_image = cpu_subspace(m, s, plain);
+    const std::vector<float> periodic_image = cpu_subspace(m, s, block),
+                             plain_image = cpu_subspace(m, s, plain);
     for (bool horizontal : {true, false}) {
       for (std::uint32_t lag : {1u, 2u}) {
         INFO("subspace " << s << (horizontal ? ", along rows" : ", along columns") << ", lag " << lag);
-        const WrapDifferences periodic = wrap_differences(periodic_image, 256, 256, channels, lag, horizontal);
+        const WrapDifferences periodic =
+            wrap_differences(periodic_image, 256, 256, channels, lag, horizontal);
         const WrapDifferences cut = wrap_differences(plain_image, 256, 256, channels, lag, horizontal);
         INFO("periodic: inside " << periodic.inside << ", across " << periodic.across << "; plain: inside "
                                  << cut.inside << ", across " << cut.across);
@@ -184,8 +186,7 @@ TEST_CASE("across the wrap a periodic image has the statistics it has inside and
 
 TEST_CASE("a periodic range map repeats its tile grid or folds and has no seam at the wrap", "[periodic]") {
   const RangeTiles tiles = test::windowed_range_tiles(
-      [](std::uint32_t r, std::uint32_t c) { return 3 * std::sin(r / 9.0) + 2 * std::cos(c / 11.0); },
-      {});
+      [](std::uint32_t r, std::uint32_t c) { return 3 * std::sin(r / 9.0) + 2 * std::cos(c / 11.0); }, {});
   REQUIRE(tiles.tile_size == 16);
   for (const std::uint32_t width : {64u, 60u}) {
     INFO("width " << width << (width % 16 == 0 ? ": whole tiles, the grid repeats" : ": folded"));
@@ -197,9 +198,9 @@ TEST_CASE("a periodic range map repeats its tile grid or folds and has no seam a
     for (bool horizontal : {true, false}) {
       const WrapDifferences wrapped = wrap_differences(periodic, width, 48, 1, 1, horizontal);
       const WrapDifferences cut = wrap_differences(plain, width, 48, 1, 1, horizontal);
-      INFO((horizontal ? "along rows" : "along columns") << ": periodic inside " << wrapped.inside << ", across "
-                                                         << wrapped.across << "; plain inside " << cut.inside
-                                                         << ", across " << cut.across);
+      INFO((horizontal ? "along rows" : "along columns")
+           << ": periodic inside " << wrapped.inside << ", across " << wrapped.across << "; plain inside "
+           << cut.inside << ", across " << cut.across);
       CHECK(wrapped.across < 1.5 * wrapped.inside);
       CHECK(cut.across > 2.0 * cut.inside);
     }

@@ -94,7 +94,8 @@ TEST_CASE("a feathered cut changes nothing where its patches agree and keeps wha
   for (std::size_t p = 0; p < same.patches.size() / texels; ++p) {
     for (std::uint32_t r = 0; r < size; ++r) {
       for (std::uint32_t c = 0; c < size; ++c)
-        same.patches[p * texels + std::size_t{r} * size + c] = tiles.patches[std::size_t{r % half} * size + c % half];
+        same.patches[p * texels + std::size_t{r} * size + c] =
+            tiles.patches[std::size_t{r % half} * size + c % half];
     }
   }
   same.feather = 0;
