@@ -4,6 +4,7 @@
 #include <carbtf_periodic.h>
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "raster_prediction.hpp"
@@ -105,7 +106,6 @@ std::size_t patch_texel(const RangeTiles& tiles, std::uint32_t patch, std::uint3
 // of the cut: 0 or 1 away from the cut, a ramp across it. Two patches rarely agree exactly along their
 // cut, and a hard step there shows as a line at grazing light (the normals take central differences);
 // the ramp cross-fades the two real reliefs instead, and changes nothing where they agree.
-
 template <typename Texel>
 void for_each_tile_texel(const RangeTiles& tiles, std::uint32_t tile, Texel&& texel) {
   const std::uint32_t size = tiles.tile_size;
@@ -237,6 +237,36 @@ void fill_unseen_patch_texels(RangeTiles& tiles, std::span<const PatchWindow> wi
       }
     }
   }
+}
+
+JoinSteps measure_join_steps(const RangeTiles& tiles) {
+  const std::uint32_t size = tiles.tile_size, half = size / 2;
+  std::vector<float> tile(std::size_t{size} * size);
+  double sum[2] = {0.0, 0.0};
+  std::size_t count[2] = {0, 0};
+  for (std::uint32_t t = 0; t < range_tile_count(tiles); ++t) {
+    compose_range_tile(tiles, t, tile);
+    for (std::uint32_t q = 0; q < 4; ++q) {
+      const auto quadrant = static_cast<TileQuadrant>(q);
+      const std::uint16_t* cut = tiles.cuts.data() + (std::size_t{t} * 4 + q) * half;
+      auto add = [&](std::uint32_t u0, std::uint32_t v0, std::uint32_t u1, std::uint32_t v1) {
+        std::uint32_t x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+        quadrant_to_tile(size, quadrant, u0, v0, x0, y0);
+        quadrant_to_tile(size, quadrant, u1, v1, x1, y1);
+        const int across = (u0 < cut[v0]) != (u1 < cut[v1]) ? 0 : 1;
+        sum[across] += std::abs(double{tile[std::size_t{y0} * size + x0]} - tile[std::size_t{y1} * size + x1]);
+        ++count[across];
+      };
+      for (std::uint32_t v = 0; v < half; ++v) {
+        for (std::uint32_t u = 0; u < half; ++u) {
+          if (u + 1 < half) add(u, v, u + 1, v);
+          if (v + 1 < half) add(u, v, u, v + 1);
+        }
+      }
+    }
+  }
+  return {count[0] ? sum[0] / static_cast<double>(count[0]) : 0.0,
+          count[1] ? sum[1] / static_cast<double>(count[1]) : 0.0};
 }
 
 std::uint32_t range_tile_at(const RangeTiles& tiles, std::uint64_t seed, std::int32_t tile_row, std::int32_t tile_col) {

@@ -81,8 +81,12 @@ void run_material_info(const std::string& path) {
               material.subspaces.size(), levels, bands, bands ? static_cast<double>(neighbours) / static_cast<double>(bands) : 0.0, repaired,
               constant, white);
   if (material.range.tile_size > 0) {
-    std::printf("range tiles:  %u tiles of %u x %u texels from %u patches\n", range_tile_count(material.range), material.range.tile_size,
-                material.range.tile_size, 2 * material.range.edge_colours);
+    const JoinSteps joins = measure_join_steps(material.range);
+    std::printf("range tiles:  %u tiles of %u x %u texels from %u patches; cuts %s, height step across them %.2fx the "
+                "relief's (%.3f against %.3f texels)\n",
+                range_tile_count(material.range), material.range.tile_size, material.range.tile_size, 2 * material.range.edge_colours,
+                material.range.feather ? ("feathered over " + std::to_string(2 * material.range.feather + 1) + " texels").c_str() : "hard",
+                joins.elsewhere > 0 ? joins.across / joins.elsewhere : 0.0, joins.across, joins.elsewhere);
   } else {
     std::printf("range tiles:  none\n");
   }

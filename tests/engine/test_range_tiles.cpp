@@ -20,41 +20,6 @@ std::vector<float> composed_tiles(const RangeTiles& tiles) {
   return all;
 }
 
-// Mean absolute height step between neighbouring texels of the composed tiles, over the pairs a cut
-// separates and over the rest.
-struct JoinSteps {
-  double across = 0.0;
-  double elsewhere = 0.0;
-};
-JoinSteps join_steps(const RangeTiles& tiles) {
-  const std::uint32_t size = tiles.tile_size, half = size / 2;
-  const std::vector<float> all = composed_tiles(tiles);
-  double sum[2] = {0, 0};
-  std::size_t count[2] = {0, 0};
-  for (std::uint32_t t = 0; t < range_tile_count(tiles); ++t) {
-    const float* tile = all.data() + std::size_t{t} * size * size;
-    for (std::uint32_t q = 0; q < 4; ++q) {
-      const auto quadrant = static_cast<TileQuadrant>(q);
-      const std::uint16_t* cut = tiles.cuts.data() + (std::size_t{t} * 4 + q) * half;
-      auto add = [&](std::uint32_t u0, std::uint32_t v0, std::uint32_t u1, std::uint32_t v1) {
-        std::uint32_t x0, y0, x1, y1;
-        quadrant_to_tile(size, quadrant, u0, v0, x0, y0);
-        quadrant_to_tile(size, quadrant, u1, v1, x1, y1);
-        const int across = (u0 < cut[v0]) != (u1 < cut[v1]) ? 0 : 1;
-        sum[across] += std::abs(double{tile[y0 * size + x0]} - tile[y1 * size + x1]);
-        ++count[across];
-      };
-      for (std::uint32_t v = 0; v < half; ++v) {
-        for (std::uint32_t u = 0; u < half; ++u) {
-          if (u + 1 < half) add(u, v, u + 1, v);
-          if (v + 1 < half) add(u, v, u, v + 1);
-        }
-      }
-    }
-  }
-  return {sum[0] / count[0], sum[1] / count[1]};
-}
-
 double smooth_relief(std::uint32_t r, std::uint32_t c) {
   return 4 * std::sin(r / 6.0) * std::cos(c / 9.0) + 0.05 * ((r * 7 + c * 13) % 11);
 }
@@ -69,7 +34,7 @@ TEST_CASE("feathered cuts turn a join's step into a ramp as gentle as the relief
   const RangeTiles hard = test::windowed_range_tiles(smooth_relief, {}, options);
   options.feather = 1;
   const RangeTiles feathered = test::windowed_range_tiles(smooth_relief, {}, options);
-  const JoinSteps before = join_steps(hard), after = join_steps(feathered);
+  const JoinSteps before = measure_join_steps(hard), after = measure_join_steps(feathered);
   INFO("hard cuts: across " << before.across << ", elsewhere " << before.elsewhere << "; feathered: across "
                             << after.across << ", elsewhere " << after.elsewhere);
   // Windows from different places of the map disagree at the cuts: a hard cut steps there. These cuts

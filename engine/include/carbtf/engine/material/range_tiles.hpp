@@ -101,6 +101,15 @@ void enlarge_range_map(const RangeTiles& tiles, std::uint64_t seed, std::int64_t
                        RangeChannel channel = RangeChannel::height);
 
 
+// How much a tile join steps: the mean absolute height difference between neighbouring texels of the
+// composed tiles, over the pairs a cut separates and over the rest. A join shows as a line at grazing
+// light when `across` is well above `elsewhere` (RangeTiles::feather ramps it). Requires tile_size > 0.
+struct JoinSteps {
+  double across = 0.0;
+  double elsewhere = 0.0;
+};
+JoinSteps measure_join_steps(const RangeTiles& tiles);
+
 // A block of the enlarged map for `seed`. With periodic_overlap > 0 it tiles with period width x
 // height, as a periodic synthesis of the subspace images does (docs/design.md 4.4): when the tile size
 // divides both, the tile grid repeats (tile coordinates and edge colours wrap), so every relief cell
