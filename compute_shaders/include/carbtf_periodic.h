@@ -46,6 +46,30 @@ real carbtf_fold(real centre, real g00, real g10, real g01, real g11, real kx, r
 #endif
 
 #ifdef __cplusplus
+// The host side of the fold: `grown` is (width + overlap) x (height + overlap), row-major; output texel
+// (x, y) goes to out[(y * width + x) * stride]. The same float operations as colour_fold.comp (the CPU
+// reference's images, the range map's fold); Real = double folds with the same steps in double.
+template <typename Real, typename Grown>
+void carbtf_fold_grid(const Grown& grown, uint width, uint height, uint overlap, Real centre, Real* out,
+                      std::size_t stride) {
+  const std::size_t pitch = std::size_t{width} + overlap;
+  const float inv_overlap = overlap > 0 ? 1.0f / float(overlap) : 0.0f;
+  for (uint y = 0; y < height; ++y) {
+    const Real ky = carbtf_fold_keep(y, overlap, inv_overlap), ty = carbtf_fold_take(y, overlap, inv_overlap);
+    const std::size_t below = (y < overlap ? y + height : y) * pitch, row = y * pitch;
+    for (uint x = 0; x < width; ++x) {
+      Real value = grown[row + x];
+      if (x < overlap || y < overlap) {
+        const std::size_t right = x < overlap ? x + width : x;
+        value = carbtf_fold<Real>(centre, value, grown[row + right], grown[below + x], grown[below + right],
+                                  carbtf_fold_keep(x, overlap, inv_overlap), carbtf_fold_take(x, overlap, inv_overlap),
+                                  ky, ty);
+      }
+      out[(std::size_t{y} * width + x) * stride] = value;
+    }
+  }
+}
+
 }  // namespace carbtf::gpu
 #endif
 

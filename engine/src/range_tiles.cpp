@@ -296,19 +296,7 @@ void enlarge_range_map(const RangeTiles& tiles, const RangeBlock& block, std::sp
     double sum = 0.0;
     for (float v : whole) sum += v;
     const auto centre = static_cast<float>(sum / static_cast<double>(whole.size()));
-    const float inv_overlap = 1.0f / static_cast<float>(overlap);
-    const std::size_t pitch = grown.width;
-    for (std::uint32_t y = 0; y < block.height; ++y) {
-      const float ky = gpu::carbtf_fold_keep(y, overlap, inv_overlap), ty = gpu::carbtf_fold_take(y, overlap, inv_overlap);
-      const std::size_t below = y < overlap ? y + block.height : y;
-      for (std::uint32_t x = 0; x < block.width; ++x) {
-        const std::size_t right = x < overlap ? x + block.width : x;
-        out[std::size_t{y} * block.width + x] =
-            gpu::carbtf_fold(centre, whole[y * pitch + x], whole[y * pitch + right], whole[below * pitch + x],
-                             whole[below * pitch + right], gpu::carbtf_fold_keep(x, overlap, inv_overlap),
-                             gpu::carbtf_fold_take(x, overlap, inv_overlap), ky, ty);
-      }
-    }
+    gpu::carbtf_fold_grid(whole, block.width, block.height, overlap, centre, out.data(), 1);
   }
 }
 

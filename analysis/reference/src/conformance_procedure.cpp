@@ -84,19 +84,20 @@ StageConformance blockwise_stage(const std::string& name, const Material& materi
             name + ": block-wise synthesis failed");
     for (std::size_t s = 0; s < material.subspaces.size(); ++s) {
       const std::uint32_t channels = material.subspaces[s].channels;
+      // Each block row's texels beyond the fold, from both sides.
       std::vector<float> tested, expected;
+      const auto row0 = static_cast<std::uint32_t>(request.row0 - whole.row0);
+      const auto col0 = static_cast<std::uint32_t>(request.col0 - whole.col0);
+      const std::uint32_t first = std::min(request.width, whole.periodic_overlap - std::min(whole.periodic_overlap, col0));
+      auto append = [channels](std::vector<float>& to, const std::vector<float>& from, std::size_t texel,
+                               std::size_t count) {
+        const auto begin = from.begin() + static_cast<std::ptrdiff_t>(texel * channels);
+        to.insert(to.end(), begin, begin + static_cast<std::ptrdiff_t>(count * channels));
+      };
       for (std::uint32_t r = 0; r < request.height; ++r) {
-        const auto row = static_cast<std::uint32_t>(request.row0 - whole.row0) + r;
-        for (std::uint32_t c = 0; c < request.width; ++c) {
-          const auto col = static_cast<std::uint32_t>(request.col0 - whole.col0) + c;
-          if (row < whole.periodic_overlap || col < whole.periodic_overlap) continue;
-          const std::size_t at = (std::size_t{row} * whole.width + col) * channels;
-          const std::size_t in_tile = (std::size_t{r} * request.width + c) * channels;
-          expected.insert(expected.end(), images.images[s].begin() + static_cast<std::ptrdiff_t>(at),
-                          images.images[s].begin() + static_cast<std::ptrdiff_t>(at + channels));
-          tested.insert(tested.end(), tile.images[s].begin() + static_cast<std::ptrdiff_t>(in_tile),
-                        tile.images[s].begin() + static_cast<std::ptrdiff_t>(in_tile + channels));
-        }
+        if (row0 + r < whole.periodic_overlap) continue;
+        append(expected, images.images[s], std::size_t{row0 + r} * whole.width + col0 + first, request.width - first);
+        append(tested, tile.images[s], std::size_t{r} * request.width + first, request.width - first);
       }
       accumulate(stage, tested, expected, channels);
     }

@@ -62,33 +62,6 @@ void add_expanded(std::vector<Real>& band, const std::vector<Real>& coarser, con
   for (std::size_t i = 0; i < band.size(); ++i) band[i] = band[i] + expanded[i];
 }
 
-// Writes the collapsed level-0 channel `g` (over synthesized_region(block)) to channel `channel` of the
-// width x height `out`; a periodic block folds its overlap onto the start (carbtf_periodic.h, the same
-// float operations as colour_transform.comp; float64 computes them in double).
-template <typename Real>
-void fold_periodic(const std::vector<Real>& g, const SubspaceBlock& block, float centre, std::span<Real> out,
-                   std::uint32_t channel, std::uint32_t channels) {
-  const std::size_t pitch = std::size_t{block.width} + block.periodic_overlap;
-  const std::uint32_t overlap = block.periodic_overlap;
-  const float inv_overlap = overlap > 0 ? 1.0f / static_cast<float>(overlap) : 0.0f;
-  for (std::uint32_t y = 0; y < block.height; ++y) {
-    const Real ky = gpu::carbtf_fold_keep(y, overlap, inv_overlap);
-    const Real ty = gpu::carbtf_fold_take(y, overlap, inv_overlap);
-    const std::size_t fold_y = y < overlap ? y + block.height : y;
-    for (std::uint32_t x = 0; x < block.width; ++x) {
-      Real value = g[y * pitch + x];
-      if (x < overlap || y < overlap) {
-        const Real kx = gpu::carbtf_fold_keep(x, overlap, inv_overlap);
-        const Real tx = gpu::carbtf_fold_take(x, overlap, inv_overlap);
-        const std::size_t fold_x = x < overlap ? x + block.width : x;
-        value = gpu::carbtf_fold<Real>(centre, value, g[y * pitch + fold_x], g[fold_y * pitch + x],
-                                       g[fold_y * pitch + fold_x], kx, tx, ky, ty);
-      }
-      out[(std::size_t{y} * block.width + x) * channels + channel] = value;
-    }
-  }
-}
-
 void check_subspace(const Material& material, std::uint32_t subspace) {
   if (subspace >= material.subspaces.size())
     throw std::invalid_argument("subspace " + std::to_string(subspace) + " does not exist");
@@ -144,9 +117,11 @@ void synthesize(const Material& material, std::uint32_t subspace, const Subspace
       if (level + 1 < model.levels) add_expanded(band, current, regions[level + 1], region);
       current = std::move(band);
     }
-    // The collapsed channel, folded when periodic, waits in `out` for the colour step: no second
-    // image-sized buffer.
-    fold_periodic<Real>(current, block, collapsed_band_mean(model, channel), out, channel, model.channels);
+    // The collapsed channel, folded when periodic (carbtf_periodic.h), waits in `out` for the colour
+    // step: no second image-sized buffer.
+    gpu::carbtf_fold_grid<Real>(current, block.width, block.height, block.periodic_overlap,
+                                static_cast<Real>(collapsed_band_mean(model, channel)), out.data() + channel,
+                                model.channels);
   }
   std::vector<Real> collapsed(model.channels);
   for (std::size_t p = 0; p < pixels; ++p) {
