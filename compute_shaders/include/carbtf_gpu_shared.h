@@ -250,7 +250,7 @@ CARBTF_CONST_FLOAT(CARBTF_LOOKUP_MIN_WEIGHT, 1.0e-5f)
 // Lights one draw of carbtf's own mesh pipeline shades with.
 CARBTF_CONST_UINT(CARBTF_RENDER_MAX_LIGHTS, 4u)
 
-// One direction set's lookup (engine/include/carbtf/engine/material/direction_lookup.hpp): a grid of
+// One direction set's lookup (engine/internal/carbtf/engine/internal/direction_lookup.hpp): a grid of
 // grid_size^2 cells over the projected disk [-1, 1]^2, row y, column x; cell c lists entries
 // [cells[c], cells[c + 1]). Offsets count uints from the start of the data after the header.
 struct DirectionLookupGpu {

@@ -1,4 +1,4 @@
-#include "carbtf/engine/material/direction_lookup.hpp"
+#include "carbtf/engine/internal/direction_lookup.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -9,7 +9,7 @@
 
 #include <carbtf_gpu_shared.h>
 
-#include "carbtf/engine/material/direction_lookup.hpp"
+#include "carbtf/engine/internal/direction_lookup.hpp"
 #include "carbtf/engine/material/material_directions.hpp"
 #include "carbtf/engine/material/range_tiles.hpp"
 #include "carbtf/engine/synthesis/subspace_synthesizer.hpp"

@@ -4,6 +4,8 @@
 #include <new>
 #include <string>
 
+#include "carbtf/engine/internal/direction_lookup.hpp"
+
 namespace carbtf {
 
 Status MaterialDirections::build(const Material& material, MaterialDirections& out,

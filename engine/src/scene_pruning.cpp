@@ -12,7 +12,7 @@
 
 #include <carbtf_gpu_shared.h>
 
-#include "carbtf/engine/material/direction_lookup.hpp"
+#include "carbtf/engine/internal/direction_lookup.hpp"
 #include "carbtf/engine/material/material_directions.hpp"
 #include "vk_check.hpp"
 

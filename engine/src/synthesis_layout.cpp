@@ -1,4 +1,4 @@
-#include "carbtf/engine/synthesis/synthesis_layout.hpp"
+#include "carbtf/engine/internal/synthesis_layout.hpp"
 
 #include <algorithm>
 #include <cstdlib>

@@ -11,7 +11,7 @@
 #include "carbtf/engine/material/material.hpp"
 #include "carbtf/engine/status.hpp"
 #include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
-#include "carbtf/engine/synthesis/synthesis_layout.hpp"
+#include "carbtf/engine/internal/synthesis_layout.hpp"
 
 namespace carbtf::detail {
 

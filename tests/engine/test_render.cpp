@@ -11,7 +11,7 @@
 
 #include "carbtf/reference/render_reference.hpp"
 #include "carbtf/reference/synthetic_material.hpp"
-#include "carbtf/engine/material/direction_lookup.hpp"
+#include "carbtf/engine/internal/direction_lookup.hpp"
 #include "carbtf/engine/render/material_binding.hpp"
 #include "carbtf/engine/render/mesh_renderer.hpp"
 #include "carbtf/engine/render/scene_pruning.hpp"

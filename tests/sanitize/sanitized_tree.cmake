@@ -6,7 +6,7 @@ function(configure_sanitized_tree source_dir work_dir)
     return()
   endif()
   find_program(CARBTF_CLANGXX clang++ REQUIRED)
-  step("${CMAKE_COMMAND}" -S "${source_dir}" -B "${work_dir}" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -gline-tables-only -DNDEBUG"
+  step("${CMAKE_COMMAND}" -S "${source_dir}" -B "${work_dir}" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -gline-tables-only -DNDEBUG"
        "-DCMAKE_CXX_COMPILER=${CARBTF_CLANGXX}" -DCARBTF_SANITIZE=ON -DCARBTF_FUZZ=ON -DCARBTF_BUILD_CLI=OFF
        -DCARBTF_INSTALL=OFF)
 endfunction()

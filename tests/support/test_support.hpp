@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "carbtf/engine/vulkan/context.hpp"
-#include "carbtf/engine/synthesis/synthesis_layout.hpp"
+#include "carbtf/engine/synthesis/synthesis_block.hpp"
 
 namespace carbtf::test {
 

@@ -10,7 +10,7 @@
 
 #include "carbtf/reference/parallel_for.hpp"
 #include "carbtf/reference/car_synthesis.hpp"
-#include "carbtf/engine/synthesis/synthesis_layout.hpp"
+#include "carbtf/engine/internal/synthesis_layout.hpp"
 
 namespace carbtf::reference {
 namespace {

@@ -18,7 +18,6 @@
 
 #include "carbtf/engine/material/car_stability.hpp"
 #include "carbtf/engine/material/direction_interpolation.hpp"
-#include "carbtf/engine/material/direction_lookup.hpp"
 #include "carbtf/engine/material/material.hpp"
 #include "carbtf/engine/material/material_directions.hpp"
 #include "carbtf/engine/material/material_file.hpp"
@@ -27,7 +26,7 @@
 #include "carbtf/engine/synthesis/noise_block.hpp"
 #include "carbtf/engine/synthesis/noise_generator.hpp"
 #include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
-#include "carbtf/engine/synthesis/synthesis_layout.hpp"
+#include "carbtf/engine/synthesis/synthesis_block.hpp"
 #include "carbtf/engine/synthesis/synthesis_request.hpp"
 
 #include "carbtf/engine/render/material_binding.hpp"

@@ -3,7 +3,7 @@
 // The block [row0, row0 + height) x [col0, col0 + width) of the band's infinite field is computed on the
 // region extended by `margin` rows above and `margin` columns on each side (burn-in, car_region()), with
 // values outside that region taken from `frame` (block initialization values, laid out as
-// synthesis_layout.hpp's car_frame_floats() describes) or zero, in row-major order:
+// synthesis_block.hpp's car_frame_floats() describes) or zero, in row-major order:
 //   y(r, c) = ((0 + gamma[0] * y(r + dr0, c + dc0)) + gamma[1] * ...) + sigma * e(r, c)
 // in the stored neighbour order, e(r, c) = gaussian_noise(seed, field_id, r, c) in absolute
 // coordinates; the block is returned as mean + y. Float32 runs every operation in float with no
@@ -17,7 +17,7 @@
 
 #include "carbtf/engine/material/material.hpp"
 #include "carbtf/engine/synthesis/noise_block.hpp"
-#include "carbtf/engine/synthesis/synthesis_layout.hpp"
+#include "carbtf/engine/internal/synthesis_layout.hpp"
 
 namespace carbtf::reference {
 

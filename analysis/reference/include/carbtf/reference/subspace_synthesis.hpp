@@ -20,7 +20,7 @@
 
 #include "carbtf/engine/material/direction_interpolation.hpp"
 #include "carbtf/engine/material/material.hpp"
-#include "carbtf/engine/synthesis/synthesis_layout.hpp"
+#include "carbtf/engine/internal/synthesis_layout.hpp"
 
 namespace carbtf::reference {
 

@@ -1,8 +1,7 @@
-// The light and view direction sets of one material, built once (DESIGN: direction interpolation):
-// both triangulations (direction_interpolation.hpp), their lookup grids for the fragment stage
-// (direction_lookup.hpp), the 9 pair weights of any (light, view) query, and the subspace images a set
-// of (light, view) pairs needs. The binding, the scene pruner, the CPU references and the commands all
-// take their directions from here.
+// The light and view direction sets of one material, built once (docs/design.md 4.5): both
+// triangulations (direction_interpolation.hpp), their lookup grids for the fragment stage, the 9 pair
+// weights of any (light, view) query, and the subspace images a set of (light, view) pairs needs. The
+// binding, the scene pruner, the CPU references and the commands all take their directions from here.
 // Thread safety: a built object is immutable; its queries are pure.
 #pragma once
 
@@ -12,11 +11,19 @@
 #include <vector>
 
 #include "carbtf/engine/material/direction_interpolation.hpp"
-#include "carbtf/engine/material/direction_lookup.hpp"
 #include "carbtf/engine/material/material.hpp"
 #include "carbtf/engine/status.hpp"
 
 namespace carbtf {
+
+// A lookup grid of one direction set, for the fragment stage (carbtf_material.glsl): the projected disk
+// [-1, 1]^2 cut into grid_size^2 cells, each listing the triangles whose bounding box meets it and the
+// boundary edges that can be nearest to a point of it.
+struct DirectionLookupGrid {
+  std::uint32_t grid_size = 0;
+  std::vector<std::uint32_t> cell_starts;  // grid_size^2 + 1; cell (x, y) is index y * grid_size + x
+  std::vector<std::uint32_t> entries;      // triangle index, or CARBTF_LOOKUP_EDGE_BIT | edge index
+};
 
 class MaterialDirections {
  public:

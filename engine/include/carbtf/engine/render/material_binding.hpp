@@ -54,7 +54,7 @@ struct MaterialBindingInfo {
   std::int64_t col0 = 0;
   // Parallax offset per texel of height (1: the range map's own scale; 0: no parallax).
   float parallax_scale = 1.0f;
-  // Cells per side of each direction lookup grid (direction_lookup.hpp).
+  // Cells per side of each direction lookup grid (MaterialDirections).
   std::uint32_t lookup_grid_size = 32;
 };
 

@@ -26,7 +26,7 @@
 #include "carbtf/engine/material/direction_interpolation.hpp"
 #include "carbtf/engine/material/material.hpp"
 #include "carbtf/engine/synthesis/synthesis_request.hpp"
-#include "carbtf/engine/synthesis/synthesis_layout.hpp"
+#include "carbtf/engine/synthesis/synthesis_block.hpp"
 
 namespace carbtf {
 

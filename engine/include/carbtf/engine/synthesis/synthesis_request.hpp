@@ -8,7 +8,7 @@
 #include <span>
 #include <vector>
 
-#include "carbtf/engine/synthesis/synthesis_layout.hpp"
+#include "carbtf/engine/synthesis/synthesis_block.hpp"
 
 namespace carbtf {
 
@@ -26,7 +26,7 @@ inline constexpr std::uint32_t kMaxGpuNeighbours = 16;
 // The stages of a synthesis, in order; a request may capture the work buffer after one of them.
 enum class SynthesisStage { none, noise, car, collapse };
 
-// The block to synthesize (synthesis_layout.hpp) and what to synthesize of it.
+// The block to synthesize (synthesis_block.hpp) and what to synthesize of it.
 struct SynthesisRequest : SynthesisBlock {
   // Which subspace images, in output-layer order; empty means all of them.
   std::vector<std::uint32_t> subspaces;

@@ -1,11 +1,8 @@
-// Where each field of a subspace-image synthesis lies, shared by the CPU reference and the GPU so that
-// both compute the same regions (docs/design.md 4.4).
-//
-// A block of the unbounded texture is the level-0 region. Level l + 1 covers the coarse support that
-// expanding it to level l needs: fine rows [a, b) read coarse rows [floor((a - 1) / 2),
-// floor((b + 1) / 2) + 1), and the same for columns. Band (level l, channel c) of subspace s is the CAR
-// field with id s * 128 + l * 16 + c; its recursion runs over the level region extended by a burn-in
-// margin above and on both sides.
+// The block a subspace-image synthesis computes and the block initialization values that make a block
+// equal to the same region of a larger synthesis: the plain data a host passes in a SynthesisRequest,
+// shared by the GPU synthesizer and the CPU reference (docs/design.md 4.4). How each level and band
+// region follows from a block is internal to carbtf and not installed
+// (engine/internal/carbtf/engine/internal/synthesis_layout.hpp).
 #pragma once
 
 #include <cstdint>
@@ -52,32 +49,6 @@ std::uint32_t default_periodic_overlap(std::uint32_t width, std::uint32_t height
 // The level-0 region a block's synthesis computes: the block, grown by its periodic overlap.
 TextureRegion synthesized_region(const SynthesisBlock& block);
 
-// The value the collapsed band stack of `channel` has on average (the sum of its bands' means, coarsest
-// first): the centre the periodic fold blends around, so that it keeps the mean and the variance.
-float collapsed_band_mean(const SubspaceModel& model, std::uint32_t channel);
-
-constexpr std::uint32_t field_id_of(std::uint32_t subspace, std::uint32_t level, std::uint32_t channel) {
-  return subspace * 128u + level * 16u + channel;
-}
-
-// floor(a / 2) for any sign.
-constexpr std::int64_t floor_half(std::int64_t a) {
-  return a >= 0 ? a / 2 : -((-a + 1) / 2);
-}
-
-TextureRegion coarse_support(const TextureRegion& fine);
-
-// The regions of levels 0 .. levels - 1 for an output block.
-std::vector<TextureRegion> level_regions(const TextureRegion& block, std::uint32_t levels);
-
-// Rows above and columns to each side that a neighbourhood reaches, at least 1: the frame a field is
-// stored with.
-std::uint32_t car_frame_pad(std::span<const CarNeighbour> neighbourhood);
-
-// The region a band's recursion runs over: its level region extended by the burn-in margin above and on
-// both sides.
-TextureRegion car_region(const TextureRegion& level_region, std::uint32_t margin);
-
 // Block initialization values (the paper's "block initialization values"): to synthesize a block on its
 // own yet equal to the same region of a larger synthesis, each band's recursion starts from that
 // larger synthesis's values around the band's CAR region instead of from zeros. One field's frame holds,
@@ -109,9 +80,5 @@ BlockFrameLayout block_frame_layout(const Material& material, const SynthesisBlo
 // not lie inside `source_region` or `out` is shorter than car_frame_floats().
 bool extract_car_frame(const TextureRegion& car, std::uint32_t pad, std::span<const float> source,
                        const TextureRegion& source_region, std::span<float> out);
-
-// The wavefront skew a: pixel (r, c) can run at step a * r + c, a = max over neighbours with dr < 0 of
-// ceil((dc + 1) / -dr), at least 1. Every neighbour of a pixel then runs at an earlier step.
-std::uint32_t car_wavefront_skew(std::span<const CarNeighbour> neighbourhood);
 
 }  // namespace carbtf

@@ -3,21 +3,17 @@
 // The projected disk [-1, 1]^2 is cut into grid_size^2 cells; each cell lists the triangles whose
 // bounding box meets it and, where part of the cell lies outside the triangulation, the boundary
 // edges that can be nearest to a point of the cell. The shader tests only its own cell's list.
+// Internal to carbtf (not installed): the engine builds the grids for MaterialDirections, and the scene
+// pruner and the tests query them.
 // Thread safety: built grids are immutable; queries are pure.
 #pragma once
 
 #include <cstdint>
-#include <vector>
 
 #include "carbtf/engine/material/direction_interpolation.hpp"
+#include "carbtf/engine/material/material_directions.hpp"
 
 namespace carbtf {
-
-struct DirectionLookupGrid {
-  std::uint32_t grid_size = 0;
-  std::vector<std::uint32_t> cell_starts;  // grid_size^2 + 1; cell (x, y) is index y * grid_size + x
-  std::vector<std::uint32_t> entries;      // triangle index, or CARBTF_LOOKUP_EDGE_BIT | edge index
-};
 
 // Whether projected point (x, y) lies in triangle `triangle`, or in any triangle of the triangulation
 // (up to 1e-12 barycentric slack).
