@@ -648,15 +648,17 @@ void unpack_rgba(const float* rgba, std::size_t pixels, std::uint32_t channels, 
 
 // The host buffer a synthesis reads back through, a band of rows at a time: a whole 4096^2 x 20 result
 // would otherwise need a second copy of the image on the host.
-constexpr VkDeviceSize kReadbackBytes = VkDeviceSize{64} << 20;
+constexpr VkDeviceSize kDefaultReadbackBytes = VkDeviceSize{64} << 20;
 
 // Submits `work` followed by the readback of the first band of rows of layers [0, layers) of `image`,
-// then each further band on its own; `unpack(rgba, row0, rows)` receives each band, layer by layer.
+// then each further band on its own, each at most `band_bytes` (at least one row);
+// `unpack(rgba, row0, rows)` receives each band, layer by layer.
 Status read_back_in_row_bands(Context& context, VkImage image, std::uint32_t width, std::uint32_t height,
-                              std::uint32_t layers, const std::function<Status(VkCommandBuffer)>& work,
+                              std::uint32_t layers, VkDeviceSize band_bytes,
+                              const std::function<Status(VkCommandBuffer)>& work,
                               const std::function<void(const float*, std::uint32_t, std::uint32_t)>& unpack) {
   const VkDeviceSize row_bytes = VkDeviceSize{width} * 4 * sizeof(float) * layers;
-  const auto band_rows = static_cast<std::uint32_t>(std::clamp<VkDeviceSize>(kReadbackBytes / row_bytes, 1, height));
+  const auto band_rows = static_cast<std::uint32_t>(std::clamp<VkDeviceSize>(band_bytes / row_bytes, 1, height));
   Buffer readback;
   CARBTF_TRY(Buffer::create(context,
                             {row_bytes * band_rows, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::host_readback,
@@ -678,6 +680,10 @@ Status read_back_in_row_bands(Context& context, VkImage image, std::uint32_t wid
 
 }  // namespace
 
+VkDeviceSize SubspaceSynthesizer::readback_bytes() const noexcept {
+  return max_readback_bytes_ != 0 ? max_readback_bytes_ : kDefaultReadbackBytes;
+}
+
 Status SubspaceSynthesizer::synthesize(const Material& material, const SynthesisRequest& request,
                                        SynthesizedImages& out, SynthesisTiming* timing_out) noexcept {
   CARBTF_TRY(prepare(material, request));
@@ -698,7 +704,7 @@ Status SubspaceSynthesizer::synthesize(const Material& material, const Synthesis
       return record(command_buffer, timing_out != nullptr);
     };
     CARBTF_TRY(read_back_in_row_bands(
-        *context_, prepared_->image.handle(), plan.width, plan.height, layers, record_work,
+        *context_, prepared_->image.handle(), plan.width, plan.height, layers, readback_bytes(), record_work,
         [&](const float* rgba, std::uint32_t row0, std::uint32_t rows) {
           const std::size_t pixels = std::size_t{plan.width} * rows;
           for (std::size_t layer = 0; layer < layers; ++layer) {
@@ -751,8 +757,7 @@ Status SubspaceSynthesizer::interpolate(const Material& material, const PairWeig
       return record_interpolation(command_buffer, material, weights, target.view());
     };
     CARBTF_TRY(read_back_in_row_bands(
-        *context_, target.handle(), plan.width, plan.height, 1,
-        record_work,
+        *context_, target.handle(), plan.width, plan.height, 1, readback_bytes(), record_work,
         [&](const float* rgba, std::uint32_t row0, std::uint32_t rows) {
           unpack_rgba(rgba, std::size_t{plan.width} * rows, channels, std::size_t{row0} * plan.width, out);
         }));

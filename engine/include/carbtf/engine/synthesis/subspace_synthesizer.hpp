@@ -94,6 +94,10 @@ class SubspaceSynthesizer {
   // Caps the bytes of one batch's work window (0: the device's storage-buffer range). Tests lower it to
   // exercise batching.
   void set_max_batch_bytes(VkDeviceSize bytes) noexcept { max_batch_bytes_ = bytes; }
+  // Caps the host buffer that synthesize() and interpolate() read back through, a band of rows at a
+  // time (0: 64 MiB; at least one row). A host short of host-visible memory lowers it; tests lower it
+  // to exercise several bands on a small image.
+  void set_max_readback_bytes(VkDeviceSize bytes) noexcept { max_readback_bytes_ = bytes; }
 
  private:
   SubspaceSynthesizer() = default;
@@ -104,6 +108,8 @@ class SubspaceSynthesizer {
   std::unique_ptr<Prepared> prepared_;
   std::uint32_t max_loop_iterations_ = 0;
   VkDeviceSize max_batch_bytes_ = 0;
+  VkDeviceSize max_readback_bytes_ = 0;
+  VkDeviceSize readback_bytes() const noexcept;
 };
 
 }  // namespace carbtf
