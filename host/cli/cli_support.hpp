@@ -7,21 +7,15 @@
 #include <filesystem>
 #include <memory>
 #include <span>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "carbtf/analysis/btf/btf_dataset.hpp"
+#include "cli/command_error.hpp"
 #include "carbtf/engine/vulkan/context.hpp"
 #include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
 
 namespace carbtf::cli {
-
-// Thrown by a command to stop with one line on stderr and a non-zero exit status.
-class CommandError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 // Options every GPU command takes.
 struct DeviceOptions {

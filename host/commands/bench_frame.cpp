@@ -171,9 +171,8 @@ void register_bench_frame_command(CLI::App& bench) {
   auto options = std::make_shared<FrameBenchOptions>();
   auto* command =
       bench.add_subcommand("frame",
-                           "Render frames of a material on a mesh with an orbiting camera and light: GPU "
-                           "time of synthesis and of the "
-                           "render pass, CPU wall time per frame, as median and p95, in a table and a CSV");
+                           "Frames of a material on a mesh, camera and light orbiting: GPU time of synthesis "
+                           "and of the render pass, CPU wall time per frame, median and p95, table and CSV");
   command->add_option("--material", options->material,
                       "Material file (default: the leather sample, analysed at 64^2 into the output folder)");
   command

@@ -14,7 +14,7 @@
 #include <tiny_obj_loader.h>
 #include <glm/glm.hpp>
 
-#include "cli/cli_support.hpp"
+#include "cli/command_error.hpp"
 
 namespace carbtf::cli {
 
