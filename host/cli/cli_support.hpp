@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "carbtf/analysis/btf/btf_dataset.hpp"
-#include "cli/command_error.hpp"
-#include "carbtf/engine/vulkan/context.hpp"
 #include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
+#include "carbtf/engine/vulkan/context.hpp"
+#include "cli/command_error.hpp"
 
 namespace carbtf::cli {
 
