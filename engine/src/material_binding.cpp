@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <span>
 #include <string>
 
 #include <carbtf_gpu_shared.h>
@@ -49,10 +50,26 @@ void append_lookup(const DirectionTriangulation& triangulation, const DirectionL
   for (const auto& e : triangulation.boundary) data.insert(data.end(), e.begin(), e.end());
 }
 
+// The layer of every (light, view) pair, [light * views + view], as the fragment stage reads it.
+void write_layer_table(const Material& material, const MaterialTextures& textures, std::span<std::uint32_t> out) {
+  for (std::size_t l = 0; l < material.lights.size(); ++l) {
+    for (std::size_t v = 0; v < material.views.size(); ++v) {
+      const std::uint32_t layer =
+          textures.pair_layers.empty()
+              ? textures.layers[subspace_of(material, static_cast<std::uint32_t>(l), static_cast<std::uint32_t>(v))]
+              : textures.pair_layers[l * material.views.size() + v];
+      out[l * material.views.size() + v] =
+          layer == std::numeric_limits<std::uint32_t>::max() ? gpu::CARBTF_NO_LAYER : layer;
+    }
+  }
+}
+
 }  // namespace
 
 struct MaterialBinding::Resources {
   std::vector<std::uint32_t> tables;
+  std::size_t layer_table = 0;  // word offset of the pair layer table in `tables`
+  bool pair_layers = false;     // drawn by (light, view) pair (MaterialTextures::pair_layers)
   std::vector<float> range_map;
   std::vector<float> tone_map;
   std::uint32_t width = 0;
@@ -112,15 +129,10 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     append_lookup(directions.light_triangulation(), directions.light_grid(), r.tables, header.lights);
     append_lookup(directions.view_triangulation(), directions.view_grid(), r.tables, header.views);
     header.layer_table = static_cast<std::uint32_t>(r.tables.size() - kHeaderWords);
-    for (std::size_t l = 0; l < material.lights.size(); ++l) {
-      for (std::size_t v = 0; v < material.views.size(); ++v) {
-        const std::uint32_t layer = textures.pair_layers.empty()
-                                        ? textures.layers[subspace_of(material, static_cast<std::uint32_t>(l),
-                                                                      static_cast<std::uint32_t>(v))]
-                                        : textures.pair_layers[l * material.views.size() + v];
-        r.tables.push_back(layer == std::numeric_limits<std::uint32_t>::max() ? gpu::CARBTF_NO_LAYER : layer);
-      }
-    }
+    r.tables.resize(r.tables.size() + material.lights.size() * material.views.size());
+    write_layer_table(material, textures, std::span(r.tables).subspan(kHeaderWords + header.layer_table));
+    r.layer_table = kHeaderWords + header.layer_table;
+    r.pair_layers = !textures.pair_layers.empty();
     header.tone_weight_table = static_cast<std::uint32_t>(r.tables.size() - kHeaderWords);
     for (std::size_t l = 0; l < material.lights.size(); ++l) {
       for (std::size_t v = 0; v < material.views.size(); ++v) {
@@ -257,6 +269,25 @@ std::uint32_t MaterialBinding::width() const noexcept {
 std::uint32_t MaterialBinding::height() const noexcept {
   return resources_->height;
 }
+Status MaterialBinding::set_layers(const Material& material, std::span<const std::uint32_t> layers) noexcept {
+  Resources& r = *resources_;
+  if (r.pair_layers)
+    return {ErrorCode::invalid_argument, "this binding draws (light, view) pair layers, not subspace layers"};
+  const std::size_t pairs = material.lights.size() * material.views.size();
+  if (layers.size() != material.subspaces.size() || r.layer_table + pairs > r.tables.size()) {
+    return {ErrorCode::invalid_argument,
+            "set_layers() got " + std::to_string(layers.size()) + " subspace layers for a material of " +
+                std::to_string(material.subspaces.size()) + " subspace images and " + std::to_string(pairs) +
+                " (light, view) pairs: not the binding's material"};
+  }
+  MaterialTextures textures;
+  textures.layers.assign(layers.begin(), layers.end());
+  const std::span<std::uint32_t> table = std::span(r.tables).subspan(r.layer_table, pairs);
+  write_layer_table(material, textures, table);
+  std::memcpy(static_cast<std::uint32_t*>(r.table_buffer.mapped()) + r.layer_table, table.data(), pairs * 4);
+  return {};
+}
+
 const std::vector<std::uint32_t>& MaterialBinding::tables() const noexcept {
   return resources_->tables;
 }

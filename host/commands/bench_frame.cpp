@@ -1,13 +1,12 @@
 // `carbtf bench frame`: N frames of a material on a mesh with the camera and the light orbiting it.
-// Each frame works out what it needs (scene pruning), synthesizes the subspace images it needs and has
-// not got yet (the first frame: all it sees), then renders. It reports, per frame and as median and
-// p95, the GPU timestamps of synthesis (on frames that synthesize) and of the render pass, and the CPU
-// wall time of the whole frame (pruning, recording, submit, wait; readback excluded), as a table and a CSV.
-#include <algorithm>
+// Each frame works out what it needs (scene pruning), synthesizes only the subspace images no earlier
+// frame needed and copies them into their layers (ResidentImages), then renders. It reports, per frame
+// and as median and p95, the GPU timestamps of synthesis with its copy (on frames that add images) and
+// of the render pass, and the CPU wall time of the whole frame (pruning, recording, submit, wait), as a
+// table and a CSV.
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <set>
 
 #include "bench/frame_bench.hpp"
 #include "carbtf/analysis/analyze.hpp"
@@ -17,6 +16,7 @@
 #include "carbtf/engine/render/material_binding.hpp"
 #include "carbtf/engine/material/material_file.hpp"
 #include "carbtf/engine/render/mesh_renderer.hpp"
+#include "carbtf/engine/render/resident_images.hpp"
 #include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
 #include "cli/cli_support.hpp"
 #include "cli/owned_folder.hpp"
@@ -63,15 +63,6 @@ Material bench_material(const FrameBenchOptions& options, OwnedFolder& out) {
   return material;
 }
 
-// Frame i of n: the camera orbits at 60 degrees from the pole, the light the other way at 40.
-RenderScene orbit_scene(std::uint32_t i, std::uint32_t n) {
-  const double turn = 360.0 * i / std::max(n, 1u);
-  RenderScene scene;
-  scene.camera = orbit_camera(60.0, 35.0 + turn, 3.6f);
-  scene.lights = {{false, unit_vector_degrees(40.0, 120.0 - turn), {1, 1, 1}}};
-  return scene;
-}
-
 void run_bench_frame(const FrameBenchOptions& options) {
   OwnedFolder folder(options.out);
   folder.keep();  // the results stay; only the scratch BTF is released
@@ -88,8 +79,8 @@ void run_bench_frame(const FrameBenchOptions& options) {
   GpuTimer timer;
   check(GpuTimer::create(*context, 3, timer), "cannot create the GPU timer");
 
-  std::set<std::uint32_t> resident;
   std::uint32_t texture_size = options.texture_size;
+  std::unique_ptr<ResidentImages> resident;
   std::unique_ptr<MaterialBinding> binding;
   std::unique_ptr<MeshRenderer> renderer;
   RenderTargetInfo target;
@@ -103,42 +94,45 @@ void run_bench_frame(const FrameBenchOptions& options) {
   // Only what the frame can use: the subspace images its (light, view) pairs fall in.
   const std::unique_ptr<ScenePruner> pruner = make_scene_pruner(material);
   for (std::uint32_t i = 0; i < options.frames; ++i) {
-    const RenderScene scene = orbit_scene(i, options.frames);
+    const RenderScene scene = orbiting_scene(i, options.frames);
     const auto start = std::chrono::steady_clock::now();
     SceneNeeds needs;
     check(pruner->needs(mesh, scene, options.width, options.height, needs), "cannot prune the scene");
-    if (texture_size == 0) texture_size = needs.texture_size;
-    FrameRecord record;
-    record.frame = i;
-    const std::size_t before = resident.size();
-    resident.insert(needs.subspaces.begin(), needs.subspaces.end());
-    const bool synthesize = resident.size() != before || !binding;
-    if (synthesize) {
-      // Everything resident is synthesized again: one texture array per material keeps the render's
-      // descriptor set simple, and only frames that see new (light, view) regions pay for it.
-      SynthesisRequest request;
-      request.seed = 1;
-      request.width = request.height = texture_size;
-      if (needs.periodic) request.periodic_overlap = default_periodic_overlap(texture_size, texture_size);
-      request.subspaces.assign(resident.begin(), resident.end());
-      // An empty list asks for every subspace image (a first frame that sees nothing).
-      record.synthesized = request.subspaces.empty() ? material.subspaces.size() : request.subspaces.size();
-      renderer.reset();
-      binding.reset();
-      check(synthesizer->prepare(material, request), "cannot plan the synthesis");
-      check(MaterialBinding::create(*context, material, material_textures(*synthesizer, material),
-                                    {request.seed}, binding),
-            "cannot bind the material");
+    if (!resident) {
+      // The first frame fixes the texture size and the pass; later frames only add images.
+      if (texture_size == 0) texture_size = needs.texture_size;
+      const std::uint32_t overlap = needs.periodic ? default_periodic_overlap(texture_size, texture_size) : 0;
+      check(ResidentImages::create(*context, material, texture_size, overlap, resident), "cannot hold the images");
+      check(MaterialBinding::create(*context, material, resident->textures(), {1}, binding), "cannot bind");
+      check(context->submit_and_wait([&](VkCommandBuffer cb) {
+        binding->record_upload(cb);
+        resident->record_transition(cb);
+        return Status{};
+      }),
+            "cannot upload the material");
       check(MeshRenderer::create(*context, *binding, target, renderer), "cannot build the render pass");
       check(renderer->set_mesh(mesh), "cannot upload the mesh");
     }
-    record.resident = resident.size();
+    FrameRecord record;
+    record.frame = i;
+    // Only the images no earlier frame needed: synthesized on their own, copied into their layers.
+    const std::vector<std::uint32_t> added = resident->missing(needs.subspaces);
+    record.synthesized = added.size();
+    if (!added.empty()) {
+      SynthesisRequest request;
+      request.seed = 1;
+      request.width = request.height = texture_size;
+      request.periodic_overlap = resident->textures().periodic_overlap;
+      request.subspaces = added;
+      check(synthesizer->prepare(material, request), "cannot plan the synthesis");
+    }
     check(context->submit_and_wait([&](VkCommandBuffer cb) {
       timer.record_reset(cb);
       timer.record_timestamp(cb, 0, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT);
-      if (synthesize) {
+      if (!added.empty()) {
         if (Status s = synthesizer->record(cb); !s.ok()) return s;
-        binding->record_upload(cb);
+        if (Status s = resident->record_add(cb, *synthesizer, added); !s.ok()) return s;
+        if (Status s = binding->set_layers(material, resident->layers()); !s.ok()) return s;
       }
       timer.record_timestamp(cb, 1);
       if (Status s = renderer->record(cb, scene); !s.ok()) return s;
@@ -146,10 +140,11 @@ void run_bench_frame(const FrameBenchOptions& options) {
       return Status{};
     }),
           "frame " + std::to_string(i) + " failed");
+    record.resident = resident->resident_count();
     record.wall_ms = seconds_since(start) * 1e3;
     check(timer.elapsed_ms(0, 1, record.synthesis_gpu_ms), "cannot read the GPU timestamps");
     check(timer.elapsed_ms(1, 2, record.render_gpu_ms), "cannot read the GPU timestamps");
-    if (!synthesize) record.synthesis_gpu_ms = 0.0;
+    if (added.empty()) record.synthesis_gpu_ms = 0.0;
     records.push_back(record);
   }
   check_validation(*context);
@@ -159,7 +154,7 @@ void run_bench_frame(const FrameBenchOptions& options) {
                 "bench frame: %u frames of %ux%u, %s on %s, texture %u^2, %zu of %zu subspace images "
                 "resident at the end\n\n",
                 options.frames, options.width, options.height, options.mesh.c_str(),
-                context->device_info().name.c_str(), texture_size, resident.size(),
+                context->device_info().name.c_str(), texture_size, resident->resident_count(),
                 material.subspaces.size());
   std::printf("%s%s", line, write_frame_bench_report(out, records, line).c_str());
   std::printf("wrote %s/bench_frame.csv and bench_frame.md\n", out.string().c_str());

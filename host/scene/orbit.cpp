@@ -1,5 +1,6 @@
 #include "scene/orbit.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -50,6 +51,14 @@ RenderScene scene_from_options(const std::vector<double>& camera, float fov_y_de
     throw CommandError("at most " + std::to_string(kMaxRenderLights) +
                        " lights (--light and --point-light together)");
   }
+  return scene;
+}
+
+RenderScene orbiting_scene(std::uint32_t i, std::uint32_t n) {
+  const double turn = 360.0 * i / std::max(n, 1u);
+  RenderScene scene;
+  scene.camera = orbit_camera(60.0, 35.0 + turn, 3.6f);
+  scene.lights = {{false, unit_vector_degrees(40.0, 120.0 - turn), {1, 1, 1}}};
   return scene;
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "carbtf/engine/render/mesh_renderer.hpp"
@@ -24,5 +25,9 @@ RenderCamera orbit_camera(double theta_degrees, double phi_degrees, float distan
 RenderScene scene_from_options(const std::vector<double>& camera, float fov_y_degrees,
                                const std::vector<std::vector<double>>& lights,
                                const std::vector<std::vector<double>>& point_lights);
+
+// Frame i of n of `bench frame`: the camera orbits at 60 degrees from the pole, 3.6 away, one
+// directional light the other way at 40 degrees.
+RenderScene orbiting_scene(std::uint32_t i, std::uint32_t n);
 
 }  // namespace carbtf::cli

@@ -14,6 +14,7 @@
 #include "carbtf/engine/internal/direction_lookup.hpp"
 #include "carbtf/engine/render/material_binding.hpp"
 #include "carbtf/engine/render/mesh_renderer.hpp"
+#include "carbtf/engine/render/resident_images.hpp"
 #include "carbtf/engine/render/scene_pruning.hpp"
 #include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
 #include "test_materials.hpp"
@@ -301,5 +302,78 @@ TEST_CASE("scene pruning: a scene seen from above needs fewer subspace images an
   for (std::size_t i = 3; i < full.size(); i += 4) covered += full[i] == 1.0f;
   CHECK(covered > full.size() / 4 / 8);
   test::require_bitwise_equal(pruned, full, 96 * 4);
+  context.require_clean();
+}
+
+TEST_CASE("subspace images made resident frame by frame render the pixels of one synthesis of them all",
+          "[render][gpu]") {
+  test::ValidatedContext context;
+  const Material m = ubo_material();
+  const Mesh mesh = make_sphere(24, 12);
+  RenderScene scene;
+  scene.camera.eye = {2.4f, 1.5f, 1.2f};
+  scene.lights = {{true, {1.5f, -1.0f, 1.6f}, {2, 2, 2}}, {false, {0.2f, 1.0f, 0.05f}, {0.5f, 0.5f, 0.5f}}};
+  std::unique_ptr<ScenePruner> pruner;
+  REQUIRE(ScenePruner::create(m, {}, pruner).ok());
+  SceneNeeds needs;
+  REQUIRE(pruner->needs(mesh, scene, 96, 96, needs).ok());
+  REQUIRE(needs.subspaces.size() >= 2);
+  const std::vector<float> at_once = render_with(*context, m, needs.subspaces, mesh, scene);
+
+  std::unique_ptr<ResidentImages> resident;
+  REQUIRE(ResidentImages::create(*context, m, 64, 0, resident).ok());
+  MaterialBindingInfo info;
+  info.seed = 3;
+  std::unique_ptr<MaterialBinding> binding;
+  REQUIRE(MaterialBinding::create(*context, m, resident->textures(), info, binding).ok());
+  REQUIRE(context->submit_and_wait([&](VkCommandBuffer cb) {
+    binding->record_upload(cb);
+    resident->record_transition(cb);
+    return Status{};
+  }).ok());
+  std::unique_ptr<SubspaceSynthesizer> synthesizer;
+  REQUIRE(SubspaceSynthesizer::create(*context, synthesizer).ok());
+  // Two frames: the first needs half the images, the second all of them and gets only the rest.
+  const std::size_t half = needs.subspaces.size() / 2;
+  const std::vector<std::uint32_t> first(needs.subspaces.begin(), needs.subspaces.begin() + half);
+  for (const std::vector<std::uint32_t>& frame_needs : {first, needs.subspaces}) {
+    const std::vector<std::uint32_t> added = resident->missing(frame_needs);
+    CHECK(added.size() == (frame_needs.size() == half ? half : needs.subspaces.size() - half));
+    SynthesisRequest request;
+    request.seed = 3;
+    request.width = request.height = 64;
+    request.margin = 8;
+    request.subspaces = added;
+    REQUIRE(synthesizer->prepare(m, request).ok());
+    REQUIRE(context->submit_and_wait([&](VkCommandBuffer cb) {
+      if (Status status = synthesizer->record(cb); !status.ok()) return status;
+      return resident->record_add(cb, *synthesizer, added);
+    }).ok());
+    REQUIRE(binding->set_layers(m, resident->layers()).ok());
+  }
+  CHECK(resident->missing(needs.subspaces).empty());
+  CHECK(resident->resident_count() == needs.subspaces.size());
+
+  RenderTargetInfo target;
+  target.width = target.height = 96;
+  target.colour_format = VK_FORMAT_R32G32B32A32_SFLOAT;
+  std::unique_ptr<MeshRenderer> renderer;
+  REQUIRE(MeshRenderer::create(*context, *binding, target, renderer).ok());
+  REQUIRE(renderer->set_mesh(mesh).ok());
+  RenderedImage frame;
+  REQUIRE(renderer->render(scene, frame).ok());
+  test::require_bitwise_equal(as_floats(frame), at_once, 96 * 4);
+
+  // What cannot be right is refused: another material's layer count, an image the synthesis lacks.
+  CHECK(binding->set_layers(m, std::vector<std::uint32_t>(3, 0)).code() == ErrorCode::invalid_argument);
+  const std::uint32_t absent = needs.subspaces.front();
+  SynthesisRequest other;
+  other.seed = 3;
+  other.width = other.height = 64;
+  other.subspaces = {absent == 0 ? 1u : 0u};
+  REQUIRE(synthesizer->prepare(m, other).ok());
+  const Status refused = context->submit_and_wait(
+      [&](VkCommandBuffer cb) { return resident->record_add(cb, *synthesizer, std::vector<std::uint32_t>{absent}); });
+  CHECK(refused.code() == ErrorCode::invalid_argument);
   context.require_clean();
 }

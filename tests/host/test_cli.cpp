@@ -13,6 +13,7 @@
 
 #include "cli_run.hpp"
 #include "scratch_folder.hpp"
+#include <sstream>
 #include <string>
 
 namespace fs = std::filesystem;
@@ -327,6 +328,22 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
     for (const std::byte b : csv_bytes) csv.push_back(static_cast<char>(b));
     CHECK(line_count(csv) == 5);  // header + 4 frames
     CHECK(fs::exists(out / "bench_frame.md"));
+    // Every subspace image is synthesized once, on the frame that first needs it.
+    std::stringstream rows(csv);
+    std::string row;
+    std::getline(rows, row);
+    std::size_t synthesized = 0, resident = 0;
+    while (std::getline(rows, row)) {
+      std::stringstream fields(row);
+      std::string frame, added, now;
+      std::getline(fields, frame, ',');
+      std::getline(fields, added, ',');
+      std::getline(fields, now, ',');
+      synthesized += std::stoul(added);
+      CHECK(std::stoul(now) == synthesized);
+      resident = std::stoul(now);
+    }
+    CHECK(resident > 0);
   }
   SECTION("tone weights: each subspace's share of the relief tone, chosen or fixed, stored and shown by info") {
     const fs::path btf = folder / "leather" / "btf";

@@ -3,7 +3,8 @@
 //   carbtf/engine/vulkan/...      the Vulkan context (own or adopted), buffers, texture arrays, timers
 //   carbtf/engine/material/...    the material model and its file, range tiles, direction interpolation
 //   carbtf/engine/synthesis/...   requests and GPU synthesis of subspace images, GPU noise
-//   carbtf/engine/render/...      meshes, the material binding for any pass, scene pruning, carbtf's pass
+//   carbtf/engine/render/...      meshes, the material binding for any pass, scene pruning, resident
+//                                 subspace images filled as a scene needs them, carbtf's pass
 // Each header states ownership, lifetime and thread safety (docs/design.md 7).
 #pragma once
 
@@ -33,4 +34,5 @@
 #include "carbtf/engine/render/mesh.hpp"
 #include "carbtf/engine/render/mesh_renderer.hpp"
 #include "carbtf/engine/render/render_scene.hpp"
+#include "carbtf/engine/render/resident_images.hpp"
 #include "carbtf/engine/render/scene_pruning.hpp"

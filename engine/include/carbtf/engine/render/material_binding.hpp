@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "carbtf/engine/vulkan/buffer.hpp"
@@ -65,6 +66,13 @@ class MaterialBinding {
   static Status create(Context& context, const Material& material, const MaterialTextures& textures,
                        const MaterialBindingInfo& info, std::unique_ptr<MaterialBinding>& out) noexcept;
   ~MaterialBinding();
+
+  // Points the material's subspace images at other layers of the same textures (MaterialTextures::layers;
+  // UINT32_MAX: not there, pairs that fall there contribute nothing), for a host that fills a texture
+  // array over time, one newly needed subspace image at a time. `material` is the binding's own. No
+  // GPU work that reads the binding may be in flight: the table is host memory the fragment stage reads.
+  // invalid_argument for a binding of pair layers or a layer list of another length.
+  Status set_layers(const Material& material, std::span<const std::uint32_t> layers) noexcept;
 
   // Records the range map's upload and its transition for fragment-shader reads.
   void record_upload(VkCommandBuffer command_buffer) const noexcept;

@@ -82,6 +82,7 @@ namespace carbtf {
   X(vkCmdFillBuffer)                   \
   X(vkCmdCopyBuffer)                   \
   X(vkCmdCopyImageToBuffer)            \
+  X(vkCmdCopyImage)                    \
   X(vkCmdClearColorImage)              \
   X(vkCmdResetQueryPool)               \
   X(vkCmdWriteTimestamp)               \
