@@ -231,34 +231,45 @@ Material ubo_material() {
   return m;
 }
 
-std::vector<float> render_with(Context& context, const Material& m,
-                               const std::vector<std::uint32_t>& subspaces, const Mesh& mesh,
-                               const RenderScene& scene) {
-  std::unique_ptr<SubspaceSynthesizer> synthesizer;
-  REQUIRE(SubspaceSynthesizer::create(context, synthesizer).ok());
+// The 64^2 block, seed 3, that these renders synthesize, of `subspaces` (empty: all).
+SynthesisRequest render_request(const std::vector<std::uint32_t>& subspaces) {
   SynthesisRequest request;
   request.seed = 3;
   request.width = request.height = 64;
   request.margin = 8;
   request.subspaces = subspaces;
-  REQUIRE(synthesizer->prepare(m, request).ok());
-  REQUIRE(context.submit_and_wait([&](VkCommandBuffer cb) { return synthesizer->record(cb); }).ok());
-  MaterialBindingInfo info;
-  info.seed = 3;
-  std::unique_ptr<MaterialBinding> binding;
-  REQUIRE(MaterialBinding::create(context, m, material_textures(*synthesizer, m), info, binding).ok());
-  REQUIRE(binding->upload_and_wait().ok());
+  return request;
+}
+
+// `mesh` under `scene` through `binding`, 96^2 RGBA32F.
+std::vector<float> draw(Context& context, const MaterialBinding& binding, const Mesh& mesh,
+                        const RenderScene& scene) {
   RenderTargetInfo target;
   target.width = target.height = 96;
   target.colour_format = VK_FORMAT_R32G32B32A32_SFLOAT;
   std::unique_ptr<MeshRenderer> renderer;
-  REQUIRE(MeshRenderer::create(context, *binding, target, renderer).ok());
+  REQUIRE(MeshRenderer::create(context, binding, target, renderer).ok());
   REQUIRE(renderer->set_mesh(mesh).ok());
   RenderedImage frame;
   const Status status = renderer->render(scene, frame);
   INFO(status.message());
   REQUIRE(status.ok());
   return as_floats(frame);
+}
+
+std::vector<float> render_with(Context& context, const Material& m,
+                               const std::vector<std::uint32_t>& subspaces, const Mesh& mesh,
+                               const RenderScene& scene) {
+  std::unique_ptr<SubspaceSynthesizer> synthesizer;
+  REQUIRE(SubspaceSynthesizer::create(context, synthesizer).ok());
+  REQUIRE(synthesizer->prepare(m, render_request(subspaces)).ok());
+  REQUIRE(context.submit_and_wait([&](VkCommandBuffer cb) { return synthesizer->record(cb); }).ok());
+  MaterialBindingInfo info;
+  info.seed = 3;
+  std::unique_ptr<MaterialBinding> binding;
+  REQUIRE(MaterialBinding::create(context, m, material_textures(*synthesizer, m), info, binding).ok());
+  REQUIRE(binding->upload_and_wait().ok());
+  return draw(context, *binding, mesh, scene);
 }
 
 }  // namespace
@@ -339,12 +350,7 @@ TEST_CASE("subspace images made resident frame by frame render the pixels of one
   for (const std::vector<std::uint32_t>& frame_needs : {first, needs.subspaces}) {
     const std::vector<std::uint32_t> added = resident->missing(frame_needs);
     CHECK(added.size() == (frame_needs.size() == half ? half : needs.subspaces.size() - half));
-    SynthesisRequest request;
-    request.seed = 3;
-    request.width = request.height = 64;
-    request.margin = 8;
-    request.subspaces = added;
-    REQUIRE(synthesizer->prepare(m, request).ok());
+    REQUIRE(synthesizer->prepare(m, render_request(added)).ok());
     REQUIRE(context->submit_and_wait([&](VkCommandBuffer cb) {
       if (Status status = synthesizer->record(cb); !status.ok()) return status;
       return resident->record_add(cb, *synthesizer, added);
@@ -354,26 +360,15 @@ TEST_CASE("subspace images made resident frame by frame render the pixels of one
   CHECK(resident->missing(needs.subspaces).empty());
   CHECK(resident->resident_count() == needs.subspaces.size());
 
-  RenderTargetInfo target;
-  target.width = target.height = 96;
-  target.colour_format = VK_FORMAT_R32G32B32A32_SFLOAT;
-  std::unique_ptr<MeshRenderer> renderer;
-  REQUIRE(MeshRenderer::create(*context, *binding, target, renderer).ok());
-  REQUIRE(renderer->set_mesh(mesh).ok());
-  RenderedImage frame;
-  REQUIRE(renderer->render(scene, frame).ok());
-  test::require_bitwise_equal(as_floats(frame), at_once, 96 * 4);
+  test::require_bitwise_equal(draw(*context, *binding, mesh, scene), at_once, 96 * 4);
 
   // What cannot be right is refused: another material's layer count, an image the synthesis lacks.
   CHECK(binding->set_layers(m, std::vector<std::uint32_t>(3, 0)).code() == ErrorCode::invalid_argument);
   const std::uint32_t absent = needs.subspaces.front();
-  SynthesisRequest other;
-  other.seed = 3;
-  other.width = other.height = 64;
-  other.subspaces = {absent == 0 ? 1u : 0u};
-  REQUIRE(synthesizer->prepare(m, other).ok());
+  REQUIRE(synthesizer->prepare(m, render_request({absent == 0 ? 1u : 0u})).ok());
+  const std::vector<std::uint32_t> lacking{absent};
   const Status refused = context->submit_and_wait(
-      [&](VkCommandBuffer cb) { return resident->record_add(cb, *synthesizer, std::vector<std::uint32_t>{absent}); });
+      [&](VkCommandBuffer cb) { return resident->record_add(cb, *synthesizer, lacking); });
   CHECK(refused.code() == ErrorCode::invalid_argument);
   context.require_clean();
 }
