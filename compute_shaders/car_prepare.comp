@@ -1,9 +1,9 @@
 #version 450
-// Fills every field of a batch before its recursion. By default only the frame, with zeros or the
-// stored block initialization values, one invocation per frame cell in the frame's own order (pad rows
-// above, then each row's left and right pads), since the recursions draw their noise themselves. With
-// CARBTF_PREPARE_NOISE (conformance captures) one invocation per padded pixel, writing the frame and
-// the N(0,1) noise of every region pixel. No loops.
+// Fills every field of a batch before its recursion. By default the frame, with zeros or the stored
+// block initialization values, one invocation per frame cell in the frame's own order (pad rows above,
+// then each row's left and right pads). With CARBTF_PREPARE_NOISE the N(0,1) noise of every region
+// pixel, four columns per invocation (one counter call): what the wavefront recursion reads, and what a
+// conformance capture of the noise stage compares. No loops.
 #extension GL_GOOGLE_include_directive : require
 #include "carbtf_gpu_shared.h"
 #include "carbtf_noise.h"
@@ -14,6 +14,11 @@ layout(push_constant, std430) uniform Push { SynthPassParams params; };
 layout(std430, set = 0, binding = 0) readonly buffer Fields { CarFieldGpu fields[]; };
 layout(std430, set = 0, binding = 1) writeonly buffer Arena { float arena[]; };
 layout(std430, set = 0, binding = 2) readonly buffer Frames { float frames[]; };
+
+// Column `first + k` of the region takes sample g when it lies in the region (modulo 2^32, so a quad
+// straddling the region's left edge writes only its right part).
+#define CARBTF_PUT_NOISE(k, g)                    \
+  if (first + k < cols) arena[row_base + first + k] = g;
 
 float frame_value(uint f, uint index) {
   uint frame = fields[f].frame_offset;
@@ -44,16 +49,13 @@ void main() {
     arena[fields[f].offset + pr * pitch + pc] = frame_value(f, index);
     return;
   }
-  uint pc = gl_GlobalInvocationID.x;
-  uint pr = gl_GlobalInvocationID.y;
-  if (pc >= pitch || pr >= rows + pad) return;
-  float value;
-  if (pr < pad || pc < pad || pc >= cols + pad) {
-    uint side = pc < pad ? pc : pc - cols;
-    value = frame_value(f, pr < pad ? pr * pitch + pc : pad * pitch + (pr - pad) * 2u * pad + side);
-  } else {
-    value = carbtf_gaussian(params.seed_lo, params.seed_hi, fields[f].field_id, fields[f].row0 + pr - pad,
-                            fields[f].col0 + pc - pad);
-  }
-  arena[fields[f].offset + pr * pitch + pc] = value;
+  // Noise: invocation x covers the four columns of counter quad (col0 >> 2) + x, y one region row.
+  uint r = gl_GlobalInvocationID.y;
+  if (r >= rows || gl_GlobalInvocationID.x >= carbtf_noise_quads(fields[f].col0, cols)) return;
+  uint quad = ((fields[f].col0 >> 2u) + gl_GlobalInvocationID.x) & 0x3FFFFFFFu;
+  uint first = (quad << 2u) - fields[f].col0;  // the quad's first column in the region, modulo 2^32
+  float g0, g1, g2, g3;
+  carbtf_gaussian4(params.seed_lo, params.seed_hi, fields[f].field_id, fields[f].row0 + r, quad, g0, g1, g2, g3);
+  uint row_base = fields[f].offset + (r + pad) * pitch + pad;
+  CARBTF_PUT_NOISE(0u, g0) CARBTF_PUT_NOISE(1u, g1) CARBTF_PUT_NOISE(2u, g2) CARBTF_PUT_NOISE(3u, g3)
 }

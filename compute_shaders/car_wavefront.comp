@@ -23,7 +23,8 @@ void main() {
     uint last = min(t / field.skew + 1u, field.rows);
     for (uint r = first + gl_LocalInvocationID.x; r < last; r += CARBTF_CAR_WAVEFRONT_GROUP) {
       uint c = t - field.skew * r;
-      carbtf_car_pixel(field, field.offset + (r + field.pad) * field.pitch + c + field.pad, r, c);
+      uint base = field.offset + (r + field.pad) * field.pitch + c + field.pad;
+      carbtf_car_pixel(field, base, arena[base]);  // car_prepare left the pixel's noise there
     }
     memoryBarrierBuffer();
     barrier();

@@ -1,9 +1,11 @@
 // One pixel of a CAR recursion, shared by car_serial.comp and car_wavefront.comp: region pixel (r, c)
 // becomes y = sum_k gamma[k] y(neighbour k) + sigma e, summed from 0 in neighbour order with no fused
-// multiply-add, as the CPU reference does (analysis/reference/src/car_synthesis.cpp). The noise e is
-// drawn here rather than read from memory: one pass less over every field. The taps are unrolled
+// multiply-add, as the CPU reference does (analysis/reference/src/car_synthesis.cpp). The caller brings
+// the noise e: the serial scheme draws four at a time, the wavefront scheme reads what car_prepare wrote
+// in the pixel's place (its invocations move between rows, so none could keep a row's four). The taps
+// are unrolled
 // because lavapipe caps loop iterations per invocation (docs/design.md 6), and the frame makes every
-// neighbour read in bounds. Needs `params` (SynthPassParams, for the seed) and `arena`.
+// neighbour read in bounds. Needs `arena`.
 #ifndef CARBTF_CAR_GLSL
 #define CARBTF_CAR_GLSL
 
@@ -14,13 +16,12 @@
     acc = carbtf_weighted_add(acc, field.gamma[k], arena[uint(int(base) + field.tap[k])]); \
   }
 
-void carbtf_car_pixel(in CarFieldGpu field, uint base, uint r, uint c) {
+void carbtf_car_pixel(in CarFieldGpu field, uint base, float e) {
   precise float acc = 0.0;
   CARBTF_CAR_TAP(0u) CARBTF_CAR_TAP(1u) CARBTF_CAR_TAP(2u) CARBTF_CAR_TAP(3u)
   CARBTF_CAR_TAP(4u) CARBTF_CAR_TAP(5u) CARBTF_CAR_TAP(6u) CARBTF_CAR_TAP(7u)
   CARBTF_CAR_TAP(8u) CARBTF_CAR_TAP(9u) CARBTF_CAR_TAP(10u) CARBTF_CAR_TAP(11u)
   CARBTF_CAR_TAP(12u) CARBTF_CAR_TAP(13u) CARBTF_CAR_TAP(14u) CARBTF_CAR_TAP(15u)
-  float e = carbtf_gaussian(params.seed_lo, params.seed_hi, field.field_id, field.row0 + r, field.col0 + c);
   precise float value = carbtf_car_value(acc, field.sigma, e);
   arena[base] = value;
 }

@@ -19,10 +19,16 @@ using uint = std::uint32_t;
 #endif
 
 // ---- Gaussian noise (docs/design.md 4.4) -------------------------------------------------------------
-// N(0,1) at (seed, field id, row, col): Philox4x32-10 of counter (col, row, field, 0) under key
-// (seed low, seed high) gives two 32-bit words; their top 24 bits make u1 in [2^-24, 1] and u2 in
-// [0, 1); Box-Muller z = sqrt(-2 ln u1) cos(2 pi u2). ln, cos and sqrt are built from correctly
-// rounded +, -, * only (Vulkan guarantees nothing more), so float32 results agree bit for bit.
+// N(0,1) at (seed, field id, row, col). Four columns share one counter call: Philox4x32-10 of counter
+// (col >> 2, row, field, 0) under key (seed low, seed high) gives four 32-bit words w0..w3, and their top
+// 24 bits make two Box-Muller pairs: u1 = (w0 >> 8) + 1, u2 = w1 >> 8, u3 = (w2 >> 8) + 1, u4 = w3 >> 8
+// (times 2^-24). Column col & 3 takes, in order, sqrt(-2 ln u1) cos(2 pi u2), sqrt(-2 ln u1) sin(2 pi u2),
+// then the same of (u3, u4); sin(2 pi u) is cos(2 pi (u - 1/4)), the shift done on the 24-bit integer so
+// that it is exact. ln, cos and sqrt are built from correctly rounded +, -, * only (Vulkan guarantees
+// nothing more), so float32 results agree bit for bit.
+// The counter quads a row of `cols` columns from column col0 touches: one invocation each where a
+// dispatch fills noise.
+CARBTF_FUNCTION uint carbtf_noise_quads(uint col0, uint cols) { return ((col0 & 3u) + cols + 3u) >> 2u; }
 CARBTF_CONST_UINT(CARBTF_PHILOX_M0, 0xD2511F53u)
 CARBTF_CONST_UINT(CARBTF_PHILOX_M1, 0xCD9E8D57u)
 CARBTF_CONST_UINT(CARBTF_PHILOX_W0, 0x9E3779B9u)

@@ -110,15 +110,40 @@ CARBTF_FUNCTION float carbtf_sqrt(float v) {
   return result;
 }
 
-// N(0,1) at (seed, field id, row, col); rows and columns are taken modulo 2^32.
-CARBTF_FUNCTION float carbtf_gaussian(uint seed_lo, uint seed_hi, uint field_id, uint row, uint col) {
-  uint c0 = col, c1 = row, c2 = field_id, c3 = 0u;
+// sqrt(-2 ln u) cos(2 pi v) and sqrt(-2 ln u) sin(2 pi v) of the words' top 24 bits:
+// u = ((u_word >> 8) + 1) 2^-24 in [2^-24, 1], v = (v_word >> 8) 2^-24 in [0, 1).
+CARBTF_FUNCTION void carbtf_box_muller(uint u_word, uint v_word, CARBTF_OUT(float) cos_sample,
+                                       CARBTF_OUT(float) sin_sample) {
+  CARBTF_PRECISE float u = float((u_word >> 8u) + 1u) * CARBTF_TWO_POW_MINUS_24;
+  uint v = v_word >> 8u;
+  CARBTF_PRECISE float radius = carbtf_sqrt(-2.0f * carbtf_log(u));
+  CARBTF_PRECISE float c = radius * carbtf_cos2pi(float(v) * CARBTF_TWO_POW_MINUS_24);
+  CARBTF_PRECISE float s = radius * carbtf_cos2pi(float((v + 0xC00000u) & 0xFFFFFFu) * CARBTF_TWO_POW_MINUS_24);
+  cos_sample = c;
+  sin_sample = s;
+}
+
+// The four N(0,1) samples of columns 4 quad .. 4 quad + 3 of (seed, field id, row), from one Philox call.
+CARBTF_FUNCTION void carbtf_gaussian4(uint seed_lo, uint seed_hi, uint field_id, uint row, uint quad,
+                                      CARBTF_OUT(float) g0, CARBTF_OUT(float) g1, CARBTF_OUT(float) g2,
+                                      CARBTF_OUT(float) g3) {
+  uint c0 = quad, c1 = row, c2 = field_id, c3 = 0u;
   carbtf_philox4x32_10(c0, c1, c2, c3, seed_lo, seed_hi);
-  CARBTF_PRECISE float u1 = float((c0 >> 8u) + 1u) * CARBTF_TWO_POW_MINUS_24;
-  CARBTF_PRECISE float u2 = float(c1 >> 8u) * CARBTF_TWO_POW_MINUS_24;
-  CARBTF_PRECISE float radius = carbtf_sqrt(-2.0f * carbtf_log(u1));
-  CARBTF_PRECISE float result = radius * carbtf_cos2pi(u2);
-  return result;
+  carbtf_box_muller(c0, c1, g0, g1);
+  carbtf_box_muller(c2, c3, g2, g3);
+}
+
+// Sample `index` (0 .. 3) of four; a switch rather than an array, which GLSL and C++ write differently.
+CARBTF_FUNCTION float carbtf_pick4(float g0, float g1, float g2, float g3, uint index) {
+  return index == 0u ? g0 : index == 1u ? g1 : index == 2u ? g2 : g3;
+}
+
+// N(0,1) at (seed, field id, row, col); rows and columns are taken modulo 2^32. One Philox call for one
+// sample: loops over a row use carbtf_gaussian4 and all four.
+CARBTF_FUNCTION float carbtf_gaussian(uint seed_lo, uint seed_hi, uint field_id, uint row, uint col) {
+  float g0 = 0.0f, g1 = 0.0f, g2 = 0.0f, g3 = 0.0f;
+  carbtf_gaussian4(seed_lo, seed_hi, field_id, row, col >> 2u, g0, g1, g2, g3);
+  return carbtf_pick4(g0, g1, g2, g3, col & 3u);
 }
 
 #ifdef __cplusplus

@@ -80,7 +80,8 @@ Status NoiseGenerator::record(VkCommandBuffer command_buffer, const NoiseBlock& 
     const auto output =
         detail::BindingResource::of(destination, bound_offset, (chunk_offset - bound_offset) + rows * row_bytes);
     pipeline_->compute.bind(*context_, command_buffer, &output, &params, sizeof(params));
-    context_->vk().vkCmdDispatch(command_buffer, (block.width + gpu::CARBTF_NOISE_GROUP_X - 1) / gpu::CARBTF_NOISE_GROUP_X,
+    const std::uint32_t quads = gpu::carbtf_noise_quads(params.col0, block.width);
+    context_->vk().vkCmdDispatch(command_buffer, (quads + gpu::CARBTF_NOISE_GROUP_X - 1) / gpu::CARBTF_NOISE_GROUP_X,
                                  (rows + gpu::CARBTF_NOISE_GROUP_Y - 1) / gpu::CARBTF_NOISE_GROUP_Y, 1);
   }
   return {};

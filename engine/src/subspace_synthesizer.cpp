@@ -406,9 +406,9 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
                     VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                     VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
 
-    // Frames (and noise for a capture). Without block initialization values no field reads a frame
-    // (frame_offset is CARBTF_NO_FRAME), and the binding only needs a valid buffer: the field table stands
-    // in.
+    // Frames, then the noise where the recursion reads it from memory (the wavefront scheme) or a
+    // capture compares it. Without block initialization values no field reads a frame (frame_offset is
+    // CARBTF_NO_FRAME), and the binding only needs a valid buffer: the field table stands in.
     {
       const detail::BindingResource frames =
           p.frames.handle() != VK_NULL_HANDLE
@@ -416,26 +416,32 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
               : detail::BindingResource::of(tables, t.fields, field_bytes);
       const detail::BindingResource resources[3] = {
           detail::BindingResource::of(tables, t.fields, field_bytes), arena, frames};
-      // The frames only, as rows of one workgroup width (lavapipe pays per workgroup, so no more of
-      // them than the cells need); the whole padded fields with their noise when the noise is captured.
+      // The frames as rows of one workgroup width (lavapipe pays per workgroup, so no more of them than
+      // the cells need).
       constexpr std::uint32_t kFrameCellsPerRow = gpu::CARBTF_SYNTH_GROUP_X;
-      const bool with_noise = p.capture_stage == SynthesisStage::noise;
-      params.flags = with_noise ? gpu::CARBTF_PREPARE_NOISE : 0u;
+      params.flags = 0u;
       params.max_cols = kFrameCellsPerRow;
       for (const detail::LevelGroup& group : batch.levels) {
         params.begin = group.first;
         params.item_count = group.first + group.count;
         pipelines.prepare.bind(*context_, command_buffer, resources, &params, sizeof(params));
-        if (with_noise) {
-          vk.vkCmdDispatch(command_buffer, ceil_div(group.max_pitch, gpu::CARBTF_SYNTH_GROUP_X),
-                           ceil_div(group.max_padded_rows, gpu::CARBTF_SYNTH_GROUP_Y), group.count);
-        } else {
-          vk.vkCmdDispatch(
-              command_buffer, kFrameCellsPerRow / gpu::CARBTF_SYNTH_GROUP_X,
-              ceil_div(ceil_div(group.max_frame_cells, kFrameCellsPerRow), gpu::CARBTF_SYNTH_GROUP_Y),
-              group.count);
-        }
+        vk.vkCmdDispatch(command_buffer, kFrameCellsPerRow / gpu::CARBTF_SYNTH_GROUP_X,
+                         ceil_div(ceil_div(group.max_frame_cells, kFrameCellsPerRow), gpu::CARBTF_SYNTH_GROUP_Y),
+                         group.count);
         ++p.dispatches;
+      }
+      if (p.scheme == CarScheme::wavefront || p.capture_stage == SynthesisStage::noise) {
+        shader_to_shader(vk, command_buffer);
+        params.flags = gpu::CARBTF_PREPARE_NOISE;
+        for (const detail::LevelGroup& group : batch.levels) {
+          params.begin = group.first;
+          params.item_count = group.first + group.count;
+          pipelines.prepare.bind(*context_, command_buffer, resources, &params, sizeof(params));
+          // A row of `cols` columns touches at most ceil(pitch / 4) + 1 counter quads (cols <= pitch - 2).
+          vk.vkCmdDispatch(command_buffer, ceil_div(ceil_div(group.max_pitch, 4u) + 1u, gpu::CARBTF_SYNTH_GROUP_X),
+                           ceil_div(group.max_padded_rows, gpu::CARBTF_SYNTH_GROUP_Y), group.count);
+          ++p.dispatches;
+        }
       }
       params.begin = 0;
       params.flags = 0;
@@ -454,7 +460,7 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
       std::uint64_t total = 0;
       std::uint64_t chunk = 0;
       if (serial) {
-        total = batch.max_region_pixels;
+        total = batch.max_region_quads;
         chunk = loop_cap;
       } else {
         // Each step loops over at most ceil(rows / group) rows, plus the step loop itself.

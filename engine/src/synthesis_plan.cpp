@@ -100,8 +100,8 @@ void finish_batch(const Material& material, std::vector<Stack>& stacks, const Sy
       group.max_window_cols = std::max(group.max_window_cols, static_cast<std::uint32_t>(field.window.cols));
       group.max_frame_cells = std::max(group.max_frame_cells,
                                        field.gpu.pad * field.gpu.pitch + field.gpu.rows * 2 * field.gpu.pad);
-      batch.max_region_pixels =
-          std::max(batch.max_region_pixels, std::uint64_t{field.gpu.rows} * field.gpu.cols);
+      batch.max_region_quads = std::max(
+          batch.max_region_quads, std::uint64_t{field.gpu.rows} * gpu::carbtf_noise_quads(field.gpu.col0, field.gpu.cols));
       batch.max_region_rows = std::max(batch.max_region_rows, field.gpu.rows);
       batch.max_steps = std::max(batch.max_steps, field.steps());
       field_index[s].push_back(batch.fields.size());

@@ -44,7 +44,7 @@ struct PlannedBatch {
   std::vector<std::vector<gpu::CollapseItemGpu>> collapse;  // [level]: the items collapsing that level
   std::vector<gpu::ColourItemGpu> colour;
   std::uint64_t window_floats = 0;
-  std::uint64_t max_region_pixels = 0;
+  std::uint64_t max_region_quads = 0;  // serial CAR iterations: rows x counter quads per row
   std::uint32_t max_region_rows = 0;
   std::uint32_t max_steps = 0;
 };

@@ -57,21 +57,50 @@ TEST_CASE("division-free cos(2 pi t) and sqrt are accurate to a few float ulps",
   CHECK(reference::noise_sqrt(0.0f) == 0.0f);
 }
 
-TEST_CASE("each noise sample equals double-precision Box-Muller of the same Philox words", "[noise]") {
+TEST_CASE("each noise sample equals double-precision Box-Muller of its quad's Philox words", "[noise]") {
   double worst = 0;
   for (std::int32_t row = -40; row < 40; ++row) {
     for (std::int32_t col = -40; col < 40; ++col) {
       const std::uint64_t seed = 0x0123456789abcdefull;
+      const auto column = static_cast<std::uint32_t>(col);
       const auto words = reference::philox4x32_10(
-          {static_cast<std::uint32_t>(col), static_cast<std::uint32_t>(row), 3u, 0u},
+          {column >> 2, static_cast<std::uint32_t>(row), 3u, 0u},
           {static_cast<std::uint32_t>(seed), static_cast<std::uint32_t>(seed >> 32)});
-      const double u1 = ((words[0] >> 8) + 1.0) * 0x1p-24, u2 = (words[1] >> 8) * 0x1p-24;
-      const double exact = std::sqrt(-2 * std::log(u1)) * std::cos(2 * std::numbers::pi * u2);
+      // Columns 4q, 4q + 1 share the pair (w0, w1); 4q + 2, 4q + 3 share (w2, w3).
+      const std::uint32_t pair = (column & 3u) / 2u;
+      const double u = ((words[2 * pair] >> 8) + 1.0) * 0x1p-24, v = (words[2 * pair + 1] >> 8) * 0x1p-24;
+      const double angle = 2 * std::numbers::pi * v;
+      const double exact = std::sqrt(-2 * std::log(u)) * ((column & 1u) == 0 ? std::cos(angle) : std::sin(angle));
       worst = std::max(worst, std::abs(reference::gaussian_noise(seed, 3, row, col) - exact));
     }
   }
   INFO("worst abs error " << worst);
   CHECK(worst < 16 * kEps);  // |z| <= 5.8: a few ulps of the largest sample
+}
+
+TEST_CASE("the four samples of one counter call are independent of each other", "[noise]") {
+  // Box-Muller's cosine and sine of one radius are independent normals; a slip that reused a word or an
+  // angle would correlate the samples or their magnitudes.
+  const std::uint32_t quads = 1 << 18;
+  std::vector<float> row(4 * std::size_t{quads});
+  reference::fill_noise_block(21, 4, 3, 0, 4 * quads, 1, row);
+  auto correlation = [&](std::uint32_t a, std::uint32_t b, auto transform) {
+    double sa = 0, sb = 0, sab = 0, saa = 0, sbb = 0;
+    for (std::uint32_t q = 0; q < quads; ++q) {
+      const double x = transform(row[4 * q + a]), y = transform(row[4 * q + b]);
+      sa += x, sb += y, sab += x * y, saa += x * x, sbb += y * y;
+    }
+    const double n = quads;
+    return (sab / n - sa / n * sb / n) / std::sqrt((saa / n - sa / n * sa / n) * (sbb / n - sb / n * sb / n));
+  };
+  const double bound = 5.0 / std::sqrt(static_cast<double>(quads));
+  for (std::uint32_t a = 0; a < 4; ++a) {
+    for (std::uint32_t b = a + 1; b < 4; ++b) {
+      INFO("components " << a << " and " << b);
+      CHECK(std::abs(correlation(a, b, [](double x) { return x; })) < bound);
+      CHECK(std::abs(correlation(a, b, [](double x) { return std::abs(x); })) < bound);
+    }
+  }
 }
 
 namespace {
@@ -135,6 +164,10 @@ TEST_CASE("a noise block equals the same region of a larger field, on any thread
       INFO("row " << r << ", col " << c);
       REQUIRE(std::bit_cast<std::uint32_t>(block[r * 40 + c]) ==
               std::bit_cast<std::uint32_t>(whole[(r + 17) * n + c + 9]));
+      // The row cursor's four-at-a-time draws are the per-sample function's.
+      REQUIRE(std::bit_cast<std::uint32_t>(block[r * 40 + c]) ==
+              std::bit_cast<std::uint32_t>(reference::gaussian_noise(5, 2, -30 + 17 + static_cast<std::int32_t>(r),
+                                                                     -50 + 9 + static_cast<std::int32_t>(c))));
     }
   }
 }

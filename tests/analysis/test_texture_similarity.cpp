@@ -92,7 +92,11 @@ TEST_CASE("texture similarity ranks crop < phase-randomised < blurred, hue-shift
   const TextureStatistics reference = texture_statistics(a.rgb, w, h);
   auto d = [&](const RgbField& x) { return texture_distance(texture_statistics(x.rgb, x.width, x.height), reference).total; };
   const double same = d(b);
-  const double gaussian = d(phase_randomised(b, 3));
+  // The phase-randomised reference is a random texture: one draw of its phases scatters by about 0.1 on
+  // the weave (fabric at 75 degrees: 0.87 to 1.09 over seeds 1 to 10), so the ranking is of its mean
+  // over five draws.
+  double gaussian = 0.0;
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) gaussian += d(phase_randomised(b, seed)) / 5.0;
   const double blur = d(blurred(b, 1.0));
   const double hue = d(hue_shifted(b, 60.0));
   const double turned = d(crop(rotated(image), 0, w, w, h));

@@ -56,12 +56,12 @@ PaddedField<Real> run_recursion(const CarBandModel& band, const CarFieldBlock& b
   const Real sigma = static_cast<Real>(band.sigma);
   for (std::int64_t r = 0; r < f.car.rows; ++r) {
     Real* row = f.values.data() + (r + f.pad) * f.pitch + f.pad;
+    NoiseRowCursor noise(block.seed, block.field_id, static_cast<std::int32_t>(f.car.row0 + r),
+                         static_cast<std::int32_t>(f.car.col0));
     for (std::int64_t c = 0; c < f.car.cols; ++c) {
       Real acc{0};
       for (std::size_t k = 0; k < gammas; ++k) acc = gpu::carbtf_weighted_add(acc, gamma[k], row[c + tap[k]]);
-      const float e = gaussian_noise(block.seed, block.field_id, static_cast<std::int32_t>(f.car.row0 + r),
-                                     static_cast<std::int32_t>(f.car.col0 + c));
-      row[c] = gpu::carbtf_car_value(acc, sigma, static_cast<Real>(e));
+      row[c] = gpu::carbtf_car_value(acc, sigma, static_cast<Real>(noise.next()));
     }
   }
   return f;

@@ -21,6 +21,18 @@ float noise_sqrt(float v);     // sqrt(v), v >= 0
 // N(0,1) sample at (seed, field, row, col); row and col are taken modulo 2^32 (negative rows are fine).
 float gaussian_noise(std::uint64_t seed, std::uint32_t field_id, std::int32_t row, std::int32_t col);
 
+// The samples of one row of a field, left to right, at one Philox call per four columns (the calls the
+// GPU's serial CAR makes): next() returns the sample at col0, col0 + 1, ...
+class NoiseRowCursor {
+ public:
+  NoiseRowCursor(std::uint64_t seed, std::uint32_t field_id, std::int32_t row, std::int32_t col0);
+  float next();
+
+ private:
+  std::uint32_t seed_lo_, seed_hi_, field_id_, row_, col_;
+  float quad_[4] = {};
+};
+
 // Fills `out` (width * height floats, row-major) with the block whose top-left sample is (row0, col0),
 // on `threads` threads (0: all hardware threads).
 void fill_noise_block(std::uint64_t seed, std::uint32_t field_id, std::int32_t row0, std::int32_t col0,
