@@ -183,6 +183,15 @@ void SubspaceSynthesizer::release() noexcept { prepared_.reset(); }
 
 Status SubspaceSynthesizer::prepare(const Material& material, const SynthesisRequest& request) noexcept {
   try {
+    // The work buffer and the image of the last preparation serve again where they are large enough:
+    // fresh device memory costs its first touch on every run (lavapipe: about a fifth of a 20 x 512^2
+    // synthesis, in page faults), and a host that synthesizes again and again asks for the same sizes.
+    Buffer previous_arena;
+    Image previous_image;
+    if (prepared_) {
+      previous_arena = std::move(prepared_->arena);
+      previous_image = std::move(prepared_->image);
+    }
     prepared_.reset();
     const DeviceInfo& device = context_->device_info();
     const VkDeviceSize alignment = std::max<VkDeviceSize>(device.min_storage_buffer_offset_alignment, 16);
@@ -280,12 +289,18 @@ Status SubspaceSynthesizer::prepare(const Material& material, const SynthesisReq
                                 prepared->frames));
       std::memcpy(prepared->frames.mapped(), request.initial_values.data(), frame_bytes);
     }
-    CARBTF_TRY(Buffer::create(*context_,
-                              {plan.window_floats * sizeof(float),
-                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
-                                   VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                               MemoryUsage::device_local, "carbtf synthesis fields"},
-                              prepared->arena));
+    const VkDeviceSize arena_bytes = plan.window_floats * sizeof(float);
+    if (previous_arena.handle() != VK_NULL_HANDLE && previous_arena.size() >= arena_bytes) {
+      prepared->arena = std::move(previous_arena);
+    } else {
+      previous_arena = {};  // released before the new one is allocated
+      CARBTF_TRY(Buffer::create(*context_,
+                                {arena_bytes,
+                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                                     VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                 MemoryUsage::device_local, "carbtf synthesis fields"},
+                                prepared->arena));
+    }
     ImageCreateInfo image_info;
     image_info.width = plan.width;
     image_info.height = plan.height;
@@ -294,7 +309,14 @@ Status SubspaceSynthesizer::prepare(const Material& material, const SynthesisReq
     image_info.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
                        VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     image_info.debug_name = "carbtf subspace images";
-    CARBTF_TRY(Image::create(*context_, image_info, prepared->image));
+    const ImageCreateInfo& previous_info = previous_image.info();
+    if (previous_image.handle() != VK_NULL_HANDLE && previous_info.width == image_info.width &&
+        previous_info.height == image_info.height && previous_info.array_layers == image_info.array_layers) {
+      prepared->image = std::move(previous_image);
+    } else {
+      previous_image = {};
+      CARBTF_TRY(Image::create(*context_, image_info, prepared->image));
+    }
     if (device.timestamp_valid_bits > 0) {
       CARBTF_TRY(GpuTimer::create(*context_,
                                   1 + kTimestampsPerBatch * static_cast<std::uint32_t>(plan.batches.size()),

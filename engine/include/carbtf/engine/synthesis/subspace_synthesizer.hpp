@@ -37,7 +37,9 @@ class SubspaceSynthesizer {
   ~SubspaceSynthesizer();
 
   // Plans `request` for `material` and (re)allocates the output image, the work buffer and the item
-  // tables. Copies what it needs from `material`. Fails with invalid_argument for a request the
+  // tables. The previous preparation's work buffer serves again when it is large enough, and its image
+  // when the size and layer count match (image() then returns the same handle, its contents to be
+  // overwritten by the next record()). Copies what it needs from `material`. Fails with invalid_argument for a request the
   // material or the device cannot serve (unknown subspace, too many channels or neighbours, an image
   // beyond the device's limits), naming the cause.
   Status prepare(const Material& material, const SynthesisRequest& request) noexcept;
