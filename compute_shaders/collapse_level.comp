@@ -1,9 +1,10 @@
 #version 450
 // One level of the pyramid collapse, in place: G = (mean + y) + expand(G_coarse), or mean + y for the
 // coarsest level. The expand is the reference's separable one (rows first, then columns, taps
-// k = -2..2 in order, weights 2 w_k); each horizontal sum is recomputed where needed instead of being
-// stored, which gives the same values with no temporary field. Items [begin, item_count) of the table
-// (one level's bands) run in one dispatch, one item per z.
+// k = -2..2 in order, weights 2 w_k). One invocation per 2 x 2 block of fine pixels on even absolute
+// coordinates: the four read the same 3 x 3 coarse pixels, so each is loaded once instead of nine times
+// per pixel, and each horizontal sum is formed once for the block's two rows. Items [begin, item_count)
+// of the table (one level's bands) run in one dispatch, one item per z.
 #extension GL_GOOGLE_include_directive : require
 #include "carbtf_gpu_shared.h"
 #include "carbtf_steps.h"
@@ -14,55 +15,86 @@ layout(push_constant, std430) uniform Push { SynthPassParams params; };
 layout(std430, set = 0, binding = 0) readonly buffer Items { CollapseItemGpu items[]; };
 layout(std430, set = 0, binding = 1) buffer Arena { float arena[]; };
 
-// The taps of fine index i (absolute) in the reference's order k = -2..2 over the k with i - k even:
-// even i reads coarse h + 1, h, h - 1 with weights 2 w = 1/8, 3/4, 1/8; odd i reads h + 1, h with 1/2,
-// 1/2, and a third tap of weight 0 (adding +0 or -0 to a sum that starts from +0 changes no bit), so
-// neighbouring lanes of either parity run the same instructions.
-struct Taps {
-  ivec3 index;
-  vec3 weight;
-};
-
-Taps expand_taps(int i) {
-  int h = i >> 1;  // floor(i / 2), also for negative i
-  bool even = (i & 1) == 0;
-  Taps t;
-  t.index = ivec3(h + 1, h, even ? h - 1 : h);
-  t.weight = even ? vec3(0.125, 0.75, 0.125) : vec3(0.5, 0.5, 0.0);
-  return t;
+// Fine index 2h reads coarse h + 1, h, h - 1 with weights 2 w = 1/8, 3/4, 1/8; fine index 2h + 1 reads
+// h + 1, h with 1/2, 1/2, then h again with weight 0: the reference's order (k = -2..2 over the k with
+// i - k even), zero tap included, so that the sums are the same bits (adding 0 x can turn a -0 to +0).
+float expand_even(float next, float here, float previous) {
+  precise float sum = 0.0;
+  sum = carbtf_weighted_add(sum, 0.125, next);
+  sum = carbtf_weighted_add(sum, 0.75, here);
+  sum = carbtf_weighted_add(sum, 0.125, previous);
+  return sum;
 }
+float expand_odd(float next, float here) {
+  precise float sum = 0.0;
+  sum = carbtf_weighted_add(sum, 0.5, next);
+  sum = carbtf_weighted_add(sum, 0.5, here);
+  sum = carbtf_weighted_add(sum, 0.0, here);
+  return sum;
+}
+
+// Coarse value at (row h + dr, column h + dc) of the block, or 0 where the block's fine pixels never read
+// it (the h - 1 row or column when the even fine row or column lies outside the window, which may be
+// beyond the coarse window).
+#define CARBTF_COARSE(dr, dc, needed) \
+  ((needed) ? arena[coarse_offset + uint(coarse_r + dr) * pitch + uint(coarse_c + dc)] : 0.0)
 
 void main() {
   uint i = params.begin + gl_WorkGroupID.z;
   if (i >= params.item_count) return;
-  uint y = gl_GlobalInvocationID.y;
-  if (y >= items[i].rows) return;
-  uint cols = items[i].cols;
+  int row0 = int(items[i].row0);
+  int col0 = int(items[i].col0);
+  int rows = int(items[i].rows);
+  int cols = int(items[i].cols);
+  // Block (bx, by) covers absolute fine rows 2 hr, 2 hr + 1 and columns 2 hc, 2 hc + 1.
+  int hr = (row0 >> 1) + int(gl_GlobalInvocationID.y);
+  int hc = (col0 >> 1) + int(gl_GlobalInvocationID.x);
+  int y_even = 2 * hr - row0, x_even = 2 * hc - col0;  // window coordinates; the odd ones are + 1
+  if (y_even >= rows || x_even >= cols) return;
+  bool row_even_in = y_even >= 0, row_odd_in = y_even + 1 < rows;
+  bool col_even_in = x_even >= 0, col_odd_in = x_even + 1 < cols;
   uint fine_offset = items[i].fine_offset;
+  uint fine_pitch = items[i].fine_pitch;
+  float mean = items[i].mean;
   uint coarse_offset = items[i].coarse_offset;
-  uint pitch = items[i].coarse_pitch;
-  Taps rows = expand_taps(int(items[i].row0) + int(y));
-  ivec3 r = rows.index - int(items[i].coarse_row0);
-  // CARBTF_COLLAPSE_SPAN consecutive pixels per invocation: lavapipe pays per workgroup and per table read.
-  for (uint k = 0u; k < CARBTF_COLLAPSE_SPAN; ++k) {
-    uint x = gl_GlobalInvocationID.x * CARBTF_COLLAPSE_SPAN + k;
-    if (x >= cols) break;
-    uint index = fine_offset + y * items[i].fine_pitch + x;
-    precise float band = items[i].mean + arena[index];
-    if (coarse_offset != CARBTF_NO_FRAME) {
-      Taps taps = expand_taps(int(items[i].col0) + int(x));
-      ivec3 c = taps.index - int(items[i].coarse_col0);
-      precise float acc = 0.0;
-      for (int t = 0; t < 3; ++t) {
-        uint row_start = coarse_offset + uint(r[t]) * pitch;
-        precise float along_row = 0.0;
-        along_row = carbtf_weighted_add(along_row, taps.weight.x, arena[row_start + uint(c.x)]);
-        along_row = carbtf_weighted_add(along_row, taps.weight.y, arena[row_start + uint(c.y)]);
-        along_row = carbtf_weighted_add(along_row, taps.weight.z, arena[row_start + uint(c.z)]);
-        acc = carbtf_weighted_add(acc, rows.weight[t], along_row);
-      }
-      band = band + acc;
-    }
-    arena[index] = band;
+  float add_ee = 0.0, add_eo = 0.0, add_oe = 0.0, add_oo = 0.0;  // [fine row parity][fine column parity]
+  bool expands = coarse_offset != CARBTF_NO_FRAME;
+  if (expands) {
+    uint pitch = items[i].coarse_pitch;
+    int coarse_r = hr - int(items[i].coarse_row0);
+    int coarse_c = hc - int(items[i].coarse_col0);
+    // Horizontal sums of coarse rows h + 1, h, h - 1 for the even and the odd fine column.
+    float n1 = CARBTF_COARSE(1, 1, true), n0 = CARBTF_COARSE(1, 0, true), nm = CARBTF_COARSE(1, -1, col_even_in);
+    float h1 = CARBTF_COARSE(0, 1, true), h0 = CARBTF_COARSE(0, 0, true), hm = CARBTF_COARSE(0, -1, col_even_in);
+    float p1 = CARBTF_COARSE(-1, 1, row_even_in), p0 = CARBTF_COARSE(-1, 0, row_even_in),
+          pm = CARBTF_COARSE(-1, -1, row_even_in && col_even_in);
+    float next_e = expand_even(n1, n0, nm), here_e = expand_even(h1, h0, hm), prev_e = expand_even(p1, p0, pm);
+    float next_o = expand_odd(n1, n0), here_o = expand_odd(h1, h0), prev_o = expand_odd(p1, p0);
+    add_ee = expand_even(next_e, here_e, prev_e);
+    add_eo = expand_even(next_o, here_o, prev_o);
+    add_oe = expand_odd(next_e, here_e);
+    add_oo = expand_odd(next_o, here_o);
+  }
+  uint base = fine_offset + uint(y_even) * fine_pitch + uint(x_even);  // modulo 2^32 when y or x is -1
+  precise float band;
+  if (row_even_in && col_even_in) {
+    band = mean + arena[base];
+    if (expands) band = band + add_ee;
+    arena[base] = band;
+  }
+  if (row_even_in && col_odd_in) {
+    band = mean + arena[base + 1u];
+    if (expands) band = band + add_eo;
+    arena[base + 1u] = band;
+  }
+  if (row_odd_in && col_even_in) {
+    band = mean + arena[base + fine_pitch];
+    if (expands) band = band + add_oe;
+    arena[base + fine_pitch] = band;
+  }
+  if (row_odd_in && col_odd_in) {
+    band = mean + arena[base + fine_pitch + 1u];
+    if (expands) band = band + add_oo;
+    arena[base + fine_pitch + 1u] = band;
   }
 }

@@ -514,10 +514,10 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
           arena};
       params.item_count = static_cast<std::uint32_t>(items.size());
       pipelines.collapse.bind(*context_, command_buffer, resources, &params, sizeof(params));
+      // One invocation per 2 x 2 block on even absolute coordinates: n pixels span at most n / 2 + 1.
       vk.vkCmdDispatch(command_buffer,
-                       ceil_div(batch.levels[level].max_window_cols,
-                                gpu::CARBTF_SYNTH_GROUP_X * gpu::CARBTF_COLLAPSE_SPAN),
-                       ceil_div(batch.levels[level].max_window_rows, gpu::CARBTF_SYNTH_GROUP_Y),
+                       ceil_div(batch.levels[level].max_window_cols / 2 + 1, gpu::CARBTF_SYNTH_GROUP_X),
+                       ceil_div(batch.levels[level].max_window_rows / 2 + 1, gpu::CARBTF_SYNTH_GROUP_Y),
                        params.item_count);
       ++p.dispatches;
     }
