@@ -1,7 +1,10 @@
 #include "carbtf/engine/internal/synthesis_layout.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
+
+#include "carbtf/engine/material/car_stability.hpp"
 
 namespace carbtf {
 
@@ -9,6 +12,25 @@ TextureRegion coarse_support(const TextureRegion& fine) {
   const std::int64_t r0 = floor_half(fine.row0 - 1), r1 = floor_half(fine.row0 + fine.rows + 1) + 1;
   const std::int64_t c0 = floor_half(fine.col0 - 1), c1 = floor_half(fine.col0 + fine.cols + 1) + 1;
   return {r0, c0, r1 - r0, c1 - c0};
+}
+
+std::uint32_t band_burn_in(const CarBandModel& band, std::uint32_t limit) {
+  if (band.neighbourhood.empty() || limit == 0) return 0;
+  // rho^m <= residual exactly when every root lies within residual^(1 / m); the smallest such m by
+  // bisection over [1, limit]. 64 column frequencies: the margin is a bound on a transient, not a
+  // stability verdict, and a plan asks this of every band.
+  constexpr int kFrequencies = 64;
+  const std::vector<double> gamma(band.gamma.begin(), band.gamma.end());
+  const auto enough = [&](std::uint32_t m) {
+    return car_roots_within(band.neighbourhood, gamma, std::pow(kBurnInResidual, 1.0 / m), kFrequencies);
+  };
+  if (!enough(limit)) return limit;
+  std::uint32_t low = 0, high = limit;  // enough(high); not enough(low) or low == 0
+  while (high - low > 1) {
+    const std::uint32_t middle = low + (high - low) / 2;
+    (enough(middle) ? high : low) = middle;
+  }
+  return high;
 }
 
 std::vector<TextureRegion> level_regions(const TextureRegion& block, std::uint32_t levels) {
@@ -72,8 +94,9 @@ BlockFrameLayout block_frame_layout(const Material& material, const SynthesisBlo
         field.subspace = s;
         field.level = level;
         field.channel = channel;
-        field.car = car_region(regions[level], block.margin);
-        field.pad = car_frame_pad(model.bands[std::size_t{level} * model.channels + channel].neighbourhood);
+        const CarBandModel& band = model.bands[std::size_t{level} * model.channels + channel];
+        field.car = car_region(regions[level], band_burn_in(band, block.margin));
+        field.pad = car_frame_pad(band.neighbourhood);
         field.offset = layout.floats;
         layout.floats += car_frame_floats(field.car, field.pad);
         layout.fields.push_back(field);

@@ -56,7 +56,7 @@ Status make_stack(const Material& material, std::uint32_t subspace, std::uint32_
     field.channel = channel;
     field.window = regions[level];
     gpu::CarFieldGpu& g = field.gpu;
-    const TextureRegion car = car_region(field.window, margin);
+    const TextureRegion car = car_region(field.window, band_burn_in(band, margin));
     g.pad = car_frame_pad(band.neighbourhood);
     g.rows = static_cast<std::uint32_t>(car.rows);
     g.cols = static_cast<std::uint32_t>(car.cols);

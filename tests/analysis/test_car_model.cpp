@@ -8,6 +8,7 @@
 #include "carbtf/analysis/model/car_fit.hpp"
 #include "carbtf/reference/car_synthesis.hpp"
 #include "carbtf/reference/noise.hpp"
+#include "carbtf/engine/internal/synthesis_layout.hpp"
 
 namespace carbtf {
 namespace {
@@ -204,6 +205,76 @@ TEST_CASE("stiff and extreme bands give bounded models, and repairs are reported
     REQUIRE(hdr.maxCoeff() / hdr.minCoeff() > 1e5);
     require_bounded(fit_car_band(hdr), "HDR");
   }
+}
+
+}  // namespace carbtf
+
+namespace carbtf {
+
+TEST_CASE("each band's burn-in is the fewest rows its slowest root needs to fade to a thousandth, capped",
+          "[car][burn_in]") {
+  // Separable (1 - a z1)(1 - b z2): roots a and b, so rho = max(|a|, |b|).
+  const std::vector<CarNeighbour> separable{{0, -1}, {-1, 0}, {-1, -1}};
+  auto band_of = [&](float a, float b) {
+    CarBandModel band;
+    band.neighbourhood = separable;
+    band.gamma = {a, b, -a * b};
+    band.sigma = 1.0f;
+    return band;
+  };
+  for (const double rho : {0.3, 0.5, 0.8, 0.9}) {
+    const CarBandModel band = band_of(static_cast<float>(rho), 0.2f);
+    const std::uint32_t m = band_burn_in(band, 1000);
+    INFO("rho " << rho << ": burn-in " << m);
+    // rho^m <= 1e-3 < rho^(m - 1), up to the float rounding of gamma and the 64 sampled frequencies.
+    CHECK(std::pow(rho, m) <= kBurnInResidual * 1.01);
+    CHECK(std::pow(rho, m - 1.0) > kBurnInResidual * 0.99);
+    CHECK(band_burn_in(band, m / 2) == m / 2);  // the request's margin caps it
+  }
+  CHECK(band_burn_in(band_of(0.5f, 0.2f), 1000) == 10);
+  CHECK(band_burn_in(band_of(0.995f, 0.2f), 64) == 64);
+  CHECK(band_burn_in(CarBandModel{}, 64) == 0);  // white noise needs none
+  CHECK(band_burn_in(band_of(0.5f, 0.2f), 0) == 0);
+}
+
+TEST_CASE("a band started its own burn-in away differs from one started far away by under 1e-3 of its std",
+          "[car][burn_in]") {
+  // The premise of the rule: the zero start's trace in the region is below the residual. Compared with
+  // the same block burnt in over 400 rows (a trace of 0.9^400: none), on a band with a within-row,
+  // a vertical and two diagonal taps.
+  CarBandModel band;
+  band.neighbourhood = {{0, -1}, {-1, 0}, {-1, -1}, {-1, 1}};
+  band.gamma = {0.55f, 0.45f, -0.2f, 0.1f};
+  band.sigma = 1.0f;
+  const std::uint32_t m = band_burn_in(band, 1000);
+  REQUIRE(m > 4);
+  REQUIRE(m < 400);
+  reference::CarFieldBlock block;
+  block.seed = 9;
+  block.field_id = 3;
+  block.width = 96;
+  block.height = 64;
+  std::vector<double> own(std::size_t{block.width} * block.height), far(own.size());
+  block.margin = m;
+  reference::synthesize_car_block(band, block, std::span<double>(own));
+  block.margin = 400;
+  reference::synthesize_car_block(band, block, std::span<double>(far));
+  double sum = 0, squares = 0, worst = 0;
+  for (std::size_t i = 0; i < far.size(); ++i) {
+    sum += far[i];
+    squares += far[i] * far[i];
+    worst = std::max(worst, std::abs(own[i] - far[i]));
+  }
+  const double n = static_cast<double>(far.size());
+  const double std_dev = std::sqrt(squares / n - (sum / n) * (sum / n));
+  INFO("burn-in " << m << ", worst difference " << worst << ", band std " << std_dev);
+  CHECK(worst < kBurnInResidual * std_dev);
+  // ... and a margin a quarter as long leaves a visible trace: the test can fail.
+  block.margin = m / 4;
+  reference::synthesize_car_block(band, block, std::span<double>(own));
+  double short_worst = 0;
+  for (std::size_t i = 0; i < far.size(); ++i) short_worst = std::max(short_worst, std::abs(own[i] - far[i]));
+  CHECK(short_worst > 10 * kBurnInResidual * std_dev);
 }
 
 }  // namespace carbtf

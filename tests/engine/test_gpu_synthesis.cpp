@@ -118,7 +118,7 @@ TEST_CASE("blocks at negative and odd offsets, split dispatches and small batche
     // About 40 dispatches per recursion, and one band stack per batch: the colour sums of an image
     // continue across batches.
     synthesizer->set_max_loop_iterations(97);
-    synthesizer->set_max_batch_bytes(64 * 1024);
+    synthesizer->set_max_batch_bytes(40 * 1024);
     SynthesizedImages split = gpu_synthesize(*synthesizer, m, request);
     CHECK(synthesizer->batch_count() == 6);
     test::require_bitwise_equal(split.images[2], expected2);

@@ -103,7 +103,7 @@ void synthesize(const Material& material, std::uint32_t subspace, const Subspace
       field.col0 = static_cast<std::int32_t>(region.col0);
       field.width = static_cast<std::uint32_t>(region.cols);
       field.height = static_cast<std::uint32_t>(region.rows);
-      field.margin = block.margin;
+      field.margin = band_burn_in(model.bands[std::size_t{level} * model.channels + channel], block.margin);
       if (!initial_values.empty()) {
         const BlockFrameField& frame = frames.fields[std::size_t{level} * model.channels + channel];
         field.frame = initial_values.subspan(frame.offset, car_frame_floats(frame.car, frame.pad));
@@ -249,9 +249,9 @@ std::vector<std::vector<float>> block_initial_values(const Material& material,
     field.col0 = static_cast<std::int32_t>(level.col0);
     field.width = static_cast<std::uint32_t>(level.cols);
     field.height = static_cast<std::uint32_t>(level.rows);
-    field.margin = whole.margin;
-    const CarFieldValues source =
-        synthesize_car_field(model.bands[std::size_t{band.level} * model.channels + band.channel], field);
+    const CarBandModel& band_model = model.bands[std::size_t{band.level} * model.channels + band.channel];
+    field.margin = band_burn_in(band_model, whole.margin);
+    const CarFieldValues source = synthesize_car_field(band_model, field);
     for (std::size_t b = 0; b < blocks.size(); ++b) {
       const BlockFrameField& target = layouts[b].fields[i];
       const std::size_t count = car_frame_floats(target.car, target.pad);

@@ -23,8 +23,10 @@ struct TextureRegion {
 };
 
 // What a synthesis computes, on the CPU and the GPU alike: rows [row0, row0 + height) and columns
-// [col0, col0 + width) of the unbounded texture of `seed`, each level's CAR recursion started `margin`
-// rows above and columns each side of its region (burn-in) from zeros.
+// [col0, col0 + width) of the unbounded texture of `seed`, each band's CAR recursion started from zeros
+// some rows above and columns each side of its level region (burn-in): as many as the band's stability
+// needs for its zero start to fade below a thousandth of a standard deviation, at most `margin`
+// (docs/design.md 4.4).
 //
 // With periodic_overlap p > 0 the output is periodic instead (docs/design.md 4.4): the synthesis covers
 // (width + p) x (height + p) texels from (row0, col0), and the colour step folds the last p columns and
@@ -37,7 +39,7 @@ struct SynthesisBlock {
   std::int32_t col0 = 0;
   std::uint32_t width = 512;
   std::uint32_t height = 512;
-  std::uint32_t margin = 64;
+  std::uint32_t margin = 64;  // the most burn-in any band gets
   std::uint32_t periodic_overlap = 0;
 };
 

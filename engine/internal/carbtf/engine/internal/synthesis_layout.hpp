@@ -40,6 +40,15 @@ std::vector<TextureRegion> level_regions(const TextureRegion& block, std::uint32
 // stored with.
 std::uint32_t car_frame_pad(std::span<const CarNeighbour> neighbourhood);
 
+// The burn-in a band's recursion needs, capped at `limit` (the request's margin): the fewest rows and
+// columns m with rho^m <= kBurnInResidual, rho the largest characteristic root modulus of the recursion
+// (car_stability.hpp). Started from zeros m rows and columns before the level region, the recursion's
+// start then leaves less than that share of a standard deviation in the region (docs/design.md 4.4).
+// 0 for a band without neighbours. The GPU plan and the CPU reference both take each band's margin from
+// here, so that their regions, and block-wise frames, agree.
+inline constexpr double kBurnInResidual = 1e-3;
+std::uint32_t band_burn_in(const CarBandModel& band, std::uint32_t limit);
+
 // The region a band's recursion runs over: its level region extended by the burn-in margin above and on
 // both sides.
 TextureRegion car_region(const TextureRegion& level_region, std::uint32_t margin);
