@@ -169,7 +169,7 @@ void register_synth_command(CLI::App& app) {
   command->add_option("--seed", options->seed, "Seed (64-bit): same seed, same images, on the CPU and the GPU")
       ->check(non_negative())
       ->capture_default_str();
-  command->add_option("--margin", options->margin, "CAR burn-in rows and columns per pyramid level")
+  command->add_option("--margin", options->margin, "The most CAR burn-in rows and columns a band gets (each takes what its stability needs, docs/design.md 4.4)")
       ->check(CLI::Range(0u, 4096u))
       ->capture_default_str();
   command->add_option("--subspaces", options->subspaces,
