@@ -52,7 +52,7 @@ void main() {
   // Noise: invocation x covers the four columns of counter quad (col0 >> 2) + x, y one region row.
   uint r = gl_GlobalInvocationID.y;
   if (r >= rows || gl_GlobalInvocationID.x >= carbtf_noise_quads(fields[f].col0, cols)) return;
-  uint quad = ((fields[f].col0 >> 2u) + gl_GlobalInvocationID.x) & 0x3FFFFFFFu;
+  uint quad = carbtf_noise_quad(fields[f].col0, gl_GlobalInvocationID.x);
   uint first = (quad << 2u) - fields[f].col0;  // the quad's first column in the region, modulo 2^32
   float g0, g1, g2, g3;
   carbtf_gaussian4(params.seed_lo, params.seed_hi, fields[f].field_id, fields[f].row0 + r, quad, g0, g1, g2, g3);

@@ -34,7 +34,7 @@ void main() {
   uint r = params.begin / quads;
   uint q = params.begin % quads;
   for (uint i = params.begin; i < end; ++i) {
-    uint quad = ((field.col0 >> 2u) + q) & 0x3FFFFFFFu;
+    uint quad = carbtf_noise_quad(field.col0, q);
     uint first = (quad << 2u) - field.col0;  // the quad's first column in the region, modulo 2^32
     uint row_base = field.offset + (r + field.pad) * field.pitch + field.pad;
     float g0, g1, g2, g3;

@@ -18,7 +18,7 @@ layout(std430, set = 0, binding = CARBTF_NOISE_BINDING_OUTPUT) writeonly buffer 
 void main() {
   uvec2 id = gl_GlobalInvocationID.xy;
   if (id.y >= params.height || id.x >= carbtf_noise_quads(params.col0, params.width)) return;
-  uint quad = ((params.col0 >> 2u) + id.x) & 0x3FFFFFFFu;
+  uint quad = carbtf_noise_quad(params.col0, id.x);
   uint first = (quad << 2u) - params.col0;  // the quad's first column in the block, modulo 2^32
   float g0, g1, g2, g3;
   carbtf_gaussian4(params.seed_lo, params.seed_hi, params.field_id, params.row0 + id.y, quad, g0, g1, g2, g3);

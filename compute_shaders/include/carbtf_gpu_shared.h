@@ -29,6 +29,9 @@ using uint = std::uint32_t;
 // The counter quads a row of `cols` columns from column col0 touches: one invocation each where a
 // dispatch fills noise.
 CARBTF_FUNCTION uint carbtf_noise_quads(uint col0, uint cols) { return ((col0 & 3u) + cols + 3u) >> 2u; }
+// The counter quad that is the j-th a row from column col0 touches (quads taken modulo 2^30, as columns
+// are modulo 2^32); its column 0 lies at (quad << 2) - col0 of the row, modulo 2^32.
+CARBTF_FUNCTION uint carbtf_noise_quad(uint col0, uint j) { return ((col0 >> 2u) + j) & 0x3FFFFFFFu; }
 CARBTF_CONST_UINT(CARBTF_PHILOX_M0, 0xD2511F53u)
 CARBTF_CONST_UINT(CARBTF_PHILOX_M1, 0xCD9E8D57u)
 CARBTF_CONST_UINT(CARBTF_PHILOX_W0, 0x9E3779B9u)
