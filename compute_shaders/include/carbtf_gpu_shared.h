@@ -94,7 +94,8 @@ CARBTF_CONST_UINT(CARBTF_CAR_MAX_NEIGHBOURS, 16u)
 CARBTF_CONST_UINT(CARBTF_SYNTH_MAX_CHANNELS, 4u)
 CARBTF_CONST_UINT(CARBTF_SYNTH_GROUP_X, 16u)
 CARBTF_CONST_UINT(CARBTF_SYNTH_GROUP_Y, 16u)
-CARBTF_CONST_UINT(CARBTF_COLOUR_SPAN, 4u)          // pixels of a row per invocation of colour_transform.comp
+CARBTF_CONST_UINT(CARBTF_COLOUR_SPAN, 32u)         // pixels of a row per invocation of colour_transform.comp
+CARBTF_CONST_UINT(CARBTF_COLLAPSE_SPAN, 16u)        // 2 x 2 blocks of a block row per invocation of collapse_level.comp
 CARBTF_CONST_UINT(CARBTF_FOLD_GROUP, 64u)          // fold texels per workgroup of colour_fold.comp
 CARBTF_CONST_UINT(CARBTF_CAR_SERIAL_GROUP, 8u)      // fields per workgroup of car_serial.comp
 CARBTF_CONST_UINT(CARBTF_CAR_WAVEFRONT_GROUP, 64u)  // invocations per field in car_wavefront.comp

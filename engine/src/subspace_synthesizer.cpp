@@ -514,9 +514,11 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
           arena};
       params.item_count = static_cast<std::uint32_t>(items.size());
       pipelines.collapse.bind(*context_, command_buffer, resources, &params, sizeof(params));
-      // One invocation per 2 x 2 block on even absolute coordinates: n pixels span at most n / 2 + 1.
+      // One invocation per CARBTF_COLLAPSE_SPAN 2 x 2 blocks on even absolute coordinates: n pixels span
+      // at most n / 2 + 1 blocks.
       vk.vkCmdDispatch(command_buffer,
-                       ceil_div(batch.levels[level].max_window_cols / 2 + 1, gpu::CARBTF_SYNTH_GROUP_X),
+                       ceil_div(batch.levels[level].max_window_cols / 2 + 1,
+                                gpu::CARBTF_SYNTH_GROUP_X * gpu::CARBTF_COLLAPSE_SPAN),
                        ceil_div(batch.levels[level].max_window_rows / 2 + 1, gpu::CARBTF_SYNTH_GROUP_Y),
                        params.item_count);
       ++p.dispatches;
