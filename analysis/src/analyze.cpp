@@ -132,13 +132,14 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
 
   // Each candidate (tone weight, clamp) gives a model; the one whose image, as the render pass
   // composes it (smooth texture x its share of the tone x relit factor), is nearest the measured image
-  // by the texture-similarity measure wins. Every candidate is synthesized from the same noise, so
-  // only the model differs.
+  // by the texture-similarity measure wins.
   const TextureStatistics measured = texture_statistics(rgb, width, height);
   const std::vector<double> weights = options.tone_weights.empty() ? std::vector<double>{1.0} : options.tone_weights;
   std::optional<SubspaceModel> best;
   double best_distance = 0.0, best_clamp = 0.0;
   std::vector<std::string> best_notes;
+  const std::size_t candidates = weights.size() * options.remainder_clamps.size();
+  const std::uint32_t draws = candidates > 1 ? options.selection_draws : 1;  // one candidate needs no choosing
   for (const double weight : weights) {
     const std::vector<Plane> smooth = prepared(weight);
     const std::vector<Plane> share = weighted_tone(tone, weight, chroma);
@@ -150,14 +151,20 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
       Material single;
       single.subspaces.push_back(fit_channels(clamped, pair, options, candidate_notes));
       single.subspaces[0].tone_weight = static_cast<float>(weight);
+      // One draw's distance varies by about as much as the candidates differ (on fabric the choice
+      // followed the noise stream), so a candidate scores the mean over several draws; draw d of every
+      // candidate uses the same noise, so only the model differs between candidates.
+      double distance = 0.0;
       std::vector<float> image(rgb.size());
-      reference::SubspaceBlock block;  // the default burn-in, as synthesis uses
-      block.seed = options.segmentation.seed;
-      block.width = width;
-      block.height = height;
-      reference::synthesize_subspace(single, 0, block, image);
-      apply_relief(image, share, relit);
-      const double distance = texture_distance(texture_statistics(image, width, height), measured).total;
+      for (std::uint32_t draw = 0; draw < draws; ++draw) {
+        reference::SubspaceBlock block;  // the default burn-in, as synthesis uses
+        block.seed = options.segmentation.seed + draw;
+        block.width = width;
+        block.height = height;
+        reference::synthesize_subspace(single, 0, block, image);
+        apply_relief(image, share, relit);
+        distance += texture_distance(texture_statistics(image, width, height), measured).total / draws;
+      }
       if (!best || distance < best_distance) {
         best = std::move(single.subspaces[0]);
         best_distance = distance;
@@ -168,8 +175,8 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
   }
   notes = std::move(best_notes);
   char line[160];
-  std::snprintf(line, sizeof line, "tone weight %.2g, remainder clamp %.2g chosen of %zu candidates (texture distance %.3f)",
-                static_cast<double>(best->tone_weight), best_clamp, weights.size() * options.remainder_clamps.size(), best_distance);
+  std::snprintf(line, sizeof line, "tone weight %.2g, remainder clamp %.2g chosen of %zu candidates (texture distance %.3f, mean of %u draws)",
+                static_cast<double>(best->tone_weight), best_clamp, candidates, best_distance, draws);
   notes.emplace_back(line);
   return *best;
 }
@@ -178,6 +185,7 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
 
 AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& options, const std::function<void(const std::string&)>& log) {
   if (options.pyramid_levels < 1 || options.pyramid_levels > 6) throw std::invalid_argument("pyramid levels must be within 1..6");
+  if (options.selection_draws < 1 || options.selection_draws > 16) throw std::invalid_argument("selection draws must be within 1..16");
   if (dataset.present_pairs().empty()) throw std::invalid_argument("the dataset holds no images");
   AnalysisResult result;
   auto note = [&](const std::string& line) {
@@ -259,6 +267,7 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
       {"relief_tone", options.relief_tone ? "yes" : "no"},
       {"coloured_tone", options.relief_tone && options.coloured_tone ? "where it explains the colour" : "no"},
       {"remainder_clamps", join_numbers(options.remainder_clamps)},
+      {"selection_draws", std::to_string(options.selection_draws)},
       {"deshade_floor", std::to_string(options.deshade_floor)},
       {"stereo_view", std::to_string(result.stereo_view)},
       {"tile_size", std::to_string(material.range.tile_size)},

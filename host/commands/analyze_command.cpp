@@ -96,6 +96,12 @@ void register_analyze_command(CLI::App& app) {
       ->check(CLI::Range(0.0, 100.0))
       ->delimiter(',')
       ->capture_default_str();
+  command->add_option("--selection-draws", a.selection_draws,
+                      "Noise draws each clamp and tone-weight candidate is synthesized from; it scores the mean texture "
+                      "distance, so the choice follows the model rather than one draw's noise. The subspace models' analysis "
+                      "time grows with it; 3 helped fabric and not leather or coast_sand_rocks")
+      ->check(CLI::Range(1u, 16u))
+      ->capture_default_str();
   command->add_option("--tone-weights", a.tone_weights,
                       "With the relief tone, the candidate shares of the tone each subspace image takes (0: none, 1: all); "
                       "per subspace the one whose model looks nearest the measurement is kept, with its clamp. 0,1 lowers "

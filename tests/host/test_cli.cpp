@@ -351,10 +351,10 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
     REQUIRE(run("analyze " + btf.string() + " --subspaces 8 --levels 2 --tone-weights 0 --out " + none.string()).status == 0);
     const Run info_none = run("info " + none.string());
     CHECK_THAT(info_none.output, Catch::Contains("relief tone:  taken whole by 0 subspaces, by none 8") && Catch::Contains("TWGT"));
-    const Run with_choice = run("analyze " + btf.string() + " --subspaces 8 --levels 2 --tone-weights 0,1 --out " + chosen.string());
+    const Run with_choice = run("analyze " + btf.string() + " --subspaces 8 --levels 2 --tone-weights 0,1 --selection-draws 2 --out " + chosen.string());
     INFO(with_choice.output);
     REQUIRE(with_choice.status == 0);
-    CHECK_THAT(with_choice.output, Catch::Contains("chosen of 12 candidates"));
+    CHECK_THAT(with_choice.output, Catch::Contains("chosen of 12 candidates") && Catch::Contains("mean of 2 draws"));
     CHECK_THAT(run("info " + material.string()).output, Catch::Contains("taken whole by 8 subspaces") && !Catch::Contains("TWGT"));
     const Run out_of_range = run("analyze " + btf.string() + " --tone-weights 2 --out " + (folder / "bad.cbtf").string());
     CHECK(out_of_range.status != 0);
@@ -364,6 +364,7 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
     for (const auto& [arguments, expected] : std::vector<std::pair<std::string, std::string>>{
              {"analyze " + (folder / "leather" / "btf").string() + " --out x.cbtf --subspaces 21", "--subspaces"},
              {"analyze " + (folder / "leather" / "btf").string() + " --out x.cbtf --levels 7", "--levels"},
+             {"analyze " + (folder / "leather" / "btf").string() + " --out x.cbtf --selection-draws 0", "--selection-draws"},
              {"analyze " + (folder / "missing").string() + " --out " + (folder / "x.cbtf").string(), "no such file or folder"}}) {
       const Run r = run(arguments);
       INFO("carbtf " << arguments << "\n" << r.output);
