@@ -15,6 +15,25 @@ namespace {
 
 using Point = std::array<double, 2>;
 
+// Whether triangle t meets the box [x0, x1] x [y0, y1], given that their bounding boxes do: no edge
+// of the triangle has the whole box strictly on its outer side (the separating-axis test's remaining
+// axes). The fragment stage scans every triangle a cell lists, so a cell that lists only the
+// triangles that meet it (not every one whose bounding box does) makes the scan shorter.
+bool triangle_meets_box(const DirectionTriangulation& tri, std::uint32_t triangle, double x0, double y0, double x1,
+                        double y1) {
+  const auto& t = tri.triangles[triangle];
+  for (int k = 0; k < 3; ++k) {
+    const Point &a = tri.points[t[k]], &b = tri.points[t[(k + 1) % 3]], &c = tri.points[t[(k + 2) % 3]];
+    const auto side = [&](double x, double y) { return (b[0] - a[0]) * (y - a[1]) - (b[1] - a[1]) * (x - a[0]); };
+    const double inner = side(c[0], c[1]);
+    if (inner == 0.0) continue;  // a degenerate triangle: keep it, as the bounding box did
+    const bool all_outside = inner * side(x0, y0) < 0.0 && inner * side(x1, y0) < 0.0 && inner * side(x0, y1) < 0.0 &&
+                             inner * side(x1, y1) < 0.0;
+    if (all_outside) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 bool inside_triangle(const DirectionTriangulation& tri, std::uint32_t triangle, double x, double y) {
@@ -62,7 +81,8 @@ DirectionLookupGrid build_direction_lookup(const DirectionTriangulation& tri, st
             hi[d] = std::max(hi[d], tri.points[k][d]);
           }
         }
-        if (lo[0] <= x1 + kSlack && hi[0] >= x0 - kSlack && lo[1] <= y1 + kSlack && hi[1] >= y0 - kSlack) {
+        if (lo[0] <= x1 + kSlack && hi[0] >= x0 - kSlack && lo[1] <= y1 + kSlack && hi[1] >= y0 - kSlack &&
+            triangle_meets_box(tri, t, x0 - kSlack, y0 - kSlack, x1 + kSlack, y1 + kSlack)) {
           grid.entries.push_back(t);
         }
       }

@@ -61,7 +61,7 @@ TEST_CASE("lookup grids give the triangulation's weights, inside and beyond the 
   for (const auto& directions : {test::ubo2003_material_directions(), synthetic_material(1, 1).lights}) {
     DirectionTriangulation triangulation;
     REQUIRE(build_direction_triangulation(directions, triangulation).ok());
-    for (std::uint32_t grid_size : {1u, 7u, 32u}) {
+    for (std::uint32_t grid_size : {1u, 7u, 32u, 64u}) {
       const DirectionLookupGrid grid = build_direction_lookup(triangulation, grid_size);
       REQUIRE(grid.cell_starts.size() == std::size_t{grid_size} * grid_size + 1);
       std::mt19937 random(5);

@@ -17,7 +17,7 @@
 namespace carbtf {
 
 // A lookup grid of one direction set, for the fragment stage (carbtf_material.glsl): the projected disk
-// [-1, 1]^2 cut into grid_size^2 cells, each listing the triangles whose bounding box meets it and the
+// [-1, 1]^2 cut into grid_size^2 cells, each listing the triangles that meet it and the
 // boundary edges that can be nearest to a point of it.
 struct DirectionLookupGrid {
   std::uint32_t grid_size = 0;
@@ -30,7 +30,7 @@ class MaterialDirections {
   // `grid_size` in [1, 256]: the lookup grids' cells per side (MaterialBindingInfo::lookup_grid_size).
   // Fails (invalid_argument) when a direction set cannot be triangulated or the grid size is out of range.
   static Status build(const Material& material, MaterialDirections& out,
-                      std::uint32_t grid_size = 32) noexcept;
+                      std::uint32_t grid_size = 64) noexcept;
 
   const DirectionTriangulation& light_triangulation() const noexcept { return lights_; }
   const DirectionTriangulation& view_triangulation() const noexcept { return views_; }

@@ -56,7 +56,7 @@ struct MaterialBindingInfo {
   // Parallax offset per texel of height (1: the range map's own scale; 0: no parallax).
   float parallax_scale = 1.0f;
   // Cells per side of each direction lookup grid (MaterialDirections).
-  std::uint32_t lookup_grid_size = 32;
+  std::uint32_t lookup_grid_size = 64;
 };
 
 class MaterialBinding {

@@ -30,7 +30,7 @@ struct PruningOptions {
   std::uint32_t samples_per_edge = 4;  // the grid over each triangle: (n + 1)(n + 2) / 2 points
   std::uint32_t min_texture_size = 32;
   std::uint32_t max_texture_size = 4096;
-  std::uint32_t lookup_grid_size = 32;  // as MaterialBindingInfo::lookup_grid_size
+  std::uint32_t lookup_grid_size = 64;  // as MaterialBindingInfo::lookup_grid_size
 };
 
 struct SceneNeeds {

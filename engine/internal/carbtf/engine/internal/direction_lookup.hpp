@@ -1,7 +1,7 @@
 // Lookup grids for the fragment stage's direction interpolation (carbtf_material.glsl): a fragment
 // finds the measured triangle around its projected direction without searching the triangulation.
-// The projected disk [-1, 1]^2 is cut into grid_size^2 cells; each cell lists the triangles whose
-// bounding box meets it and, where part of the cell lies outside the triangulation, the boundary
+// The projected disk [-1, 1]^2 is cut into grid_size^2 cells; each cell lists the triangles that
+// meet it and, where part of the cell lies outside the triangulation, the boundary
 // edges that can be nearest to a point of the cell. The shader tests only its own cell's list.
 // Internal to carbtf (not installed): the engine builds the grids for MaterialDirections, and the scene
 // pruner and the tests query them.
@@ -25,7 +25,7 @@ double boundary_edge_distance(const DirectionTriangulation& triangulation, std::
 
 // grid_size in [1, 256].
 DirectionLookupGrid build_direction_lookup(const DirectionTriangulation& triangulation,
-                                           std::uint32_t grid_size = 32);
+                                           std::uint32_t grid_size = 64);
 
 // The weights the fragment stage computes from a grid for projected point (x, y), with the shader's
 // float arithmetic, weights under `min_weight` dropped and the rest renormalised (the shader uses
