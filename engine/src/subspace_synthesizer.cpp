@@ -9,7 +9,13 @@
 #include <carbtf_gpu_shared.h>
 #include <carbtf_spirv/car_prepare.h>
 #include <carbtf_spirv/car_serial.h>
+#include <carbtf_spirv/car_serial_taps12.h>
+#include <carbtf_spirv/car_serial_taps4.h>
+#include <carbtf_spirv/car_serial_taps8.h>
 #include <carbtf_spirv/car_wavefront.h>
+#include <carbtf_spirv/car_wavefront_taps12.h>
+#include <carbtf_spirv/car_wavefront_taps4.h>
+#include <carbtf_spirv/car_wavefront_taps8.h>
 #include <carbtf_spirv/collapse_level.h>
 #include <carbtf_spirv/colour_fold.h>
 #include <carbtf_spirv/colour_transform.h>
@@ -100,10 +106,39 @@ const char* car_scheme_name(CarScheme scheme) noexcept {
   return "unknown";
 }
 
+// The CAR kernels come in variants by how many taps they unroll: 4, 8, 12 or 16 (compute_shaders/
+// include/car.glsl). A batch runs the smallest that covers its fields' neighbourhoods, since lavapipe
+// executes an unrolled tap's masked loads whether or not a lane needs them. Built when a preparation
+// first needs one.
+constexpr std::uint32_t kCarTapStep = 4;
+constexpr std::uint32_t kCarTapVariants = gpu::CARBTF_CAR_MAX_NEIGHBOURS / kCarTapStep;
+static_assert(kCarTapVariants == 4, "one compiled kernel per tap count (compute_shaders/CMakeLists.txt)");
+
+struct SpirvCode {
+  const std::uint32_t* words;
+  std::size_t bytes;
+};
+constexpr SpirvCode kCarSerial[kCarTapVariants] = {
+    {carbtf_spirv_car_serial_taps4, sizeof(carbtf_spirv_car_serial_taps4)},
+    {carbtf_spirv_car_serial_taps8, sizeof(carbtf_spirv_car_serial_taps8)},
+    {carbtf_spirv_car_serial_taps12, sizeof(carbtf_spirv_car_serial_taps12)},
+    {carbtf_spirv_car_serial, sizeof(carbtf_spirv_car_serial)}};
+constexpr SpirvCode kCarWavefront[kCarTapVariants] = {
+    {carbtf_spirv_car_wavefront_taps4, sizeof(carbtf_spirv_car_wavefront_taps4)},
+    {carbtf_spirv_car_wavefront_taps8, sizeof(carbtf_spirv_car_wavefront_taps8)},
+    {carbtf_spirv_car_wavefront_taps12, sizeof(carbtf_spirv_car_wavefront_taps12)},
+    {carbtf_spirv_car_wavefront, sizeof(carbtf_spirv_car_wavefront)}};
+
+std::uint32_t car_tap_variant(const detail::PlannedBatch& batch) {
+  std::uint32_t taps = 1;
+  for (const detail::PlannedField& field : batch.fields) taps = std::max(taps, field.gpu.neighbour_count);
+  return (taps + kCarTapStep - 1) / kCarTapStep - 1;
+}
+
 struct SubspaceSynthesizer::Pipelines {
   detail::ComputePipeline prepare;
-  detail::ComputePipeline serial;
-  detail::ComputePipeline wavefront;
+  detail::ComputePipeline serial[kCarTapVariants];     // [car_tap_variant()]; null until needed
+  detail::ComputePipeline wavefront[kCarTapVariants];
   detail::ComputePipeline collapse;
   detail::ComputePipeline colour;
   detail::ComputePipeline colour_fold;
@@ -130,6 +165,7 @@ struct SubspaceSynthesizer::Prepared {
   std::vector<VkDeviceSize> capture_offsets;
   SynthesisStage capture_stage = SynthesisStage::none;
   Image image;
+  Buffer readback;  // host memory the results come back through; kept for the next run, as the arena
   GpuTimer timer;
   bool timer_ready = false;
   std::uint32_t dispatches = 0;
@@ -159,10 +195,6 @@ Status SubspaceSynthesizer::create(Context& context, std::unique_ptr<SubspaceSyn
     constexpr std::uint32_t pass_bytes = sizeof(gpu::SynthPassParams);
     CARBTF_TRY(build(carbtf_spirv_car_prepare, sizeof(carbtf_spirv_car_prepare), 3, pass_bytes,
                      "carbtf car_prepare", p.prepare));
-    CARBTF_TRY(build(carbtf_spirv_car_serial, sizeof(carbtf_spirv_car_serial), 2, pass_bytes,
-                     "carbtf car_serial", p.serial));
-    CARBTF_TRY(build(carbtf_spirv_car_wavefront, sizeof(carbtf_spirv_car_wavefront), 2, pass_bytes,
-                     "carbtf car_wavefront", p.wavefront));
     CARBTF_TRY(build(carbtf_spirv_collapse_level, sizeof(carbtf_spirv_collapse_level), 2, pass_bytes,
                      "carbtf collapse_level", p.collapse));
     CARBTF_TRY(build(carbtf_spirv_colour_transform, sizeof(carbtf_spirv_colour_transform), 3, pass_bytes,
@@ -179,18 +211,35 @@ Status SubspaceSynthesizer::create(Context& context, std::unique_ptr<SubspaceSyn
   }
 }
 
+Status SubspaceSynthesizer::build_car_pipeline(CarScheme scheme, std::uint32_t variant) noexcept {
+  const bool serial = scheme == CarScheme::serial;
+  detail::ComputePipeline& pipeline = (serial ? pipelines_->serial : pipelines_->wavefront)[variant];
+  if (pipeline.pipeline) return {};
+  const SpirvCode code = (serial ? kCarSerial : kCarWavefront)[variant];
+  detail::ComputePipelineInfo info;
+  info.spirv = code.words;
+  info.spirv_bytes = code.bytes;
+  info.binding_count = 2;
+  info.push_constant_bytes = sizeof(gpu::SynthPassParams);
+  info.debug_name = serial ? "carbtf car_serial" : "carbtf car_wavefront";
+  return detail::ComputePipeline::create(*context_, info, pipeline);
+}
+
 void SubspaceSynthesizer::release() noexcept { prepared_.reset(); }
 
 Status SubspaceSynthesizer::prepare(const Material& material, const SynthesisRequest& request) noexcept {
   try {
-    // The work buffer and the image of the last preparation serve again where they are large enough:
-    // fresh device memory costs its first touch on every run (lavapipe: about a fifth of a 20 x 512^2
-    // synthesis, in page faults), and a host that synthesizes again and again asks for the same sizes.
+    // The work buffer, the image and the readback buffer of the last preparation serve again where they
+    // are large enough: fresh device memory costs its first touch on every run (lavapipe: about a fifth
+    // of a 20 x 512^2 synthesis, in page faults), and a host that synthesizes again and again asks for
+    // the same sizes.
     Buffer previous_arena;
     Image previous_image;
+    Buffer previous_readback;
     if (prepared_) {
       previous_arena = std::move(prepared_->arena);
       previous_image = std::move(prepared_->image);
+      previous_readback = std::move(prepared_->readback);
     }
     prepared_.reset();
     const DeviceInfo& device = context_->device_info();
@@ -241,6 +290,7 @@ Status SubspaceSynthesizer::prepare(const Material& material, const SynthesisReq
       prepared->scheme =
           device.type == VK_PHYSICAL_DEVICE_TYPE_CPU ? CarScheme::serial : CarScheme::wavefront;
     }
+    for (const detail::PlannedBatch& batch : plan.batches) CARBTF_TRY(build_car_pipeline(prepared->scheme, car_tap_variant(batch)));
 
     // Tables: per batch the fields, each level's collapse items and the colour items, each aligned.
     VkDeviceSize table_bytes = 0;
@@ -323,6 +373,7 @@ Status SubspaceSynthesizer::prepare(const Material& material, const SynthesisReq
                                   prepared->timer));
       prepared->timer_ready = true;
     }
+    prepared->readback = std::move(previous_readback);  // read_back_in_row_bands() replaces it if too small
     prepared_ = std::move(prepared);
     return {};
   } catch (const std::bad_alloc&) {
@@ -478,7 +529,8 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
       const detail::BindingResource resources[2] = {
           detail::BindingResource::of(tables, t.fields, field_bytes), arena};
       const bool serial = p.scheme == CarScheme::serial;
-      const detail::ComputePipeline& pipeline = serial ? pipelines.serial : pipelines.wavefront;
+      const detail::ComputePipeline& pipeline =
+          (serial ? pipelines.serial : pipelines.wavefront)[car_tap_variant(batch)];
       std::uint64_t total = 0;
       std::uint64_t chunk = 0;
       if (serial) {
@@ -681,19 +733,22 @@ void unpack_rgba(const float* rgba, std::size_t pixels, std::uint32_t channels, 
 constexpr VkDeviceSize kDefaultReadbackBytes = VkDeviceSize{64} << 20;
 
 // Submits `work` followed by the readback of the first band of rows of layers [0, layers) of `image`,
-// then each further band on its own, each at most `band_bytes` (at least one row);
-// `unpack(rgba, row0, rows)` receives each band, layer by layer.
+// then each further band on its own, each at most `band_bytes` (at least one row), through `readback`
+// (created, or replaced when smaller than a band); `unpack(rgba, row0, rows)` receives each band, layer
+// by layer.
 Status read_back_in_row_bands(Context& context, VkImage image, std::uint32_t width, std::uint32_t height,
-                              std::uint32_t layers, VkDeviceSize band_bytes,
+                              std::uint32_t layers, VkDeviceSize band_bytes, Buffer& readback,
                               const std::function<Status(VkCommandBuffer)>& work,
                               const std::function<void(const float*, std::uint32_t, std::uint32_t)>& unpack) {
   const VkDeviceSize row_bytes = VkDeviceSize{width} * 4 * sizeof(float) * layers;
   const auto band_rows = static_cast<std::uint32_t>(std::clamp<VkDeviceSize>(band_bytes / row_bytes, 1, height));
-  Buffer readback;
-  CARBTF_TRY(Buffer::create(context,
-                            {row_bytes * band_rows, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::host_readback,
-                             "carbtf readback"},
-                            readback));
+  if (readback.handle() == VK_NULL_HANDLE || readback.size() < row_bytes * band_rows) {
+    readback = {};  // released before the new one is allocated
+    CARBTF_TRY(Buffer::create(context,
+                              {row_bytes * band_rows, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::host_readback,
+                               "carbtf readback"},
+                              readback));
+  }
   for (std::uint32_t row0 = 0; row0 < height; row0 += band_rows) {
     const std::uint32_t rows = std::min(band_rows, height - row0);
     const auto record_band = [&](VkCommandBuffer command_buffer) -> Status {
@@ -720,21 +775,28 @@ Status SubspaceSynthesizer::synthesize(const Material& material, const Synthesis
   try {
     const detail::SynthesisPlan& plan = prepared_->plan;
     const auto layers = static_cast<std::uint32_t>(plan.subspaces.size());
-    out = {};
+    // `out`'s vectors are resized, not rebuilt: a caller that synthesizes again into the same result
+    // keeps its memory, where fresh vectors cost the page faults of tens of megabytes each time (up to
+    // 160 ms of a 20 x 512^2 synthesis on lavapipe, depending on the allocator). Every element kept is
+    // overwritten by the readback.
     out.width = plan.width;
     out.height = plan.height;
     out.channels.assign(material.subspaces.size(), 0);
-    out.images.assign(material.subspaces.size(), {});
+    out.images.resize(material.subspaces.size());
     for (std::size_t layer = 0; layer < layers; ++layer) {
       const std::uint32_t s = plan.subspaces[layer];
       out.channels[s] = plan.channels[layer];
       out.images[s].resize(std::size_t{plan.width} * plan.height * plan.channels[layer]);
     }
+    for (std::size_t s = 0; s < out.images.size(); ++s) {
+      if (out.channels[s] == 0) out.images[s].clear();
+    }
     const auto record_work = [&](VkCommandBuffer command_buffer) {
       return record(command_buffer, timing_out != nullptr);
     };
     CARBTF_TRY(read_back_in_row_bands(
-        *context_, prepared_->image.handle(), plan.width, plan.height, layers, readback_bytes(), record_work,
+        *context_, prepared_->image.handle(), plan.width, plan.height, layers, readback_bytes(), prepared_->readback,
+        record_work,
         [&](const float* rgba, std::uint32_t row0, std::uint32_t rows) {
           const std::size_t pixels = std::size_t{plan.width} * rows;
           for (std::size_t layer = 0; layer < layers; ++layer) {
@@ -787,7 +849,7 @@ Status SubspaceSynthesizer::interpolate(const Material& material, const PairWeig
       return record_interpolation(command_buffer, material, weights, target.view());
     };
     CARBTF_TRY(read_back_in_row_bands(
-        *context_, target.handle(), plan.width, plan.height, 1, readback_bytes(), record_work,
+        *context_, target.handle(), plan.width, plan.height, 1, readback_bytes(), prepared_->readback, record_work,
         [&](const float* rgba, std::uint32_t row0, std::uint32_t rows) {
           unpack_rgba(rgba, std::size_t{plan.width} * rows, channels, std::size_t{row0} * plan.width, out);
         }));

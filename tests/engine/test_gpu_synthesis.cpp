@@ -87,6 +87,75 @@ TEST_CASE("GPU subspace images equal the CPU float32 reference bit for bit, in b
   context.require_clean();
 }
 
+TEST_CASE("each unrolled tap count of the CAR kernels (4, 8, 12 and 16 taps) equals the CPU", "[gpu_synthesis][gpu]") {
+  test::ValidatedContext context;
+  auto synthesizer = make_synthesizer(*context);
+  // Every band of a material has the same neighbourhood, so its batch runs the kernel of that count:
+  // 2 and 4 neighbours the 4-tap one, 6 the 8-tap, 12 the 12-tap and 16 the full kernel.
+  std::vector<CarNeighbour> sixteen = wide_neighbourhood();
+  for (std::int8_t dc = -1; dc <= 2; ++dc) sixteen.push_back({-3, dc});
+  const std::vector<std::vector<CarNeighbour>> neighbourhoods = {
+      neighbourhood_shapes()[1], neighbourhood_shapes()[2], neighbourhood_shapes()[3], wide_neighbourhood(), sixteen};
+  SynthesisRequest request;
+  request.seed = 0x7a95ULL;
+  request.width = 96;
+  request.height = 80;
+  request.margin = 16;
+  request.poison = true;
+  for (const auto& neighbourhood : neighbourhoods) {
+    Material m = synthetic_material(2, 2);
+    for (SubspaceModel& subspace : m.subspaces) {
+      for (CarBandModel& band : subspace.bands) band = spread_band(neighbourhood, 0.6f, band.sigma, band.mean);
+    }
+    REQUIRE(validate_material(m).ok());
+    for (CarScheme scheme : {CarScheme::serial, CarScheme::wavefront}) {
+      INFO(neighbourhood.size() << " neighbours, " << car_scheme_name(scheme));
+      request.scheme = scheme;
+      const SynthesizedImages images = gpu_synthesize(*synthesizer, m, request);
+      for (std::uint32_t s = 0; s < 2; ++s) {
+        INFO("subspace " << s);
+        test::require_bitwise_equal(images.images[s], cpu_subspace(m, s, request), std::size_t{request.width} * 3);
+      }
+    }
+  }
+  context.require_clean();
+}
+
+TEST_CASE("a result synthesized into again holds exactly the new request's images", "[gpu_synthesis][gpu]") {
+  test::ValidatedContext context;
+  auto synthesizer = make_synthesizer(*context);
+  const Material m = synthetic_material(5, 2);
+  SynthesisRequest request;
+  request.seed = 11;
+  request.width = 64;
+  request.height = 48;
+  request.margin = 16;
+  SynthesizedImages reused;
+  REQUIRE(synthesizer->synthesize(m, request, reused).ok());
+  REQUIRE(reused.images[0].size() == std::size_t{64} * 48 * 3);
+  // Fewer subspaces, a smaller size and another seed into the same result: the images left out are
+  // empty, and the others equal a synthesis into a fresh result.
+  request.subspaces = {1, 3};
+  request.width = 40;
+  request.height = 24;
+  request.seed = 12;
+  REQUIRE(synthesizer->synthesize(m, request, reused).ok());
+  const SynthesizedImages fresh = gpu_synthesize(*synthesizer, m, request);
+  REQUIRE(reused.width == 40);
+  REQUIRE(reused.height == 24);
+  for (std::uint32_t s = 0; s < 5; ++s) {
+    INFO("subspace " << s);
+    CHECK(reused.channels[s] == fresh.channels[s]);
+    CHECK(reused.images[s].size() == fresh.images[s].size());
+    if (s == 1 || s == 3) {
+      test::require_bitwise_equal(reused.images[s], fresh.images[s], std::size_t{request.width} * 3);
+    } else {
+      CHECK(reused.images[s].empty());
+    }
+  }
+  context.require_clean();
+}
+
 TEST_CASE("blocks at negative and odd offsets, split dispatches and small batches give the same bits",
           "[gpu_synthesis][gpu]") {
   test::ValidatedContext context;

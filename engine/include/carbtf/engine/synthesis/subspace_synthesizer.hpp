@@ -78,7 +78,8 @@ class SubspaceSynthesizer {
   // Convenience: prepare, record, submit and wait, leaving the images on the device (image(),
   // read_band(), interpolate()): for captures and checks that need no host copy of every image.
   Status run(const Material& material, const SynthesisRequest& request, SynthesisTiming* timing = nullptr) noexcept;
-  // Convenience: prepare, record, submit, wait, read back. `timing` may be null.
+  // Convenience: prepare, record, submit, wait, read back. `timing` may be null. `out`'s vectors are
+  // resized in place: passing the same result again reuses its memory instead of faulting in new pages.
   Status synthesize(const Material& material, const SynthesisRequest& request, SynthesizedImages& out,
                     SynthesisTiming* timing = nullptr) noexcept;
   // After a synthesize() or run() with request.capture set: band (level, channel) of `subspace` over its level
@@ -105,6 +106,9 @@ class SubspaceSynthesizer {
   SubspaceSynthesizer() = default;
   struct Pipelines;
   struct Prepared;
+  // The CAR kernel of `variant`'s tap count for `scheme`, built on first need.
+  Status build_car_pipeline(CarScheme scheme, std::uint32_t variant) noexcept;
+
   Context* context_ = nullptr;
   std::unique_ptr<Pipelines> pipelines_;
   std::unique_ptr<Prepared> prepared_;
