@@ -22,7 +22,7 @@ layout(std430, set = 0, binding = 1) buffer Arena { float arena[]; };
   if (first + k < field.cols) carbtf_car_pixel(field, row_base + first + k, g);
 
 void main() {
-  uint f = gl_GlobalInvocationID.x;
+  uint f = params.field_begin + gl_GlobalInvocationID.x;
   if (f >= params.item_count) return;
   CarFieldGpu field = fields[f];
   // One iteration per counter quad of a row, four pixels from one counter call (carbtf_noise.h): every

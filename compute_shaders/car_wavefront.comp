@@ -14,7 +14,7 @@ layout(std430, set = 0, binding = 1) coherent buffer Arena { float arena[]; };
 #include "car.glsl"
 
 void main() {
-  uint f = gl_WorkGroupID.x;
+  uint f = params.field_begin + gl_WorkGroupID.x;
   if (f >= params.item_count) return;  // uniform across the workgroup
   CarFieldGpu field = fields[f];
   for (uint t = params.begin; t < params.end; ++t) {

@@ -166,6 +166,7 @@ struct SynthPassParams {
   uint max_rows;
   uint max_cols;
   uint flags;  // car_prepare: CARBTF_PREPARE_* bits
+  uint field_begin;  // car_serial, car_wavefront: the first field of the run; item_count is its end
 };
 
 // interpolate.comp: out = sum_k weight[k] * layer[k], k = 0..8 in order, terms of weight 0 skipped.
@@ -321,7 +322,7 @@ static_assert(sizeof(CarFieldGpu) == 48 + 8 * CARBTF_CAR_MAX_NEIGHBOURS, "CarFie
 static_assert(offsetof(CarFieldGpu, tap) == 48 && offsetof(CarFieldGpu, gamma) == 48 + 4 * CARBTF_CAR_MAX_NEIGHBOURS);
 static_assert(sizeof(CollapseItemGpu) == 48, "CollapseItemGpu must match std430");
 static_assert(sizeof(ColourItemGpu) == 32 + 16 * CARBTF_SYNTH_MAX_CHANNELS + 4 * CARBTF_SYNTH_MAX_CHANNELS * CARBTF_SYNTH_MAX_CHANNELS);
-static_assert(sizeof(SynthPassParams) == 32 && sizeof(InterpolateParams) == 112);
+static_assert(sizeof(SynthPassParams) == 36 && sizeof(InterpolateParams) == 112);
 static_assert(sizeof(DirectionLookupGpu) == 32 && sizeof(MaterialTablesHeader) == 112);
 static_assert(offsetof(MaterialTablesHeader, layer_table) == 64 && offsetof(MaterialTablesHeader, parallax_scale) == 80);
 static_assert(offsetof(MaterialTablesHeader, tone_chroma) == 96);

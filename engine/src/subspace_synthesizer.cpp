@@ -106,12 +106,9 @@ const char* car_scheme_name(CarScheme scheme) noexcept {
   return "unknown";
 }
 
-// The CAR kernels come in variants by how many taps they unroll: 4, 8, 12 or 16 (compute_shaders/
-// include/car.glsl). A batch runs the smallest that covers its fields' neighbourhoods, since lavapipe
-// executes an unrolled tap's masked loads whether or not a lane needs them. Built when a preparation
-// first needs one.
-constexpr std::uint32_t kCarTapStep = 4;
-constexpr std::uint32_t kCarTapVariants = gpu::CARBTF_CAR_MAX_NEIGHBOURS / kCarTapStep;
+// The CAR kernels come in variants by how many taps they unroll (detail::car_tap_variant()); each run
+// of a batch's fields uses the smallest that covers it. Built when a preparation first needs one.
+using detail::kCarTapVariants;
 static_assert(kCarTapVariants == 4, "one compiled kernel per tap count (compute_shaders/CMakeLists.txt)");
 
 struct SpirvCode {
@@ -129,15 +126,9 @@ constexpr SpirvCode kCarWavefront[kCarTapVariants] = {
     {carbtf_spirv_car_wavefront_taps12, sizeof(carbtf_spirv_car_wavefront_taps12)},
     {carbtf_spirv_car_wavefront, sizeof(carbtf_spirv_car_wavefront)}};
 
-std::uint32_t car_tap_variant(const detail::PlannedBatch& batch) {
-  std::uint32_t taps = 1;
-  for (const detail::PlannedField& field : batch.fields) taps = std::max(taps, field.gpu.neighbour_count);
-  return (taps + kCarTapStep - 1) / kCarTapStep - 1;
-}
-
 struct SubspaceSynthesizer::Pipelines {
   detail::ComputePipeline prepare;
-  detail::ComputePipeline serial[kCarTapVariants];     // [car_tap_variant()]; null until needed
+  detail::ComputePipeline serial[kCarTapVariants];     // [detail::car_tap_variant()]; null until needed
   detail::ComputePipeline wavefront[kCarTapVariants];
   detail::ComputePipeline collapse;
   detail::ComputePipeline colour;
@@ -290,7 +281,9 @@ Status SubspaceSynthesizer::prepare(const Material& material, const SynthesisReq
       prepared->scheme =
           device.type == VK_PHYSICAL_DEVICE_TYPE_CPU ? CarScheme::serial : CarScheme::wavefront;
     }
-    for (const detail::PlannedBatch& batch : plan.batches) CARBTF_TRY(build_car_pipeline(prepared->scheme, car_tap_variant(batch)));
+    for (const detail::PlannedBatch& batch : plan.batches) {
+      for (const detail::CarRun& run : batch.car_runs) CARBTF_TRY(build_car_pipeline(prepared->scheme, run.tap_variant));
+    }
 
     // Tables: per batch the fields, each level's collapse items and the colour items, each aligned.
     VkDeviceSize table_bytes = 0;
@@ -524,35 +517,37 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
     if (timed) p.timer.record_timestamp(command_buffer, stamp, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
     if (p.capture_stage == SynthesisStage::noise) capture();
 
-    // The recursions, split so that no invocation loops past the cap.
+    // The recursions, run by run (each with its kernel variant), split so that no invocation loops
+    // past the cap.
     {
       const detail::BindingResource resources[2] = {
           detail::BindingResource::of(tables, t.fields, field_bytes), arena};
       const bool serial = p.scheme == CarScheme::serial;
-      const detail::ComputePipeline& pipeline =
-          (serial ? pipelines.serial : pipelines.wavefront)[car_tap_variant(batch)];
-      std::uint64_t total = 0;
-      std::uint64_t chunk = 0;
-      if (serial) {
-        total = batch.max_region_quads;
-        chunk = loop_cap;
-      } else {
-        // Each step loops over at most ceil(rows / group) rows, plus the step loop itself.
-        total = batch.max_steps;
-        chunk = std::max<std::uint64_t>(
-            1, loop_cap / (ceil_div(batch.max_region_rows, gpu::CARBTF_CAR_WAVEFRONT_GROUP) + 1));
+      for (const detail::CarRun& run : batch.car_runs) {
+        const detail::ComputePipeline& pipeline = (serial ? pipelines.serial : pipelines.wavefront)[run.tap_variant];
+        std::uint64_t total = 0;
+        std::uint64_t chunk = 0;
+        if (serial) {
+          total = run.max_region_quads;
+          chunk = loop_cap;
+        } else {
+          // Each step loops over at most ceil(rows / group) rows, plus the step loop itself.
+          total = run.max_steps;
+          chunk = std::max<std::uint64_t>(
+              1, loop_cap / (ceil_div(run.max_region_rows, gpu::CARBTF_CAR_WAVEFRONT_GROUP) + 1));
+        }
+        params.field_begin = run.first;
+        params.item_count = run.first + run.count;
+        for (std::uint64_t begin = 0; begin < total; begin += chunk) {
+          shader_to_shader(vk, command_buffer);
+          params.begin = static_cast<std::uint32_t>(begin);
+          params.end = static_cast<std::uint32_t>(std::min(total, begin + chunk));
+          pipeline.bind(*context_, command_buffer, resources, &params, sizeof(params));
+          vk.vkCmdDispatch(command_buffer, serial ? ceil_div(run.count, gpu::CARBTF_CAR_SERIAL_GROUP) : run.count, 1, 1);
+          ++p.dispatches;
+        }
       }
-      params.item_count = field_count;
-      for (std::uint64_t begin = 0; begin < total; begin += chunk) {
-        shader_to_shader(vk, command_buffer);
-        params.begin = static_cast<std::uint32_t>(begin);
-        params.end = static_cast<std::uint32_t>(std::min(total, begin + chunk));
-        pipeline.bind(*context_, command_buffer, resources, &params, sizeof(params));
-        vk.vkCmdDispatch(command_buffer,
-                         serial ? ceil_div(field_count, gpu::CARBTF_CAR_SERIAL_GROUP) : field_count, 1, 1);
-        ++p.dispatches;
-      }
-      params.begin = params.end = 0;
+      params.begin = params.end = params.field_begin = 0;
     }
     if (timed) p.timer.record_timestamp(command_buffer, stamp + 1, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
     if (p.capture_stage == SynthesisStage::car) capture();

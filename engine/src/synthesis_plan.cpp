@@ -88,8 +88,13 @@ void finish_batch(const Material& material, std::vector<Stack>& stacks, const Sy
   for (std::uint32_t level = 0; level < max_levels; ++level) {
     LevelGroup group;
     group.first = static_cast<std::uint32_t>(batch.fields.size());
+    std::vector<std::size_t> order;
     for (std::size_t s = 0; s < stacks.size(); ++s) {
-      if (level >= stacks[s].levels.size()) continue;
+      if (level < stacks[s].levels.size()) order.push_back(s);
+    }
+    const auto variant_of = [&](std::size_t s) { return car_tap_variant(stacks[s].levels[level].gpu.neighbour_count); };
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return variant_of(a) < variant_of(b); });
+    for (const std::size_t s : order) {
       PlannedField field = stacks[s].levels[level];
       field.gpu.offset = static_cast<std::uint32_t>(batch.window_floats);
       batch.window_floats += padded_floats(field.gpu);
@@ -100,10 +105,17 @@ void finish_batch(const Material& material, std::vector<Stack>& stacks, const Sy
       group.max_window_cols = std::max(group.max_window_cols, static_cast<std::uint32_t>(field.window.cols));
       group.max_frame_cells = std::max(group.max_frame_cells,
                                        field.gpu.pad * field.gpu.pitch + field.gpu.rows * 2 * field.gpu.pad);
-      batch.max_region_quads = std::max(
-          batch.max_region_quads, std::uint64_t{field.gpu.rows} * gpu::carbtf_noise_quads(field.gpu.col0, field.gpu.cols));
-      batch.max_region_rows = std::max(batch.max_region_rows, field.gpu.rows);
-      batch.max_steps = std::max(batch.max_steps, field.steps());
+      const std::uint32_t variant = variant_of(s);
+      if (batch.car_runs.empty() || batch.car_runs.back().tap_variant != variant ||
+          batch.car_runs.back().first < group.first) {
+        batch.car_runs.push_back({static_cast<std::uint32_t>(batch.fields.size()), 0, variant, 0, 0, 0});
+      }
+      CarRun& run = batch.car_runs.back();
+      ++run.count;
+      run.max_region_quads = std::max(
+          run.max_region_quads, std::uint64_t{field.gpu.rows} * gpu::carbtf_noise_quads(field.gpu.col0, field.gpu.cols));
+      run.max_region_rows = std::max(run.max_region_rows, field.gpu.rows);
+      run.max_steps = std::max(run.max_steps, field.steps());
       field_index[s].push_back(batch.fields.size());
       batch.fields.push_back(field);
     }

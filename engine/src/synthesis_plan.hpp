@@ -38,15 +38,34 @@ struct LevelGroup {
   std::uint32_t max_frame_cells = 0;  // car_frame_floats() of the largest field
 };
 
+// The CAR kernels unroll 4, 8, 12 or 16 taps (compute_shaders/include/car.glsl): variant v unrolls
+// 4 (v + 1), and a field of n neighbours needs variant car_tap_variant(n).
+inline constexpr std::uint32_t kCarTapStep = 4;
+inline constexpr std::uint32_t kCarTapVariants = gpu::CARBTF_CAR_MAX_NEIGHBOURS / kCarTapStep;
+constexpr std::uint32_t car_tap_variant(std::uint32_t neighbours) {
+  return (neighbours > 0 ? neighbours + kCarTapStep - 1 : kCarTapStep) / kCarTapStep - 1;
+}
+
+// Consecutive fields of one level that one CAR kernel variant runs in one dispatch series: within a
+// level the fields are ordered by variant, so that a 1-neighbour field does not run 12 masked taps
+// beside a 12-neighbour one.
+struct CarRun {
+  std::uint32_t first = 0;
+  std::uint32_t count = 0;
+  std::uint32_t tap_variant = 0;
+  std::uint64_t max_region_quads = 0;  // serial iterations: rows x counter quads per row
+  std::uint32_t max_region_rows = 0;
+  std::uint32_t max_steps = 0;         // wavefront steps
+};
+
 struct PlannedBatch {
   std::vector<LevelGroup> levels;                           // [level]
+  std::vector<CarRun> car_runs;                             // in field order
   std::vector<PlannedField> fields;                         // level 0 of every stack first, then level 1, ...
+                                                            // each level's fields ordered by tap variant
   std::vector<std::vector<gpu::CollapseItemGpu>> collapse;  // [level]: the items collapsing that level
   std::vector<gpu::ColourItemGpu> colour;
   std::uint64_t window_floats = 0;
-  std::uint64_t max_region_quads = 0;  // serial CAR iterations: rows x counter quads per row
-  std::uint32_t max_region_rows = 0;
-  std::uint32_t max_steps = 0;
 };
 
 struct SynthesisPlan {
