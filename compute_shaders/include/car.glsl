@@ -12,9 +12,9 @@
 
 // The taps a kernel unrolls, a multiple of 4 up to CARBTF_CAR_MAX_NEIGHBOURS: the build compiles
 // car_serial and car_wavefront once per count (compute_shaders/CMakeLists.txt) and the engine runs the
-// smallest that covers each run of fields (docs/design.md 4.4), because lavapipe executes an unrolled tap's masked
-// loads whether or not a lane needs them. The count is a preprocessor macro, so each variant is a
-// plain shader module.
+// smallest that covers each run of fields (docs/design.md 4.4), because lavapipe executes an unrolled
+// tap's masked loads whether or not a lane needs them. The count is a preprocessor macro, so each
+// variant is a plain shader module.
 #ifndef CARBTF_CAR_TAPS
 #define CARBTF_CAR_TAPS 16
 #endif
