@@ -22,6 +22,7 @@
 
 layout(set = CARBTF_MATERIAL_SET, binding = CARBTF_MATERIAL_BINDING_SUBSPACES) uniform sampler2DArray carbtf_subspaces;
 layout(set = CARBTF_MATERIAL_SET, binding = CARBTF_MATERIAL_BINDING_RANGE) uniform sampler2DArray carbtf_range;
+layout(set = CARBTF_MATERIAL_SET, binding = CARBTF_MATERIAL_BINDING_SUBSPACE_MIPS) uniform sampler2DArray carbtf_subspace_mips;
 layout(std430, set = CARBTF_MATERIAL_SET, binding = CARBTF_MATERIAL_BINDING_TABLES) readonly buffer CarbtfTables {
   MaterialTablesHeader carbtf_header;
   uint carbtf_data[];
@@ -37,8 +38,9 @@ struct CarbtfBilinear {
   vec2 f;
 };
 
-CarbtfBilinear carbtf_bilinear(vec2 uv) {
-  ivec2 size = ivec2(int(carbtf_header.width), int(carbtf_header.height));
+// At mip level `level` (its size is the full size halved `level` times, exactly: mip_chain.hpp).
+CarbtfBilinear carbtf_bilinear(vec2 uv, int level) {
+  ivec2 size = ivec2(int(carbtf_header.width), int(carbtf_header.height)) >> level;
   bool wrap = carbtf_header.wrap != 0u;
   // Periodic: the fractional part (x - floor(x) is exact), so the texel row and column stay in
   // [-1, size - 1] and only the ends wrap.
@@ -58,49 +60,89 @@ CarbtfBilinear carbtf_bilinear(vec2 uv) {
   return b;
 }
 
-vec3 carbtf_subspace_texel(CarbtfBilinear b, uint layer) {
+// Level 0 is the caller's image; the binding keeps levels 1 and up in an image of its own.
+vec3 carbtf_subspace_fetch(ivec2 texel, int layer, int level) {
+  if (level == 0) return texelFetch(carbtf_subspaces, ivec3(texel, layer), 0).rgb;
+  return texelFetch(carbtf_subspace_mips, ivec3(texel, layer), level - 1).rgb;
+}
+
+vec3 carbtf_subspace_texel(CarbtfBilinear b, uint layer, int level) {
   int l = int(layer);
-  vec3 top = mix(texelFetch(carbtf_subspaces, ivec3(b.i0.x, b.i0.y, l), 0).rgb,
-                 texelFetch(carbtf_subspaces, ivec3(b.i1.x, b.i0.y, l), 0).rgb, b.f.x);
-  vec3 bottom = mix(texelFetch(carbtf_subspaces, ivec3(b.i0.x, b.i1.y, l), 0).rgb,
-                    texelFetch(carbtf_subspaces, ivec3(b.i1.x, b.i1.y, l), 0).rgb, b.f.x);
+  vec3 top = mix(carbtf_subspace_fetch(ivec2(b.i0.x, b.i0.y), l, level),
+                 carbtf_subspace_fetch(ivec2(b.i1.x, b.i0.y), l, level), b.f.x);
+  vec3 bottom = mix(carbtf_subspace_fetch(ivec2(b.i0.x, b.i1.y), l, level),
+                    carbtf_subspace_fetch(ivec2(b.i1.x, b.i1.y), l, level), b.f.x);
   return mix(top, bottom, b.f.y);
 }
 
-// The range texture bilinearly at b: r the height in texels, g the relief tone.
-vec2 carbtf_range_texel(CarbtfBilinear b) {
-  vec2 top = mix(texelFetch(carbtf_range, ivec3(b.i0.x, b.i0.y, 0), 0).rg,
-                 texelFetch(carbtf_range, ivec3(b.i1.x, b.i0.y, 0), 0).rg, b.f.x);
-  vec2 bottom = mix(texelFetch(carbtf_range, ivec3(b.i0.x, b.i1.y, 0), 0).rg,
-                    texelFetch(carbtf_range, ivec3(b.i1.x, b.i1.y, 0), 0).rg, b.f.x);
+// The range texture bilinearly at b of mip level `level`: layer 0 r the height in texels; layer 1 rgb the
+// relief normal, a the relief tone.
+vec4 carbtf_range_texel(CarbtfBilinear b, int level, int layer) {
+  vec4 top = mix(texelFetch(carbtf_range, ivec3(b.i0.x, b.i0.y, layer), level),
+                 texelFetch(carbtf_range, ivec3(b.i1.x, b.i0.y, layer), level), b.f.x);
+  vec4 bottom = mix(texelFetch(carbtf_range, ivec3(b.i0.x, b.i1.y, layer), level),
+                    texelFetch(carbtf_range, ivec3(b.i1.x, b.i1.y, layer), level), b.f.x);
   return mix(top, bottom, b.f.y);
+}
+
+// A level of detail split into the mip level below it and the share of the next level up: trilinear
+// filtering. The share is 0 at integer levels, where one level is read.
+struct CarbtfLod {
+  int level;
+  float t;
+};
+
+CarbtfLod carbtf_split_lod(float lod) {
+  CarbtfLod s;
+  s.level = int(floor(lod));
+  s.t = lod - float(s.level);
+  return s;
+}
+
+// The mip level a fragment at texture coordinate uv reads: log2 of the longer of its footprints along
+// the screen's x and y, in texels (fine derivatives: the pixel's own 2 x 2 quad row and column),
+// within [0, levels - 1]. 0 where a texel covers a pixel or more, so a close-up reads level 0 only.
+// Call it in uniform control flow (it takes derivatives), with the mesh's uv before parallax.
+float carbtf_material_lod(vec2 uv) {
+  vec2 size = vec2(float(carbtf_header.width), float(carbtf_header.height));
+  vec2 dx = dFdxFine(uv) * size, dy = dFdyFine(uv) * size;
+  float footprint = max(dot(dx, dx), dot(dy, dy));
+  float top = float(max(carbtf_header.mip_levels, 1u) - 1u);
+  return footprint > 1.0 ? min(0.5 * log2(footprint), top) : 0.0;
+}
+
+vec4 carbtf_range_at(vec2 uv, float lod, int layer) {
+  CarbtfLod s = carbtf_split_lod(lod);
+  vec4 value = carbtf_range_texel(carbtf_bilinear(uv, s.level), s.level, layer);
+  if (s.t > 0.0) value = mix(value, carbtf_range_texel(carbtf_bilinear(uv, s.level + 1), s.level + 1, layer), s.t);
+  return value;
 }
 
 // The range map's height at uv, in texels, its mean removed.
+float carbtf_height(vec2 uv, float lod) {
+  return carbtf_range_at(uv, lod, 0).r - carbtf_header.range_mean;
+}
 float carbtf_height(vec2 uv) {
-  return carbtf_range_texel(carbtf_bilinear(uv)).r - carbtf_header.range_mean;
+  return carbtf_height(uv, 0.0);
 }
 
-// The relief tone at uv: the factor on the smooth texture's colour that follows the relief.
-float carbtf_tone(vec2 uv) {
-  return carbtf_range_texel(carbtf_bilinear(uv)).g;
+// The relief at uv (tangent frame): xyz the filtered unit normals of the range map (relief_normals.hpp;
+// shorter than 1 where the facets under the footprint differ, which dims the relit factor as their
+// own mean would), w the relief tone, the factor on the smooth texture's colour that follows the relief.
+vec4 carbtf_relief(vec2 uv, float lod) {
+  return carbtf_range_at(uv, lod, 1);
 }
 
 // Parallax mapping with offset limiting: the texture point seen along `view` (tangent frame, unit,
 // towards the eye) is shifted by height * view.xy texels, never divided by view.z, so grazing views
 // stay bounded.
-vec2 carbtf_parallax_uv(vec2 uv, vec3 view) {
-  float shift = carbtf_header.parallax_scale * carbtf_height(uv);
+vec2 carbtf_parallax_uv(vec2 uv, vec3 view, float lod) {
+  float shift = carbtf_header.parallax_scale * carbtf_height(uv, lod);
   vec2 texels = shift * vec2(view.x, -view.y);  // texture up is -v
   return uv + texels / vec2(float(carbtf_header.width), float(carbtf_header.height));
 }
-
-// The range map's normal at uv (tangent frame), from central differences one texel apart.
-vec3 carbtf_normal(vec2 uv) {
-  vec2 texel = 1.0 / vec2(float(carbtf_header.width), float(carbtf_header.height));
-  float dx = 0.5 * (carbtf_height(uv + vec2(texel.x, 0.0)) - carbtf_height(uv - vec2(texel.x, 0.0)));
-  float dy = 0.5 * (carbtf_height(uv - vec2(0.0, texel.y)) - carbtf_height(uv + vec2(0.0, texel.y)));
-  return normalize(vec3(-dx, -dy, 1.0));
+vec2 carbtf_parallax_uv(vec2 uv, vec3 view) {
+  return carbtf_parallax_uv(uv, view, 0.0);
 }
 
 // The azimuthal equidistant projection of a unit direction into the unit disk (direction_interpolation.hpp).
@@ -181,12 +223,14 @@ void carbtf_direction_weights(DirectionLookupGpu set, vec2 p, out uvec3 index, o
 // with the relief tone `tone` at uv: sum over the 3 x 3 nearest measured (light, view) pairs of
 // weight * max(1 + tone weight * tone_chroma * (tone - 1), 0) * subspace image of the pair, per
 // channel (a grey tone where tone_chroma is 1, as render_reference.cpp computes it).
-vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, vec3 view, float tone) {
+vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, vec3 view, float tone, float lod) {
   uvec3 li, vi;
   vec3 lw, vw;
   carbtf_direction_weights(carbtf_header.lights, carbtf_project_direction(light), li, lw);
   carbtf_direction_weights(carbtf_header.views, carbtf_project_direction(view), vi, vw);
-  CarbtfBilinear b = carbtf_bilinear(uv);
+  CarbtfLod s = carbtf_split_lod(lod);
+  CarbtfBilinear b = carbtf_bilinear(uv, s.level);
+  CarbtfBilinear b_up = carbtf_bilinear(uv, s.level + (s.t > 0.0 ? 1 : 0));
   vec3 colour = vec3(0.0);
   uint views = carbtf_header.views.count;
   vec3 tone_offset = vec3(carbtf_header.tone_chroma[0], carbtf_header.tone_chroma[1], carbtf_header.tone_chroma[2]) * (tone - 1.0);
@@ -197,7 +241,9 @@ vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, vec3 view, float tone) {
       uint layer = carbtf_data[carbtf_header.layer_table + li[i] * views + vi[j]];
       if (layer == CARBTF_NO_LAYER) continue;
       float tone_weight = uintBitsToFloat(carbtf_data[carbtf_header.tone_weight_table + li[i] * views + vi[j]]);
-      colour += (w * max(1.0 + tone_weight * tone_offset, vec3(0.0))) * carbtf_subspace_texel(b, layer);
+      vec3 texel = carbtf_subspace_texel(b, layer, s.level);
+      if (s.t > 0.0) texel = mix(texel, carbtf_subspace_texel(b_up, layer, s.level + 1), s.t);
+      colour += (w * max(1.0 + tone_weight * tone_offset, vec3(0.0))) * texel;
     }
   }
   return colour;
@@ -210,11 +256,15 @@ vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, vec3 view, float tone) {
 // nothing. Beyond the last measured elevation the interpolation holds that ring's images, whose
 // falloff is the floor's, so the floor keeps the product bounded at grazing light. Directions are
 // unit vectors in the tangent frame; uv is the parallax-shifted coordinate. Zero below the horizon.
-vec3 carbtf_material_shade(vec2 uv, vec3 light, vec3 view) {
+// `lod`: carbtf_material_lod() of the fragment (0, level 0 only, where the host has none).
+vec3 carbtf_material_shade(vec2 uv, vec3 light, vec3 view, float lod) {
   if (light.z <= 0.0 || view.z <= 0.0) return vec3(0.0);
-  vec3 n = carbtf_normal(uv);
-  float relit = max(dot(n, light), 0.0) / max(light.z, carbtf_header.light_z_floor);
-  return relit * carbtf_interpolated_btf(uv, light, view, carbtf_tone(uv));
+  vec4 relief = carbtf_relief(uv, lod);
+  float relit = max(dot(relief.xyz, light), 0.0) / max(light.z, carbtf_header.light_z_floor);
+  return relit * carbtf_interpolated_btf(uv, light, view, relief.w, lod);
+}
+vec3 carbtf_material_shade(vec2 uv, vec3 light, vec3 view) {
+  return carbtf_material_shade(uv, light, view, 0.0);
 }
 
 #endif  // CARBTF_MATERIAL_GLSL

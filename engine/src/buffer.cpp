@@ -1,5 +1,7 @@
 #include "carbtf/engine/vulkan/buffer.hpp"
 
+#include <algorithm>
+
 #include "vk_check.hpp"
 
 namespace carbtf {
@@ -93,7 +95,7 @@ Status Image::create(const Context& context, const ImageCreateInfo& info, Image&
   create.imageType = VK_IMAGE_TYPE_2D;
   create.format = info.format;
   create.extent = {info.width, info.height, 1};
-  create.mipLevels = 1;
+  create.mipLevels = std::max(info.mip_levels, 1u);
   create.arrayLayers = info.array_layers;
   create.samples = VK_SAMPLE_COUNT_1_BIT;
   create.tiling = VK_IMAGE_TILING_OPTIMAL;
@@ -117,8 +119,8 @@ Status Image::create(const Context& context, const ImageCreateInfo& info, Image&
   view_info.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
   view_info.format = info.format;
   const bool depth = info.format == VK_FORMAT_D32_SFLOAT || info.format == VK_FORMAT_D16_UNORM;
-  view_info.subresourceRange = {depth ? VkImageAspectFlags{VK_IMAGE_ASPECT_DEPTH_BIT} : VkImageAspectFlags{VK_IMAGE_ASPECT_COLOR_BIT}, 0, 1,
-                                0, info.array_layers};
+  view_info.subresourceRange = {depth ? VkImageAspectFlags{VK_IMAGE_ASPECT_DEPTH_BIT} : VkImageAspectFlags{VK_IMAGE_ASPECT_COLOR_BIT}, 0,
+                                std::max(info.mip_levels, 1u), 0, info.array_layers};
   VkImageView view = VK_NULL_HANDLE;
   CARBTF_VK_TRY(vk.vkCreateImageView(context.device(), &view_info, nullptr, &view));
   image.view_ = UniqueHandle<VkImageView>(&vk, context.device(), view);

@@ -42,7 +42,8 @@ Status ResidentImages::create(Context& context, const Material& material, std::u
     info.width = info.height = size;
     info.array_layers = images->subspaces_;
     info.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-    info.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    // TRANSFER_SRC: a MaterialBinding blits its mip levels from it.
+    info.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     info.debug_name = "carbtf resident subspace images";
     CARBTF_TRY(Image::create(context, info, images->image_));
     out = std::move(images);
@@ -126,6 +127,8 @@ Status ResidentImages::record_add(VkCommandBuffer command_buffer, const Subspace
 MaterialTextures ResidentImages::textures() const {
   MaterialTextures textures;
   textures.view = image_.view();
+  textures.image = image_.handle();
+  textures.array_layers = subspaces_;
   textures.layout = VK_IMAGE_LAYOUT_GENERAL;
   textures.width = image_.info().width;
   textures.height = image_.info().height;

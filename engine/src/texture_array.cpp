@@ -2,13 +2,15 @@
 
 #include <cstring>
 #include <string>
+#include <vector>
 
+#include "carbtf/engine/vulkan/mip_chain.hpp"
 #include "vk_check.hpp"
 
 namespace carbtf {
 
 Status TextureArray::create(Context& context, std::uint32_t width, std::uint32_t height, std::uint32_t layers,
-                            VkFormat format, std::unique_ptr<TextureArray>& out) noexcept {
+                            VkFormat format, std::unique_ptr<TextureArray>& out, bool mip_levels) noexcept {
   try {
     std::uint32_t texel_bytes = 0;
     switch (format) {
@@ -42,7 +44,9 @@ Status TextureArray::create(Context& context, std::uint32_t width, std::uint32_t
     info.height = height;
     info.array_layers = layers;
     info.format = format;
-    info.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    info.mip_levels = mip_levels && can_blit_mips(context, format) ? mip_level_count(width, height) : 1;
+    info.usage =
+        VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     info.debug_name = "carbtf texture array";
     CARBTF_TRY(Image::create(context, info, array->image_));
     CARBTF_TRY(
@@ -71,13 +75,14 @@ Status TextureArray::set_layer(std::uint32_t layer, std::span<const std::uint8_t
   return {};
 }
 
-void TextureArray::record_upload(VkCommandBuffer cb) const noexcept {
+Status TextureArray::record_upload(VkCommandBuffer cb) const noexcept {
   const VulkanFunctions& vk = context_->vk();
   auto barrier = vk_struct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
   barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   barrier.image = image_.handle();
   barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers()};
   barrier.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  // Earlier draws may still read the image: the stages order the upload after them.
   barrier.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
   barrier.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
   vk.vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0,
@@ -87,20 +92,35 @@ void TextureArray::record_upload(VkCommandBuffer cb) const noexcept {
   copy.imageExtent = {width(), height(), 1};
   vk.vkCmdCopyBufferToImage(cb, staging_.handle(), image_.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
                             &copy);
-  barrier.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+  if (mip_levels() > 1) {
+    // Level 0 is the blits' source, then read by shaders like the rest.
+    barrier.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    barrier.newLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    barrier.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+    vk.vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr,
+                            0, nullptr, 1, &barrier);
+    std::vector<std::uint32_t> all(layers());
+    for (std::uint32_t i = 0; i < layers(); ++i) all[i] = i;
+    CARBTF_TRY(record_mip_blits(
+        *context_, cb, {image_.handle(), 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, width(), height()},
+        image_.handle(), 1, mip_levels() - 1, all, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL));
+    barrier.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    barrier.srcAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+  } else {
+    barrier.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  }
   barrier.newLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-  barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
   barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
   vk.vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT,
                           VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0,
                           nullptr, 0, nullptr, 1, &barrier);
+  return {};
 }
 
 Status TextureArray::upload_and_wait() noexcept {
-  return context_->submit_and_wait([this](VkCommandBuffer cb) {
-    record_upload(cb);
-    return Status{};
-  });
+  return context_->submit_and_wait([this](VkCommandBuffer cb) { return record_upload(cb); });
 }
 
 }  // namespace carbtf

@@ -105,9 +105,8 @@ void run_bench_frame(const FrameBenchOptions& options) {
       check(ResidentImages::create(*context, material, texture_size, overlap, resident), "cannot hold the images");
       check(MaterialBinding::create(*context, material, resident->textures(), {1}, binding), "cannot bind");
       check(context->submit_and_wait([&](VkCommandBuffer cb) {
-        binding->record_upload(cb);
         resident->record_transition(cb);
-        return Status{};
+        return binding->record_upload(cb);
       }),
             "cannot upload the material");
       check(MeshRenderer::create(*context, *binding, target, renderer), "cannot build the render pass");
@@ -132,6 +131,7 @@ void run_bench_frame(const FrameBenchOptions& options) {
       if (!added.empty()) {
         if (Status s = synthesizer->record(cb); !s.ok()) return s;
         if (Status s = resident->record_add(cb, *synthesizer, added); !s.ok()) return s;
+        if (Status s = binding->record_mips(cb, added); !s.ok()) return s;
         if (Status s = binding->set_layers(material, resident->layers()); !s.ok()) return s;
       }
       timer.record_timestamp(cb, 1);

@@ -424,12 +424,13 @@ void ExampleHostEngine::load_material(const Material& material, std::uint32_t te
                                        binding_info, binding_),
                "cannot bind the material");
   // carbtf records into the host's command buffer; the host submits when it likes.
-  Status recorded;
+  Status recorded, uploaded;
   submit([&](VkCommandBuffer cb) {
     recorded = synthesizer_->record(cb);
-    binding_->record_upload(cb);
+    uploaded = binding_->record_upload(cb);
   });
   carbtf_check(recorded, "cannot record the synthesis");
+  carbtf_check(uploaded, "cannot record the material's upload");
   create_pipeline();
 }
 

@@ -38,6 +38,10 @@ RenderedImage render_measured(Context& context, const Material& material, const 
   MaterialTextures textures;
   textures.view = array->view();
   textures.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+  // Mip levels of the measurement too, so that a foreshortened view filters it as it filters the model.
+  textures.image = array->image();
+  textures.array_layers = array->layers();
+  textures.format = VK_FORMAT_R8G8B8A8_SRGB;
   textures.width = w;
   textures.height = h;
   textures.pair_layers.assign(material.lights.size() * material.views.size(), UINT32_MAX);

@@ -8,25 +8,78 @@
 #include <glm/glm.hpp>
 
 #include "carbtf/engine/material/material_directions.hpp"
+#include "carbtf/engine/render/mip_levels.hpp"
+#include "carbtf/engine/render/relief_normals.hpp"
 
 namespace carbtf::reference {
 
 namespace {
 
+// One texture's mip chain: level 0 as given, each level above the mean of 2 x 2 texels below it, in the
+// order of operations of a blit's linear filter at the half-texel point (mix along x, then along y).
+struct MipChain {
+  std::vector<std::vector<float>> levels;  // levels[0] is a copy of level 0
+  std::uint32_t channels = 1;
+
+  MipChain(std::span<const float> level0, std::uint32_t width, std::uint32_t height, std::uint32_t channels_,
+           std::uint32_t count)
+      : channels(channels_) {
+    levels.emplace_back(level0.begin(), level0.end());
+    for (std::uint32_t l = 1; l < count; ++l) {
+      const std::uint32_t w = width >> l, h = height >> l, below = width >> (l - 1);
+      const std::vector<float>& src = levels.back();
+      std::vector<float> out(std::size_t{w} * h * channels);
+      for (std::uint32_t y = 0; y < h; ++y) {
+        for (std::uint32_t x = 0; x < w; ++x) {
+          for (std::uint32_t c = 0; c < channels; ++c) {
+            auto at = [&](std::uint32_t sx, std::uint32_t sy) { return src[(std::size_t{sy} * below + sx) * channels + c]; };
+            const float top = glm::mix(at(2 * x, 2 * y), at(2 * x + 1, 2 * y), 0.5f);
+            const float bottom = glm::mix(at(2 * x, 2 * y + 1), at(2 * x + 1, 2 * y + 1), 0.5f);
+            out[(std::size_t{y} * w + x) * channels + c] = glm::mix(top, bottom, 0.5f);
+          }
+        }
+      }
+      levels.push_back(std::move(out));
+    }
+  }
+};
+
+// The range texture's layer 1: the relief normal and the tone (1 without one), 4 floats per texel.
+std::vector<float> relief_texels(std::span<const float> heights, std::span<const float> tone, std::uint32_t width,
+                                 std::uint32_t height, bool wrap) {
+  std::vector<float> normals;
+  relief_normals(heights, width, height, wrap, normals);
+  std::vector<float> out(heights.size() * 4);
+  for (std::size_t i = 0; i < heights.size(); ++i) {
+    for (std::size_t k = 0; k < 3; ++k) out[4 * i + k] = normals[3 * i + k];
+    out[4 * i + 3] = tone.empty() ? 1.0f : tone[i];
+  }
+  return out;
+}
+
+// A level of detail split as the shader's carbtf_split_lod().
+struct Lod {
+  int level;
+  float t;
+  explicit Lod(float lod) : level(static_cast<int>(std::floor(lod))), t(lod - static_cast<float>(level)) {}
+};
+
 struct Sampler {
   const ReferenceRenderInput& input;
   std::uint32_t width, height;
   float range_mean;
+  MipChain range, relief;  // heights; normal (relief_normals.hpp) and tone
+  std::vector<MipChain> images;  // per subspace, empty levels where it was not synthesized
 
   struct Bilinear {
     int x0, y0, x1, y1;
     float fx, fy;
   };
-  Bilinear bilinear(glm::vec2 uv) const {
+  Bilinear bilinear(glm::vec2 uv, int level) const {
     const glm::vec2 u = input.wrap ? uv - glm::floor(uv) : uv;
-    const glm::vec2 t = u * glm::vec2(static_cast<float>(width), static_cast<float>(height)) - 0.5f;
+    const int w = static_cast<int>(width >> level), h = static_cast<int>(height >> level);
+    const glm::vec2 t = u * glm::vec2(static_cast<float>(w), static_cast<float>(h)) - 0.5f;
     const glm::vec2 base = glm::floor(t);
-    const int w = static_cast<int>(width), h = static_cast<int>(height);
     const int ix = static_cast<int>(std::clamp(base.x, -1.0f, static_cast<float>(w)));
     const int iy = static_cast<int>(std::clamp(base.y, -1.0f, static_cast<float>(h)));
     if (input.wrap) {
@@ -40,26 +93,31 @@ struct Sampler {
             t.x - base.x,
             t.y - base.y};
   }
-  static float bilinear_at(std::span<const float> map, std::uint32_t width, const Bilinear& b) {
-    auto at = [&](int x, int y) { return map[static_cast<std::size_t>(y) * width + x]; };
-    const float top = glm::mix(at(b.x0, b.y0), at(b.x1, b.y0), b.fx);
-    const float bottom = glm::mix(at(b.x0, b.y1), at(b.x1, b.y1), b.fx);
-    return glm::mix(top, bottom, b.fy);
-  }
-  float height_at(glm::vec2 uv) const { return bilinear_at(input.range_map, width, bilinear(uv)) - range_mean; }
-  float tone_at(const Bilinear& b) const { return input.tone_map.empty() ? 1.0f : bilinear_at(input.tone_map, width, b); }
-  glm::vec3 subspace_at(const Bilinear& b, std::uint32_t subspace) const {
-    const auto& image = input.images->images[subspace];
-    const std::uint32_t channels = input.images->channels[subspace];
-    auto at = [&](int x, int y) {
-      glm::vec3 c(0.0f);
-      const std::size_t base = (static_cast<std::size_t>(y) * width + x) * channels;
-      for (std::uint32_t k = 0; k < std::min(channels, 3u); ++k) c[static_cast<int>(k)] = image[base + k];
-      return c;
+  // Channel c of `chain` at uv, bilinear within a level, trilinear between two (the shader's order).
+  glm::vec4 filtered(const MipChain& chain, glm::vec2 uv, float lod) const {
+    auto at_level = [&](int level) {
+      const Bilinear b = bilinear(uv, level);
+      const std::vector<float>& map = chain.levels[static_cast<std::size_t>(level)];
+      const std::size_t w = width >> level;
+      auto at = [&](int x, int y) {
+        glm::vec4 v(0.0f);
+        const std::size_t base = (static_cast<std::size_t>(y) * w + x) * chain.channels;
+        for (std::uint32_t k = 0; k < std::min(chain.channels, 4u); ++k) v[static_cast<int>(k)] = map[base + k];
+        return v;
+      };
+      const glm::vec4 top = glm::mix(at(b.x0, b.y0), at(b.x1, b.y0), b.fx);
+      const glm::vec4 bottom = glm::mix(at(b.x0, b.y1), at(b.x1, b.y1), b.fx);
+      return glm::mix(top, bottom, b.fy);
     };
-    const glm::vec3 top = glm::mix(at(b.x0, b.y0), at(b.x1, b.y0), b.fx);
-    const glm::vec3 bottom = glm::mix(at(b.x0, b.y1), at(b.x1, b.y1), b.fx);
-    return glm::mix(top, bottom, b.fy);
+    const Lod s(lod);
+    glm::vec4 value = at_level(s.level);
+    if (s.t > 0.0f) value = glm::mix(value, at_level(s.level + 1), s.t);
+    return value;
+  }
+  float height_at(glm::vec2 uv, float lod) const { return filtered(range, uv, lod).x - range_mean; }
+  glm::vec4 relief_at(glm::vec2 uv, float lod) const { return filtered(relief, uv, lod); }
+  glm::vec3 subspace_at(glm::vec2 uv, float lod, std::uint32_t subspace) const {
+    return glm::vec3(filtered(images[subspace], uv, lod));
   }
 };
 
@@ -91,7 +149,18 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
   const float light_z_floor = relight_floor(material);
   // The mean in double, as the binding computes it.
   const double sum = std::accumulate(input.range_map.begin(), input.range_map.end(), 0.0);
-  const Sampler sampler{input, tw, th, static_cast<float>(sum / static_cast<double>(input.range_map.size()))};
+  const std::uint32_t levels = std::clamp(input.mip_levels, 1u, mip_level_count(tw, th));
+  Sampler sampler{input,
+                  tw,
+                  th,
+                  static_cast<float>(sum / static_cast<double>(input.range_map.size())),
+                  MipChain(input.range_map, tw, th, 1, levels),
+                  MipChain(relief_texels(input.range_map, input.tone_map, tw, th, input.wrap), tw, th, 4, levels),
+                  {}};
+  for (std::size_t i = 0; i < input.images->images.size(); ++i) {
+    const auto& image = input.images->images[i];
+    sampler.images.emplace_back(image, tw, th, input.images->channels[i], image.empty() ? 0 : levels);
+  }
 
   const std::array<float, 16> vp =
       view_projection(scene.camera, static_cast<float>(width) / static_cast<float>(height));
@@ -106,35 +175,54 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
   const glm::vec3 target(scene.camera.target[0], scene.camera.target[1], scene.camera.target[2]);
   const bool perspective = scene.camera.fov_y_degrees > 0.0f;
 
+  // Where pixel (x, y)'s centre ray meets the plane (z = 0), in world units; false when it does not.
+  auto hit = [&](std::uint32_t x, std::uint32_t y, glm::dvec3& world) {
+    const glm::dvec2 ndc(2.0 * (x + 0.5) / width - 1.0, 2.0 * (y + 0.5) / height - 1.0);
+    const glm::dvec4 near_point = world_from_clip * glm::dvec4(ndc, 0.0, 1.0);
+    const glm::dvec4 far_point = world_from_clip * glm::dvec4(ndc, 1.0, 1.0);
+    const glm::dvec3 a = glm::dvec3(near_point) / near_point.w, b = glm::dvec3(far_point) / far_point.w;
+    if (std::abs(b.z - a.z) < 1e-15) return false;
+    const double s = -a.z / (b.z - a.z);
+    world = a + s * (b - a);
+    return s >= 0.0 && s <= 1.0;
+  };
+  auto uv_of = [](const glm::dvec3& world) { return glm::dvec2(0.5 * (world.x + 1.0), 0.5 * (1.0 - world.y)); };
+  // The fragment stage's carbtf_material_lod(): fine derivatives are differences within the pixel's
+  // 2 x 2 quad, the same for both pixels of its row (x) or column (y).
+  const float top_level = static_cast<float>(levels - 1);
+  auto lod_at = [&](std::uint32_t x, std::uint32_t y) {
+    if (levels == 1) return 0.0f;
+    glm::dvec3 w0, w1, w2, w3;
+    hit(x & ~1u, y, w0);
+    hit(x | 1u, y, w1);
+    hit(x, y & ~1u, w2);
+    hit(x, y | 1u, w3);
+    const glm::dvec2 size(static_cast<double>(tw), static_cast<double>(th));
+    const glm::dvec2 dx = (uv_of(w1) - uv_of(w0)) * size, dy = (uv_of(w3) - uv_of(w2)) * size;
+    const double footprint = std::max(glm::dot(dx, dx), glm::dot(dy, dy));
+    return footprint > 1.0 ? std::min(static_cast<float>(0.5 * std::log2(footprint)), top_level) : 0.0f;
+  };
+
   std::vector<float> out(std::size_t{width} * height * 4);
   for (std::uint32_t y = 0; y < height; ++y) {
     for (std::uint32_t x = 0; x < width; ++x) {
       float* pixel = &out[(std::size_t{y} * width + x) * 4];
       std::copy(clear.begin(), clear.end(), pixel);
-      const glm::dvec2 ndc(2.0 * (x + 0.5) / width - 1.0, 2.0 * (y + 0.5) / height - 1.0);
-      const glm::dvec4 near_point = world_from_clip * glm::dvec4(ndc, 0.0, 1.0);
-      const glm::dvec4 far_point = world_from_clip * glm::dvec4(ndc, 1.0, 1.0);
-      const glm::dvec3 a = glm::dvec3(near_point) / near_point.w, b = glm::dvec3(far_point) / far_point.w;
-      if (std::abs(b.z - a.z) < 1e-15) continue;
-      const double s = -a.z / (b.z - a.z);
-      if (s < 0.0 || s > 1.0) continue;
-      const glm::vec3 world(a + s * (b - a));
+      glm::dvec3 world_point;
+      if (!hit(x, y, world_point)) continue;
+      const glm::vec3 world(world_point);
       const glm::vec2 uv(0.5f * (world.x + 1.0f), 0.5f * (1.0f - world.y));
       if (uv.x < 0.0f || uv.x > 1.0f || uv.y < 0.0f || uv.y > 1.0f) continue;
+      const float lod = lod_at(x, y);
 
       // The plane's tangent frame is the world's: x along u, y towards row 0, z the normal.
       const glm::vec3 view = glm::normalize(perspective ? eye - world : eye - target);
-      const float shift = input.parallax_scale * sampler.height_at(uv);
+      const float shift = input.parallax_scale * sampler.height_at(uv, lod);
       const glm::vec2 shifted =
           uv + shift * glm::vec2(view.x, -view.y) / glm::vec2(static_cast<float>(tw), static_cast<float>(th));
-      const glm::vec2 texel(1.0f / static_cast<float>(tw), 1.0f / static_cast<float>(th));
-      const float dx = 0.5f * (sampler.height_at(shifted + glm::vec2(texel.x, 0)) -
-                               sampler.height_at(shifted - glm::vec2(texel.x, 0)));
-      const float dy = 0.5f * (sampler.height_at(shifted - glm::vec2(0, texel.y)) -
-                               sampler.height_at(shifted + glm::vec2(0, texel.y)));
-      const glm::vec3 normal = glm::normalize(glm::vec3(-dx, -dy, 1.0f));
-      const Sampler::Bilinear bilinear = sampler.bilinear(shifted);
-      const float tone = sampler.tone_at(bilinear);
+      const glm::vec4 relief = sampler.relief_at(shifted, lod);
+      const glm::vec3 normal(relief);
+      const float tone = relief.w;
 
       glm::vec3 colour(0.0f);
       for (std::size_t i = 0; i < std::min<std::size_t>(scene.lights.size(), 4); ++i) {
@@ -156,7 +244,7 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
           const std::uint32_t subspace = subspace_of(material, w.light[k], w.view[k]);
           if (input.images->images[subspace].empty()) continue;
           const float tone_weight = material.subspaces[subspace].tone_weight;
-          btf += (w.weight[k] * glm::max(1.0f + tone_weight * tone_offset, glm::vec3(0.0f))) * sampler.subspace_at(bilinear, subspace);
+          btf += (w.weight[k] * glm::max(1.0f + tone_weight * tone_offset, glm::vec3(0.0f))) * sampler.subspace_at(shifted, lod, subspace);
         }
         const float relit = std::max(glm::dot(normal, l), 0.0f) / std::max(l.z, light_z_floor);
         colour += falloff * glm::vec3(light.colour[0], light.colour[1], light.colour[2]) * relit * btf;

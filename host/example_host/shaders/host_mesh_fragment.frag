@@ -18,11 +18,12 @@ layout(location = 3) in vec2 in_uv;
 layout(location = 0) out vec4 out_colour;
 
 void main() {
+  float lod = carbtf_material_lod(in_uv);  // before any branch: it takes derivatives
   vec3 n = normalize(in_normal);
   vec3 t = normalize(in_tangent.xyz - n * dot(n, in_tangent.xyz));
   mat3 to_tangent = transpose(mat3(t, in_tangent.w * cross(n, t), n));
   vec3 view = normalize(to_tangent * (host.camera.xyz - in_world));
   vec3 light = normalize(to_tangent * host.light.xyz);
-  vec2 uv = carbtf_parallax_uv(in_uv, view);
-  out_colour = vec4(carbtf_material_shade(uv, light, view), 1.0);
+  vec2 uv = carbtf_parallax_uv(in_uv, view, lod);
+  out_colour = vec4(carbtf_material_shade(uv, light, view, lod), 1.0);
 }

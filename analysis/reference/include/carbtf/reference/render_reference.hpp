@@ -21,6 +21,10 @@ struct ReferenceRenderInput {
   std::span<const float> range_map;           // images->width * images->height heights in texels
   std::span<const float> tone_map;            // the relief tone, the same size, or empty (1 everywhere)
   float parallax_scale = 1.0f;
+  // Mip levels to filter with, level 0 included (MaterialBinding::mip_levels()): the reference builds
+  // them as the means of 2 x 2 texels (mip_chain.hpp) and picks each pixel's level of detail from the
+  // uv of its 2 x 2 quad's neighbours, as the fragment stage's fine derivatives do. 1: level 0 only.
+  std::uint32_t mip_levels = 1;
   // The textures tile (a periodic synthesis): texel addresses wrap instead of repeating the edge.
   bool wrap = false;
 };

@@ -2,7 +2,8 @@
 // the material, each filled when a frame first needs it by copying in a synthesis of only the new
 // images. A frame that adds one image then costs that image's synthesis and a copy, not a synthesis of
 // every resident image again. A MaterialBinding draws from textures(); after each record_add(),
-// MaterialBinding::set_layers(material, layers()) lets it see the new images.
+// MaterialBinding::set_layers(material, layers()) lets it see the new images, and
+// MaterialBinding::record_mips(added) makes their mip levels.
 //
 // Use: create(); record_transition() once before the first record_add() or draw; each frame,
 // missing(needs.subspaces), and when some are missing: SubspaceSynthesizer::prepare() with exactly

@@ -48,6 +48,7 @@ struct ImageCreateInfo {
   std::uint32_t width = 0;
   std::uint32_t height = 0;
   std::uint32_t array_layers = 1;
+  std::uint32_t mip_levels = 1;  // the view covers all of them
   VkFormat format = VK_FORMAT_R32_SFLOAT;
   VkImageUsageFlags usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
   const char* debug_name = "carbtf image";

@@ -5,6 +5,8 @@
 //
 // Use: create(); set_layer() for every layer (host memory, staged); record_upload() into a command
 // buffer of yours, or upload_and_wait(). The image ends in VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL.
+// With `mip_levels`, it has mip_level_count() levels (mip_chain.hpp), which the upload fills, where the
+// device blits the format with a linear filter; else one.
 // Lifetime: destroy after the last command buffer that reads it has finished, and before the Context.
 // Thread safety: externally synchronized.
 #pragma once
@@ -13,6 +15,7 @@
 #include <memory>
 #include <span>
 
+#include "carbtf/engine/status.hpp"
 #include "carbtf/engine/vulkan/buffer.hpp"
 #include "carbtf/engine/vulkan/context.hpp"
 
@@ -22,18 +25,20 @@ class TextureArray {
  public:
   // invalid_argument for another format, an empty size, or more layers than the device allows.
   static Status create(Context& context, std::uint32_t width, std::uint32_t height, std::uint32_t layers,
-                       VkFormat format, std::unique_ptr<TextureArray>& out) noexcept;
+                       VkFormat format, std::unique_ptr<TextureArray>& out, bool mip_levels = false) noexcept;
   ~TextureArray();
 
   // Copies one layer, width * height texels row-major, into the staging memory.
   Status set_layer(std::uint32_t layer, std::span<const std::uint8_t> texels) noexcept;
-  void record_upload(VkCommandBuffer command_buffer) const noexcept;
+  Status record_upload(VkCommandBuffer command_buffer) const noexcept;
   Status upload_and_wait() noexcept;
 
   VkImageView view() const noexcept { return image_.view(); }
+  VkImage image() const noexcept { return image_.handle(); }  // usable as a transfer source
   std::uint32_t width() const noexcept { return image_.info().width; }
   std::uint32_t height() const noexcept { return image_.info().height; }
   std::uint32_t layers() const noexcept { return image_.info().array_layers; }
+  std::uint32_t mip_levels() const noexcept { return image_.info().mip_levels; }
 
  private:
   TextureArray() = default;

@@ -23,6 +23,7 @@ namespace carbtf {
   X(vkGetPhysicalDeviceFeatures)               \
   X(vkGetPhysicalDeviceQueueFamilyProperties)  \
   X(vkGetPhysicalDeviceMemoryProperties)       \
+  X(vkGetPhysicalDeviceFormatProperties)       \
   X(vkEnumerateDeviceExtensionProperties)      \
   X(vkCreateDevice)                            \
   X(vkGetDeviceProcAddr)
@@ -83,6 +84,7 @@ namespace carbtf {
   X(vkCmdCopyBuffer)                   \
   X(vkCmdCopyImageToBuffer)            \
   X(vkCmdCopyImage)                    \
+  X(vkCmdBlitImage)                    \
   X(vkCmdClearColorImage)              \
   X(vkCmdResetQueryPool)               \
   X(vkCmdWriteTimestamp)               \
