@@ -179,6 +179,7 @@ Status MaterialBinding::create(Context& context, const Material& material, const
                        textures.layout == VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL) &&
                       can_blit_mips(context, textures.format) && can_blit_mips(context, VK_FORMAT_R32G32B32A32_SFLOAT);
     r.mip_levels = mips ? mip_level_count(textures.width, textures.height) : 1;
+    if (info.max_mip_levels > 0) r.mip_levels = std::min(r.mip_levels, info.max_mip_levels);
     header.mip_levels = r.mip_levels;
     r.source = textures.image;
     r.source_layout = textures.layout;
@@ -209,7 +210,7 @@ Status MaterialBinding::create(Context& context, const Material& material, const
                               r.table_buffer));
     std::memcpy(r.table_buffer.mapped(), r.tables.data(), r.tables.size() * 4);
     CARBTF_TRY(TextureArray::create(context, textures.width, textures.height, 2, VK_FORMAT_R32G32B32A32_SFLOAT,
-                                    r.range_image, r.mip_levels > 1));
+                                    r.range_image, r.mip_levels));
     if (r.range_image->mip_levels() != r.mip_levels)
       return {ErrorCode::vulkan_error, "the range map's mip levels differ from the subspace images'"};
     if (r.mip_levels > 1) {

@@ -1,5 +1,6 @@
 #include "carbtf/engine/vulkan/texture_array.hpp"
 
+#include <algorithm>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -10,7 +11,8 @@
 namespace carbtf {
 
 Status TextureArray::create(Context& context, std::uint32_t width, std::uint32_t height, std::uint32_t layers,
-                            VkFormat format, std::unique_ptr<TextureArray>& out, bool mip_levels) noexcept {
+                            VkFormat format, std::unique_ptr<TextureArray>& out,
+                            std::uint32_t mip_levels) noexcept {
   try {
     std::uint32_t texel_bytes = 0;
     switch (format) {
@@ -44,7 +46,8 @@ Status TextureArray::create(Context& context, std::uint32_t width, std::uint32_t
     info.height = height;
     info.array_layers = layers;
     info.format = format;
-    info.mip_levels = mip_levels && can_blit_mips(context, format) ? mip_level_count(width, height) : 1;
+    const std::uint32_t possible = can_blit_mips(context, format) ? mip_level_count(width, height) : 1;
+    info.mip_levels = mip_levels == 0 ? possible : std::min(mip_levels, possible);
     info.usage =
         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     info.debug_name = "carbtf texture array";

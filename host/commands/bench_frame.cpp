@@ -39,6 +39,7 @@ struct FrameBenchOptions {
   std::uint32_t width = 1920;
   std::uint32_t height = 1080;
   std::uint32_t texture_size = 0;  // 0: what the first frame needs, up to 1024
+  std::uint32_t mip_levels = 0;    // MaterialBindingInfo::max_mip_levels
   std::string out = "bench_frame";
 };
 
@@ -103,7 +104,9 @@ void run_bench_frame(const FrameBenchOptions& options) {
       if (texture_size == 0) texture_size = needs.texture_size;
       const std::uint32_t overlap = needs.periodic ? default_periodic_overlap(texture_size, texture_size) : 0;
       check(ResidentImages::create(*context, material, texture_size, overlap, resident), "cannot hold the images");
-      check(MaterialBinding::create(*context, material, resident->textures(), {1}, binding), "cannot bind");
+      MaterialBindingInfo binding_info{1};
+      binding_info.max_mip_levels = options.mip_levels;
+      check(MaterialBinding::create(*context, material, resident->textures(), binding_info, binding), "cannot bind");
       check(context->submit_and_wait([&](VkCommandBuffer cb) {
         resident->record_transition(cb);
         return binding->record_upload(cb);
@@ -151,10 +154,10 @@ void run_bench_frame(const FrameBenchOptions& options) {
 
   char line[256];
   std::snprintf(line, sizeof line,
-                "bench frame: %u frames of %ux%u, %s on %s, texture %u^2, %zu of %zu subspace images "
-                "resident at the end\n\n",
+                "bench frame: %u frames of %ux%u, %s on %s, texture %u^2 with %u mip levels, %zu of %zu "
+                "subspace images resident at the end\n\n",
                 options.frames, options.width, options.height, options.mesh.c_str(),
-                context->device_info().name.c_str(), texture_size, resident->resident_count(),
+                context->device_info().name.c_str(), texture_size, binding->mip_levels(), resident->resident_count(),
                 material.subspaces.size());
   std::printf("%s%s", line, write_frame_bench_report(out, records, line).c_str());
   std::printf("wrote %s/bench_frame.csv and bench_frame.md\n", out.string().c_str());
@@ -187,6 +190,8 @@ void register_bench_frame_command(CLI::App& bench) {
       ->add_option("--texture-size", options->texture_size,
                    "Synthesized texels per side (default: what the first frame needs, up to 1024)")
       ->check(CLI::Range(16u, 8192u));
+  command->add_option("--mip-levels", options->mip_levels, "At most this many mip levels (0: all; 1: level 0 only)")
+      ->check(CLI::Range(0u, 16u))->capture_default_str();
   command->add_option("--out", options->out, "Output folder")->capture_default_str();
   add_device_options(*command, options->device);
   command->callback([options] { run_bench_frame(*options); });

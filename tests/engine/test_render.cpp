@@ -429,6 +429,14 @@ TEST_CASE("mip levels: a distant plane matches its box-filtered render and does 
   REQUIRE(level0->upload_and_wait().ok());
   REQUIRE(mipped->mip_levels() == 9);
   REQUIRE(level0->mip_levels() == 1);
+  {
+    // A host may cap the levels (MaterialBindingInfo::max_mip_levels).
+    MaterialBindingInfo capped = info;
+    capped.max_mip_levels = 3;
+    std::unique_ptr<MaterialBinding> three;
+    REQUIRE(MaterialBinding::create(*context, m, material_textures(*synthesizer, m), capped, three).ok());
+    CHECK(three->mip_levels() == 3);
+  }
 
   RenderTargetInfo target;
   target.width = target.height = kPixels;

@@ -63,6 +63,9 @@ struct MaterialBindingInfo {
   float parallax_scale = 1.0f;
   // Cells per side of each direction lookup grid (MaterialDirections).
   std::uint32_t lookup_grid_size = 64;
+  // At most this many mip levels, level 0 included (0: as many as the textures allow, mip_levels.hpp;
+  // 1: level 0 alone, the cheapest render pass, which aliases where a texel is smaller than a pixel).
+  std::uint32_t max_mip_levels = 0;
 };
 
 class MaterialBinding {

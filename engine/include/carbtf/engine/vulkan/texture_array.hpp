@@ -5,8 +5,8 @@
 //
 // Use: create(); set_layer() for every layer (host memory, staged); record_upload() into a command
 // buffer of yours, or upload_and_wait(). The image ends in VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL.
-// With `mip_levels`, it has mip_level_count() levels (mip_chain.hpp), which the upload fills, where the
-// device blits the format with a linear filter; else one.
+// It has up to `mip_levels` levels (0: all of mip_level_count(), render/mip_levels.hpp), which the
+// upload fills, where the device blits the format with a linear filter; else one.
 // Lifetime: destroy after the last command buffer that reads it has finished, and before the Context.
 // Thread safety: externally synchronized.
 #pragma once
@@ -25,7 +25,7 @@ class TextureArray {
  public:
   // invalid_argument for another format, an empty size, or more layers than the device allows.
   static Status create(Context& context, std::uint32_t width, std::uint32_t height, std::uint32_t layers,
-                       VkFormat format, std::unique_ptr<TextureArray>& out, bool mip_levels = false) noexcept;
+                       VkFormat format, std::unique_ptr<TextureArray>& out, std::uint32_t mip_levels = 1) noexcept;
   ~TextureArray();
 
   // Copies one layer, width * height texels row-major, into the staging memory.
