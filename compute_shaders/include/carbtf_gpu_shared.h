@@ -243,12 +243,12 @@ CARBTF_FUNCTION float carbtf_polar_angle(float r, float z) {
 // ---- Material render pass (carbtf_material.glsl, engine/include/carbtf/engine/render/material_binding.hpp) --
 // The material descriptor set: binding 0 the subspace images (sampler2DArray, one layer per
 // synthesized subspace image), binding 1 the enlarged range map (sampler2DArray: layer 0 r the heights
-// in texels, layer 1 rgb the relief normal and a the relief tone), binding 2 the lookup tables (readonly storage buffer: MaterialTablesHeader, then uints),
-// binding 3 the subspace images' mip levels from level 1 on (sampler2DArray, its level 0 half the size).
+// in texels, layer 1 rgb the relief normal and a the relief tone), binding 2 the lookup tables (readonly
+// storage buffer: MaterialTablesHeader, then uints). Both textures have MaterialTablesHeader::mip_levels
+// levels.
 CARBTF_CONST_UINT(CARBTF_MATERIAL_BINDING_SUBSPACES, 0u)
 CARBTF_CONST_UINT(CARBTF_MATERIAL_BINDING_RANGE, 1u)
 CARBTF_CONST_UINT(CARBTF_MATERIAL_BINDING_TABLES, 2u)
-CARBTF_CONST_UINT(CARBTF_MATERIAL_BINDING_SUBSPACE_MIPS, 3u)
 // A (light, view) pair whose subspace image was not synthesized.
 CARBTF_CONST_UINT(CARBTF_NO_LAYER, 0xFFFFFFFFu)
 // A lookup-cell entry with this bit is a boundary edge, else a triangle.

@@ -22,7 +22,6 @@
 
 layout(set = CARBTF_MATERIAL_SET, binding = CARBTF_MATERIAL_BINDING_SUBSPACES) uniform sampler2DArray carbtf_subspaces;
 layout(set = CARBTF_MATERIAL_SET, binding = CARBTF_MATERIAL_BINDING_RANGE) uniform sampler2DArray carbtf_range;
-layout(set = CARBTF_MATERIAL_SET, binding = CARBTF_MATERIAL_BINDING_SUBSPACE_MIPS) uniform sampler2DArray carbtf_subspace_mips;
 layout(std430, set = CARBTF_MATERIAL_SET, binding = CARBTF_MATERIAL_BINDING_TABLES) readonly buffer CarbtfTables {
   MaterialTablesHeader carbtf_header;
   uint carbtf_data[];
@@ -60,23 +59,13 @@ CarbtfBilinear carbtf_bilinear(vec2 uv, int level) {
   return b;
 }
 
-// Level 0 is the caller's image; the binding keeps levels 1 and up in an image of its own. One branch
-// per bilinear read, not per texel: lavapipe pays for every branch a vector of fragments takes.
 vec3 carbtf_subspace_texel(CarbtfBilinear b, uint layer, int level) {
   int l = int(layer);
-  vec3 t00, t10, t01, t11;
-  if (level == 0) {
-    t00 = texelFetch(carbtf_subspaces, ivec3(b.i0.x, b.i0.y, l), 0).rgb;
-    t10 = texelFetch(carbtf_subspaces, ivec3(b.i1.x, b.i0.y, l), 0).rgb;
-    t01 = texelFetch(carbtf_subspaces, ivec3(b.i0.x, b.i1.y, l), 0).rgb;
-    t11 = texelFetch(carbtf_subspaces, ivec3(b.i1.x, b.i1.y, l), 0).rgb;
-  } else {
-    t00 = texelFetch(carbtf_subspace_mips, ivec3(b.i0.x, b.i0.y, l), level - 1).rgb;
-    t10 = texelFetch(carbtf_subspace_mips, ivec3(b.i1.x, b.i0.y, l), level - 1).rgb;
-    t01 = texelFetch(carbtf_subspace_mips, ivec3(b.i0.x, b.i1.y, l), level - 1).rgb;
-    t11 = texelFetch(carbtf_subspace_mips, ivec3(b.i1.x, b.i1.y, l), level - 1).rgb;
-  }
-  return mix(mix(t00, t10, b.f.x), mix(t01, t11, b.f.x), b.f.y);
+  vec3 top = mix(texelFetch(carbtf_subspaces, ivec3(b.i0.x, b.i0.y, l), level).rgb,
+                 texelFetch(carbtf_subspaces, ivec3(b.i1.x, b.i0.y, l), level).rgb, b.f.x);
+  vec3 bottom = mix(texelFetch(carbtf_subspaces, ivec3(b.i0.x, b.i1.y, l), level).rgb,
+                    texelFetch(carbtf_subspaces, ivec3(b.i1.x, b.i1.y, l), level).rgb, b.f.x);
+  return mix(top, bottom, b.f.y);
 }
 
 // The range texture bilinearly at b of mip level `level`: layer 0 r the height in texels; layer 1 rgb the

@@ -125,6 +125,13 @@ Status Image::create(const Context& context, const ImageCreateInfo& info, Image&
   CARBTF_VK_TRY(vk.vkCreateImageView(context.device(), &view_info, nullptr, &view));
   image.view_ = UniqueHandle<VkImageView>(&vk, context.device(), view);
   context.set_debug_name(image.view_, info.debug_name);
+  if (create.mipLevels > 1) {
+    view_info.subresourceRange.levelCount = 1;
+    VkImageView level0 = VK_NULL_HANDLE;
+    CARBTF_VK_TRY(vk.vkCreateImageView(context.device(), &view_info, nullptr, &level0));
+    image.level0_view_ = UniqueHandle<VkImageView>(&vk, context.device(), level0);
+    context.set_debug_name(image.level0_view_, info.debug_name);
+  }
   out = std::move(image);
   return {};
 }

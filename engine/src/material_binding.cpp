@@ -80,13 +80,7 @@ struct MaterialBinding::Resources {
   // RGBA32F, mip_levels levels: layer 0 the height (r), layer 1 the relief normal (rgb, relief_normals.hpp)
   // and the relief tone (a).
   std::unique_ptr<TextureArray> range_image;
-  // The subspace images' levels 1 .. mip_levels - 1, as this image's levels 0 .. mip_levels - 2, made
-  // from the caller's image (`source`) by blits.
   std::uint32_t mip_levels = 1;
-  Image subspace_mips;
-  VkImage source = VK_NULL_HANDLE;
-  VkImageLayout source_layout = VK_IMAGE_LAYOUT_GENERAL;
-  std::vector<std::uint32_t> drawn_layers;  // the layers the binding draws when it is created
   UniqueHandle<VkSampler> sampler;
   UniqueHandle<VkDescriptorSetLayout> set_layout;
   UniqueHandle<VkDescriptorPool> pool;
@@ -96,16 +90,12 @@ struct MaterialBinding::Resources {
 MaterialTextures material_textures(const SubspaceSynthesizer& synthesizer, const Material& material) {
   MaterialTextures textures;
   textures.view = synthesizer.image_view();
-  textures.image = synthesizer.image();
+  textures.mip_levels = synthesizer.mip_levels();
   textures.width = synthesizer.width();
   textures.height = synthesizer.height();
   textures.periodic_overlap = synthesizer.periodic_overlap();
   textures.layers.resize(material.subspaces.size());
-  for (std::uint32_t s = 0; s < material.subspaces.size(); ++s) {
-    textures.layers[s] = synthesizer.layer_of(s);
-    if (textures.layers[s] != std::numeric_limits<std::uint32_t>::max())
-      textures.array_layers = std::max(textures.array_layers, textures.layers[s] + 1);
-  }
+  for (std::uint32_t s = 0; s < material.subspaces.size(); ++s) textures.layers[s] = synthesizer.layer_of(s);
   return textures;
 }
 
@@ -128,15 +118,11 @@ Status MaterialBinding::create(Context& context, const Material& material, const
               "the material textures give layers for " + std::to_string(textures.layers.size()) +
                   " subspace images, the material has " + std::to_string(material.subspaces.size())};
     }
-    if (textures.image != VK_NULL_HANDLE && textures.array_layers == 0)
-      return {ErrorCode::invalid_argument, "the material textures name their image but not its layer count"};
-    for (std::uint32_t layer : textures.pair_layers.empty() ? textures.layers : textures.pair_layers) {
-      if (textures.image != VK_NULL_HANDLE && layer != std::numeric_limits<std::uint32_t>::max() &&
-          layer >= textures.array_layers) {
-        return {ErrorCode::invalid_argument, "the material textures draw layer " + std::to_string(layer) +
-                                                 " of an image of " + std::to_string(textures.array_layers) +
-                                                 " layers"};
-      }
+    if (textures.mip_levels == 0 || textures.mip_levels > mip_level_count(textures.width, textures.height)) {
+      return {ErrorCode::invalid_argument, "the material textures claim " + std::to_string(textures.mip_levels) +
+                                               " mip levels; a " + std::to_string(textures.width) + "x" +
+                                               std::to_string(textures.height) + " texture has 1 to " +
+                                               std::to_string(mip_level_count(textures.width, textures.height))};
     }
     if (!std::isfinite(info.parallax_scale))
       return {ErrorCode::invalid_argument, "the parallax scale is not finite"};
@@ -172,23 +158,12 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     header.parallax_scale = info.parallax_scale;
     header.light_z_floor = relight_floor(material);
     for (std::size_t c = 0; c < 3; ++c) header.tone_chroma[c] = material.range.tone_chroma[c];
-    // Mip levels where the binding can make them: from an image it may blit from, on a device that blits
-    // RGBA32F with a linear filter.
-    const bool mips = textures.image != VK_NULL_HANDLE &&
-                      (textures.layout == VK_IMAGE_LAYOUT_GENERAL ||
-                       textures.layout == VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL) &&
-                      can_blit_mips(context, textures.format) && can_blit_mips(context, VK_FORMAT_R32G32B32A32_SFLOAT);
-    r.mip_levels = mips ? mip_level_count(textures.width, textures.height) : 1;
+    // The range map gets as many levels as the subspace images have (fewer where the device cannot blit
+    // RGBA32F with a linear filter); the render pass reads the levels both have.
+    r.mip_levels = textures.mip_levels;
     if (info.max_mip_levels > 0) r.mip_levels = std::min(r.mip_levels, info.max_mip_levels);
+    if (!can_blit_mips(context, VK_FORMAT_R32G32B32A32_SFLOAT)) r.mip_levels = 1;
     header.mip_levels = r.mip_levels;
-    r.source = textures.image;
-    r.source_layout = textures.layout;
-    for (std::uint32_t layer : textures.pair_layers.empty() ? textures.layers : textures.pair_layers) {
-      if (layer != std::numeric_limits<std::uint32_t>::max()) r.drawn_layers.push_back(layer);
-    }
-    std::sort(r.drawn_layers.begin(), r.drawn_layers.end());
-    r.drawn_layers.erase(std::unique(r.drawn_layers.begin(), r.drawn_layers.end()), r.drawn_layers.end());
-
     r.range_map.assign(std::size_t{textures.width} * textures.height, 0.0f);
     r.tone_map.assign(r.range_map.size(), 1.0f);
     header.wrap = textures.periodic_overlap > 0 ? 1u : 0u;
@@ -212,18 +187,7 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     CARBTF_TRY(TextureArray::create(context, textures.width, textures.height, 2, VK_FORMAT_R32G32B32A32_SFLOAT,
                                     r.range_image, r.mip_levels));
     if (r.range_image->mip_levels() != r.mip_levels)
-      return {ErrorCode::vulkan_error, "the range map's mip levels differ from the subspace images'"};
-    if (r.mip_levels > 1) {
-      ImageCreateInfo mip_info;
-      mip_info.width = textures.width / 2;
-      mip_info.height = textures.height / 2;
-      mip_info.array_layers = textures.array_layers;
-      mip_info.mip_levels = r.mip_levels - 1;
-      mip_info.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-      mip_info.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-      mip_info.debug_name = "carbtf subspace image mip levels";
-      CARBTF_TRY(Image::create(context, mip_info, r.subspace_mips));
-    }
+      return {ErrorCode::vulkan_error, "the range map did not get the subspace images' mip levels"};
     // Layer 0: the heights (parallax); layer 1: the normal and the tone (shading), read together.
     std::vector<float> normals;
     relief_normals(r.range_map, textures.width, textures.height, header.wrap != 0u, normals);
@@ -252,22 +216,21 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     context.set_debug_name(r.sampler, "carbtf material sampler");
 
     const VkShaderStageFlags stages = VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT;
-    const VkDescriptorSetLayoutBinding bindings[4] = {
+    const VkDescriptorSetLayoutBinding bindings[3] = {
         {gpu::CARBTF_MATERIAL_BINDING_SUBSPACES, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stages,
          nullptr},
         {gpu::CARBTF_MATERIAL_BINDING_RANGE, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stages, nullptr},
-        {gpu::CARBTF_MATERIAL_BINDING_TABLES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stages, nullptr},
-        {gpu::CARBTF_MATERIAL_BINDING_SUBSPACE_MIPS, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stages, nullptr}};
+        {gpu::CARBTF_MATERIAL_BINDING_TABLES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stages, nullptr}};
     auto layout_info =
         vk_struct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
-    layout_info.bindingCount = 4;
+    layout_info.bindingCount = 3;
     layout_info.pBindings = bindings;
     VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
     CARBTF_VK_TRY(vk.vkCreateDescriptorSetLayout(device, &layout_info, nullptr, &set_layout));
     r.set_layout = UniqueHandle<VkDescriptorSetLayout>(&vk, device, set_layout);
     context.set_debug_name(r.set_layout, "carbtf material set layout");
 
-    const VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3},
+    const VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2},
                                            {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1}};
     auto pool_info = vk_struct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
     pool_info.maxSets = 1;
@@ -287,12 +250,8 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     const VkDescriptorImageInfo range{sampler, r.range_image->view(),
                                       VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     const VkDescriptorBufferInfo tables{r.table_buffer.handle(), 0, VK_WHOLE_SIZE};
-    // Without mip levels the shader never reads binding 3; it holds the level-0 images to be valid.
-    const VkDescriptorImageInfo subspace_mips =
-        r.mip_levels > 1 ? VkDescriptorImageInfo{sampler, r.subspace_mips.view(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}
-                         : subspaces;
-    VkWriteDescriptorSet writes[4];
-    for (int i = 0; i < 4; ++i) {
+    VkWriteDescriptorSet writes[3];
+    for (int i = 0; i < 3; ++i) {
       writes[i] = vk_struct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
       writes[i].dstSet = r.set;
       writes[i].dstBinding = bindings[i].binding;
@@ -302,8 +261,7 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     writes[0].pImageInfo = &subspaces;
     writes[1].pImageInfo = &range;
     writes[2].pBufferInfo = &tables;
-    writes[3].pImageInfo = &subspace_mips;
-    vk.vkUpdateDescriptorSets(device, 4, writes, 0, nullptr);
+    vk.vkUpdateDescriptorSets(device, 3, writes, 0, nullptr);
     out = std::move(binding);
     return {};
   } catch (const std::bad_alloc&) {
@@ -314,40 +272,7 @@ Status MaterialBinding::create(Context& context, const Material& material, const
 MaterialBinding::~MaterialBinding() = default;
 
 Status MaterialBinding::record_upload(VkCommandBuffer command_buffer) const noexcept {
-  CARBTF_TRY(resources_->range_image->record_upload(command_buffer));
-  return record_mips(command_buffer, resources_->drawn_layers);
-}
-
-Status MaterialBinding::record_mips(VkCommandBuffer command_buffer, std::span<const std::uint32_t> layers) const noexcept {
-  const Resources& r = *resources_;
-  if (r.mip_levels <= 1 || layers.empty()) return {};
-  for (std::uint32_t layer : layers) {
-    if (layer >= r.subspace_mips.info().array_layers)
-      return {ErrorCode::invalid_argument, "record_mips(): layer " + std::to_string(layer) + " is not in the images"};
-  }
-  // The images were written by a compute pass (synthesis) or a copy, and made visible to shader reads;
-  // the blits read them by transfer, and they return to their layout, visible to shaders again.
-  auto barrier = vk_struct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
-  barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
-  barrier.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
-  barrier.oldLayout = r.source_layout;
-  barrier.newLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-  barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  barrier.image = r.source;
-  barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, VK_REMAINING_ARRAY_LAYERS};
-  constexpr VkPipelineStageFlags shaders = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
-  const VulkanFunctions& vk = context_->vk();
-  vk.vkCmdPipelineBarrier(command_buffer, shaders | VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0,
-                          nullptr, 0, nullptr, 1, &barrier);
-  const Status recorded =
-      record_mip_blits(*context_, command_buffer, {r.source, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, r.width, r.height},
-                       r.subspace_mips.handle(), 0, r.mip_levels - 1, layers, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-  barrier.srcAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
-  barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
-  barrier.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-  barrier.newLayout = r.source_layout;
-  vk.vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT, shaders, 0, 0, nullptr, 0, nullptr, 1, &barrier);
-  return recorded;
+  return resources_->range_image->record_upload(command_buffer);
 }
 
 std::uint32_t MaterialBinding::mip_levels() const noexcept {

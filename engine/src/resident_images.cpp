@@ -5,6 +5,7 @@
 #include <new>
 #include <string>
 
+#include "carbtf/engine/vulkan/mip_chain.hpp"
 #include "vk_check.hpp"
 
 namespace carbtf {
@@ -13,7 +14,7 @@ namespace {
 
 VkImageMemoryBarrier layout_change(VkImage image, std::uint32_t first, std::uint32_t count,
                                    VkAccessFlags from, VkAccessFlags to, VkImageLayout old_layout,
-                                   VkImageLayout new_layout) {
+                                   VkImageLayout new_layout, std::uint32_t levels = 1) {
   VkImageMemoryBarrier barrier{};
   barrier.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
   barrier.srcAccessMask = from;
@@ -22,14 +23,15 @@ VkImageMemoryBarrier layout_change(VkImage image, std::uint32_t first, std::uint
   barrier.newLayout = new_layout;
   barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   barrier.image = image;
-  barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, first, count};
+  barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, levels, first, count};
   return barrier;
 }
 
 }  // namespace
 
 Status ResidentImages::create(Context& context, const Material& material, std::uint32_t size,
-                              std::uint32_t periodic_overlap, std::unique_ptr<ResidentImages>& out) noexcept {
+                              std::uint32_t periodic_overlap, std::unique_ptr<ResidentImages>& out,
+                              std::uint32_t mip_levels) noexcept {
   try {
     if (size == 0) return {ErrorCode::invalid_argument, "resident subspace images need a size above 0"};
     if (material.subspaces.empty())
@@ -42,7 +44,9 @@ Status ResidentImages::create(Context& context, const Material& material, std::u
     info.width = info.height = size;
     info.array_layers = images->subspaces_;
     info.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-    // TRANSFER_SRC: a MaterialBinding blits its mip levels from it.
+    const std::uint32_t possible = can_blit_mips(context, info.format) ? mip_level_count(size, size) : 1;
+    info.mip_levels = mip_levels == 0 ? possible : std::min(mip_levels, possible);
+    // TRANSFER_SRC: level 0 is the source of the blits that make the mip levels.
     info.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     info.debug_name = "carbtf resident subspace images";
     CARBTF_TRY(Image::create(context, info, images->image_));
@@ -56,7 +60,7 @@ Status ResidentImages::create(Context& context, const Material& material, std::u
 void ResidentImages::record_transition(VkCommandBuffer command_buffer) const noexcept {
   const VkImageMemoryBarrier barrier =
       layout_change(image_.handle(), 0, subspaces_, 0, VK_ACCESS_SHADER_READ_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                    VK_IMAGE_LAYOUT_GENERAL);
+                    VK_IMAGE_LAYOUT_GENERAL, VK_REMAINING_MIP_LEVELS);
   context_->vk().vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
                                       VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 0, nullptr, 0, nullptr, 1,
                                       &barrier);
@@ -86,6 +90,7 @@ Status ResidentImages::record_add(VkCommandBuffer command_buffer, const Subspace
     constexpr auto general = VK_IMAGE_LAYOUT_GENERAL;
     constexpr auto source = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                    target = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    const bool mipped = image_.info().mip_levels > 1;
     std::vector<VkImageCopy> copies;
     std::vector<VkImageMemoryBarrier> before{layout_change(synthesizer.image(), 0, VK_REMAINING_ARRAY_LAYERS,
                                                            VK_ACCESS_SHADER_WRITE_BIT,
@@ -104,8 +109,11 @@ Status ResidentImages::record_add(VkCommandBuffer command_buffer, const Subspace
       // Earlier draws read our layer: an execution dependency orders the copy after them.
       before.push_back(
           layout_change(image_.handle(), s, 1, 0, VK_ACCESS_TRANSFER_WRITE_BIT, general, target));
-      after.push_back(layout_change(image_.handle(), s, 1, VK_ACCESS_TRANSFER_WRITE_BIT,
-                                    VK_ACCESS_SHADER_READ_BIT, target, general));
+      // With mip levels, level 0 is next read by the blits that make them.
+      after.push_back(mipped ? layout_change(image_.handle(), s, 1, VK_ACCESS_TRANSFER_WRITE_BIT,
+                                             VK_ACCESS_TRANSFER_READ_BIT, target, source)
+                             : layout_change(image_.handle(), s, 1, VK_ACCESS_TRANSFER_WRITE_BIT,
+                                             VK_ACCESS_SHADER_READ_BIT, target, general));
     }
     if (copies.empty()) return {};
     const VulkanFunctions& vk = context_->vk();
@@ -115,8 +123,21 @@ Status ResidentImages::record_add(VkCommandBuffer command_buffer, const Subspace
                             nullptr, static_cast<std::uint32_t>(before.size()), before.data());
     vk.vkCmdCopyImage(command_buffer, synthesizer.image(), source, image_.handle(), target,
                       static_cast<std::uint32_t>(copies.size()), copies.data());
-    vk.vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT, shaders, 0, 0, nullptr, 0,
-                            nullptr, static_cast<std::uint32_t>(after.size()), after.data());
+    vk.vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT, shaders | VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
+                            0, nullptr, 0, nullptr, static_cast<std::uint32_t>(after.size()), after.data());
+    if (mipped) {
+      CARBTF_TRY(record_mip_blits(
+          *context_, command_buffer,
+          {image_.handle(), 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, image_.info().width, image_.info().height},
+          image_.handle(), 1, image_.info().mip_levels - 1, added, general));
+      std::vector<VkImageMemoryBarrier> back;
+      for (std::uint32_t s : added) {
+        back.push_back(layout_change(image_.handle(), s, 1, VK_ACCESS_TRANSFER_READ_BIT, VK_ACCESS_SHADER_READ_BIT,
+                                     source, general));
+      }
+      vk.vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT, shaders, 0, 0, nullptr, 0, nullptr,
+                              static_cast<std::uint32_t>(back.size()), back.data());
+    }
     resident_.insert(added.begin(), added.end());
     return {};
   } catch (const std::bad_alloc&) {
@@ -127,8 +148,7 @@ Status ResidentImages::record_add(VkCommandBuffer command_buffer, const Subspace
 MaterialTextures ResidentImages::textures() const {
   MaterialTextures textures;
   textures.view = image_.view();
-  textures.image = image_.handle();
-  textures.array_layers = subspaces_;
+  textures.mip_levels = image_.info().mip_levels;
   textures.layout = VK_IMAGE_LAYOUT_GENERAL;
   textures.width = image_.info().width;
   textures.height = image_.info().height;

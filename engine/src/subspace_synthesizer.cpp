@@ -4,6 +4,7 @@
 #include <cstring>
 #include <functional>
 #include <limits>
+#include <new>
 #include <string>
 
 #include <carbtf_gpu_shared.h>
@@ -22,6 +23,7 @@
 #include <carbtf_spirv/interpolate.h>
 
 #include "carbtf/engine/vulkan/gpu_timer.hpp"
+#include "carbtf/engine/vulkan/mip_chain.hpp"
 #include "compute_pipeline.hpp"
 #include "synthesis_plan.hpp"
 #include "vk_check.hpp"
@@ -349,12 +351,17 @@ Status SubspaceSynthesizer::prepare(const Material& material, const SynthesisReq
     image_info.height = plan.height;
     image_info.array_layers = static_cast<std::uint32_t>(plan.subspaces.size());
     image_info.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    if (request.mip_levels != 1 && can_blit_mips(*context_, image_info.format)) {
+      const std::uint32_t possible = mip_level_count(plan.width, plan.height);
+      image_info.mip_levels = request.mip_levels == 0 ? possible : std::min(request.mip_levels, possible);
+    }
     image_info.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
                        VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     image_info.debug_name = "carbtf subspace images";
     const ImageCreateInfo& previous_info = previous_image.info();
     if (previous_image.handle() != VK_NULL_HANDLE && previous_info.width == image_info.width &&
-        previous_info.height == image_info.height && previous_info.array_layers == image_info.array_layers) {
+        previous_info.height == image_info.height && previous_info.array_layers == image_info.array_layers &&
+        previous_info.mip_levels == image_info.mip_levels) {
       prepared->image = std::move(previous_image);
     } else {
       previous_image = {};
@@ -578,7 +585,7 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
       shader_to_shader(vk, command_buffer);
       const detail::BindingResource resources[3] = {
           detail::BindingResource::of(tables, t.colour, batch.colour.size() * sizeof(gpu::ColourItemGpu)),
-          arena, detail::BindingResource::of(p.image.view())};
+          arena, detail::BindingResource::of(p.image.level0_view())};
       params.item_count = static_cast<std::uint32_t>(batch.colour.size());
       pipelines.colour.bind(*context_, command_buffer, resources, &params, sizeof(params));
       vk.vkCmdDispatch(command_buffer,
@@ -601,12 +608,37 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT |
                       VK_PIPELINE_STAGE_TRANSFER_BIT,
                   VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
+  if (p.image.info().mip_levels > 1) {
+    // Level 0 is the blits' source, then GENERAL again like the levels they write.
+    transition_image(vk, command_buffer, image, layers, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                     VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                     VK_ACCESS_TRANSFER_READ_BIT);
+    std::vector<std::uint32_t> all;
+    try {
+      all.resize(layers);
+    } catch (const std::bad_alloc&) {
+      return {ErrorCode::out_of_host_memory, "out of host memory recording the mip levels"};
+    }
+    for (std::uint32_t i = 0; i < layers; ++i) all[i] = i;
+    CARBTF_TRY(record_mip_blits(*context_, command_buffer,
+                                {image, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, plan.width, plan.height}, image, 1,
+                                p.image.info().mip_levels - 1, all, VK_IMAGE_LAYOUT_GENERAL));
+    transition_image(vk, command_buffer, image, layers, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
+                     VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
+                     VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT |
+                         VK_PIPELINE_STAGE_TRANSFER_BIT,
+                     VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
+  }
   return {};
 }
 
 VkImage SubspaceSynthesizer::image() const noexcept {
   return prepared_ ? prepared_->image.handle() : VK_NULL_HANDLE;
 }
+std::uint32_t SubspaceSynthesizer::mip_levels() const noexcept {
+  return prepared_ ? prepared_->image.info().mip_levels : 0;
+}
+
 VkImageView SubspaceSynthesizer::image_view() const noexcept {
   return prepared_ ? prepared_->image.view() : VK_NULL_HANDLE;
 }
@@ -656,7 +688,7 @@ Status SubspaceSynthesizer::record_interpolation(VkCommandBuffer command_buffer,
     }
     params.layer[k] = layer;
   }
-  const detail::BindingResource resources[2] = {detail::BindingResource::of(prepared_->image.view()),
+  const detail::BindingResource resources[2] = {detail::BindingResource::of(prepared_->image.level0_view()),
                                                 detail::BindingResource::of(target)};
   pipelines_->interpolate.bind(*context_, command_buffer, resources, &params, sizeof(params));
   context_->vk().vkCmdDispatch(command_buffer, ceil_div(params.width, gpu::CARBTF_SYNTH_GROUP_X),

@@ -98,6 +98,7 @@ void run_demo(const DemoOptions& options) {
   request.seed = options.seed;
   request.width = request.height = n;
   request.periodic_overlap = default_periodic_overlap(n, n);  // step 5 wraps them round a sphere
+  request.mip_levels = 0;                                      // and samples every level
   SynthesizedImages images;
   SynthesisTiming timing;
   start = std::chrono::steady_clock::now();
@@ -133,7 +134,6 @@ void run_demo(const DemoOptions& options) {
   std::ofstream(folder / "fidelity.csv") << fidelity_csv(fidelity, material);
   timed("fidelity (" + std::to_string(fidelity.size()) + " pairs: synthesis, two renders and the measure each)",
         seconds_since(start));
-
   // 5. The material on a sphere, from the front and from behind, where u wraps (the images are periodic).
   step(5, "render on a sphere, 960x640, front and back");
   const MaterialRender sphere_render =

@@ -64,6 +64,7 @@ void run_render(const RenderOptions& options) {
   SynthesisRequest request;
   request.seed = options.seed;
   request.width = request.height = options.texture_size ? options.texture_size : needs.texture_size;
+  request.mip_levels = 0;  // all: the render pass samples them
   if (measured && !options.texture_size) {
     // Beside the measurement, the model at the measurement's scale: one texel per measured pixel.
     request.width = measured->width();

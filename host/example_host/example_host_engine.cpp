@@ -417,6 +417,7 @@ void ExampleHostEngine::load_material(const Material& material, std::uint32_t te
   SynthesisRequest request;
   request.seed = seed;
   request.width = request.height = texture_size;
+  request.mip_levels = 0;  // all: the render pass samples them
   carbtf_check(synthesizer_->prepare(material, request), "cannot plan the synthesis");
   MaterialBindingInfo binding_info;
   binding_info.seed = seed;

@@ -121,6 +121,7 @@ std::vector<PairFidelity> run_fidelity(Context& context, const Material& materia
   request.seed = options.seed;
   request.width = width;
   request.height = height;
+  request.mip_levels = 0;  // all: the render pass samples them, as it samples the measurement's
   check(synthesizer->prepare(material, request), "cannot plan the synthesis");
   check(context.submit_and_wait([&](VkCommandBuffer cb) { return synthesizer->record(cb); }), "synthesis failed");
   const Mesh plane = make_plane();

@@ -33,15 +33,13 @@ RenderedImage render_measured(Context& context, const Material& material, const 
   std::unique_ptr<TextureArray> array;
   check(
       TextureArray::create(context, w, h, static_cast<std::uint32_t>(std::max<std::size_t>(pairs.size(), 1)),
-                           VK_FORMAT_R8G8B8A8_SRGB, array),
+                           VK_FORMAT_R8G8B8A8_SRGB, array, 0),
       "cannot hold the measured images");
   MaterialTextures textures;
   textures.view = array->view();
   textures.layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
   // Mip levels of the measurement too, so that a foreshortened view filters it as it filters the model.
-  textures.image = array->image();
-  textures.array_layers = array->layers();
-  textures.format = VK_FORMAT_R8G8B8A8_SRGB;
+  textures.mip_levels = array->mip_levels();
   textures.width = w;
   textures.height = h;
   textures.pair_layers.assign(material.lights.size() * material.views.size(), UINT32_MAX);

@@ -42,6 +42,7 @@ std::unique_ptr<SubspaceSynthesizer> synthesized(Context& context, const Materia
   request.height = 80;
   request.margin = 16;
   request.periodic_overlap = periodic_overlap;
+  request.mip_levels = 0;
   const Status status = synthesizer->synthesize(m, request, images);
   INFO(status.message());
   REQUIRE(status.ok());
@@ -241,6 +242,7 @@ SynthesisRequest render_request(const std::vector<std::uint32_t>& subspaces) {
   request.width = request.height = 64;
   request.margin = 8;
   request.subspaces = subspaces;
+  request.mip_levels = 0;  // as ResidentImages makes them
   return request;
 }
 
@@ -355,8 +357,7 @@ TEST_CASE("subspace images made resident frame by frame render the pixels of one
     REQUIRE(synthesizer->prepare(m, render_request(added)).ok());
     REQUIRE(context->submit_and_wait([&](VkCommandBuffer cb) {
       if (Status status = synthesizer->record(cb); !status.ok()) return status;
-      if (Status status = resident->record_add(cb, *synthesizer, added); !status.ok()) return status;
-      return binding->record_mips(cb, added);
+      return resident->record_add(cb, *synthesizer, added);
     }).ok());
     REQUIRE(binding->set_layers(m, resident->layers()).ok());
   }
@@ -414,17 +415,19 @@ TEST_CASE("mip levels: a distant plane matches its box-filtered render and does 
   request.seed = 9;
   request.width = request.height = kTexels;
   request.margin = 16;
+  request.mip_levels = 0;
   SynthesizedImages images;
   REQUIRE(synthesizer->synthesize(m, request, images).ok());
+  REQUIRE(synthesizer->mip_levels() == 9);
   MaterialBindingInfo info;
   info.seed = 9;
   std::unique_ptr<MaterialBinding> mipped, level0;
-  MaterialTextures textures = material_textures(*synthesizer, m);
+  const MaterialTextures textures = material_textures(*synthesizer, m);
   REQUIRE(MaterialBinding::create(*context, m, textures, info, mipped).ok());
-  // Without the image the binding cannot make mip levels: level 0 only, as before mip maps.
-  textures.image = VK_NULL_HANDLE;
-  textures.array_layers = 0;
-  REQUIRE(MaterialBinding::create(*context, m, textures, info, level0).ok());
+  // Level 0 alone, as before mip maps.
+  MaterialBindingInfo level0_info = info;
+  level0_info.max_mip_levels = 1;
+  REQUIRE(MaterialBinding::create(*context, m, textures, level0_info, level0).ok());
   REQUIRE(mipped->upload_and_wait().ok());
   REQUIRE(level0->upload_and_wait().ok());
   REQUIRE(mipped->mip_levels() == 9);

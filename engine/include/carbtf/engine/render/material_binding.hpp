@@ -30,12 +30,10 @@ class SubspaceSynthesizer;
 struct MaterialTextures {
   VkImageView view = VK_NULL_HANDLE;  // RGBA32F 2D-array view, one layer per synthesized subspace image
   VkImageLayout layout = VK_IMAGE_LAYOUT_GENERAL;  // the layout the images are in when drawn
-  // Optional: the image of `view` (created with VK_IMAGE_USAGE_TRANSFER_SRC_BIT, in `layout`, GENERAL or
-  // SHADER_READ_ONLY_OPTIMAL), its layer count and format. Given, the binding keeps mip levels of its
-  // layers (record_upload(), record_mips()) and the render pass samples them; else level 0 only.
-  VkImage image = VK_NULL_HANDLE;
-  std::uint32_t array_layers = 0;
-  VkFormat format = VK_FORMAT_R32G32B32A32_SFLOAT;
+  // Mip levels of `view`, level 0 included, each the mean of 2 x 2 texels of the one below
+  // (render/mip_levels.hpp; SynthesisRequest::mip_levels, ResidentImages and TextureArray make them).
+  // The render pass samples them (and as many of the range map's); 1: level 0 alone.
+  std::uint32_t mip_levels = 1;
   std::uint32_t width = 0;
   std::uint32_t height = 0;
   // > 0: the images tile (SynthesisBlock::periodic_overlap); the range map is then made periodic too
@@ -83,12 +81,8 @@ class MaterialBinding {
   // invalid_argument for a binding of pair layers or a layer list of another length.
   Status set_layers(const Material& material, std::span<const std::uint32_t> layers) noexcept;
 
-  // Records the range map's upload and its transition for fragment-shader reads, and the mip levels of
-  // every subspace image the binding draws (after their synthesis, in the same or a later submission).
+  // Records the range map's upload, with its mip levels, and its transition for fragment-shader reads.
   Status record_upload(VkCommandBuffer command_buffer) const noexcept;
-  // Records the mip levels of `layers` of the subspace images again, after they were (re)written, for
-  // instance by ResidentImages::record_add(). Nothing for a binding without mip levels.
-  Status record_mips(VkCommandBuffer command_buffer, std::span<const std::uint32_t> layers) const noexcept;
   // Levels of the range map and the subspace images the render pass samples, level 0 included.
   std::uint32_t mip_levels() const noexcept;
   // Convenience: record_upload() through the context's submit-and-wait.

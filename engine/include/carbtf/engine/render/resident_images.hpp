@@ -2,8 +2,7 @@
 // the material, each filled when a frame first needs it by copying in a synthesis of only the new
 // images. A frame that adds one image then costs that image's synthesis and a copy, not a synthesis of
 // every resident image again. A MaterialBinding draws from textures(); after each record_add(),
-// MaterialBinding::set_layers(material, layers()) lets it see the new images, and
-// MaterialBinding::record_mips(added) makes their mip levels.
+// MaterialBinding::set_layers(material, layers()) lets it see the new images.
 //
 // Use: create(); record_transition() once before the first record_add() or draw; each frame,
 // missing(needs.subspaces), and when some are missing: SubspaceSynthesizer::prepare() with exactly
@@ -30,9 +29,12 @@ namespace carbtf {
 class ResidentImages {
  public:
   // size x size texels per image (SynthesisBlock width and height), periodic when `periodic_overlap`
-  // > 0. invalid_argument for an empty size or a material without subspace images.
+  // > 0, with up to `mip_levels` levels (0: all the size allows, render/mip_levels.hpp; 1: level 0
+  // alone), which record_add() makes. invalid_argument for an empty size or a material without
+  // subspace images.
   static Status create(Context& context, const Material& material, std::uint32_t size,
-                       std::uint32_t periodic_overlap, std::unique_ptr<ResidentImages>& out) noexcept;
+                       std::uint32_t periodic_overlap, std::unique_ptr<ResidentImages>& out,
+                       std::uint32_t mip_levels = 0) noexcept;
 
   // Records the move of every layer to VK_IMAGE_LAYOUT_GENERAL, ready for fragment-shader reads.
   void record_transition(VkCommandBuffer command_buffer) const noexcept;
@@ -41,7 +43,7 @@ class ResidentImages {
   std::vector<std::uint32_t> missing(std::span<const std::uint32_t> needed) const;
 
   // Records, after `synthesizer`'s recorded synthesis of at least `added`, the copy of their layers into
-  // theirs, ending visible to fragment-shader reads; they count as resident from now. invalid_argument,
+  // theirs and the blits that make their mip levels, ending visible to fragment-shader reads; they count as resident from now. invalid_argument,
   // recording nothing, when the synthesizer's images are of another size or lack one of `added`.
   Status record_add(VkCommandBuffer command_buffer, const SubspaceSynthesizer& synthesizer,
                     std::span<const std::uint32_t> added) noexcept;

@@ -56,7 +56,8 @@ class SubspaceSynthesizer {
   // The output: an RGBA32F 2D-array image, one layer per requested subspace (layer_of), channels
   // beyond the model's own set to 0 and alpha to 1. Null before a successful prepare().
   VkImage image() const noexcept;
-  VkImageView image_view() const noexcept;
+  VkImageView image_view() const noexcept;  // all mip levels
+  std::uint32_t mip_levels() const noexcept;  // of the image (SynthesisRequest::mip_levels); 0 before prepare()
   // The layer of subspace `subspace`, or UINT32_MAX when it was not requested.
   std::uint32_t layer_of(std::uint32_t subspace) const noexcept;
   std::uint32_t width() const noexcept;

@@ -64,6 +64,9 @@ class Image {
 
   VkImage handle() const noexcept { return image_.get(); }
   VkImageView view() const noexcept { return view_.get(); }
+  // A view of level 0 alone, all layers: what a storage-image descriptor needs (one level). The same
+  // as view() for an image of one level.
+  VkImageView level0_view() const noexcept { return level0_view_ ? level0_view_.get() : view_.get(); }
   const ImageCreateInfo& info() const noexcept { return info_; }
 
  private:
@@ -71,6 +74,7 @@ class Image {
   UniqueHandle<VkDeviceMemory> memory_;
   UniqueHandle<VkImage> image_;
   UniqueHandle<VkImageView> view_;
+  UniqueHandle<VkImageView> level0_view_;  // only with more than one level
   ImageCreateInfo info_{};
 };
 

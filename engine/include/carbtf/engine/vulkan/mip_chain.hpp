@@ -1,5 +1,6 @@
 // Records the mip levels of the textures the render pass samples (render/mip_levels.hpp says how many):
-// a blit with a linear filter at a scale of exactly one half makes each texel the mean of 2 x 2.
+// a blit with a linear filter at a scale of exactly one half makes each texel the mean of 2 x 2. The
+// owner of an image records them: the synthesizer, ResidentImages, TextureArray.
 #pragma once
 
 #include <cstdint>

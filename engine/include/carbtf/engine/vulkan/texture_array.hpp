@@ -34,7 +34,6 @@ class TextureArray {
   Status upload_and_wait() noexcept;
 
   VkImageView view() const noexcept { return image_.view(); }
-  VkImage image() const noexcept { return image_.handle(); }  // usable as a transfer source
   std::uint32_t width() const noexcept { return image_.info().width; }
   std::uint32_t height() const noexcept { return image_.info().height; }
   std::uint32_t layers() const noexcept { return image_.info().array_layers; }
