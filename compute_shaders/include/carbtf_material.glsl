@@ -68,13 +68,12 @@ vec3 carbtf_subspace_texel(CarbtfBilinear b, uint layer, int level) {
   return mix(top, bottom, b.f.y);
 }
 
-// The range texture bilinearly at b of mip level `level`: layer 0 r the height in texels; layer 1 rgb the
-// relief normal, a the relief tone.
-vec4 carbtf_range_texel(CarbtfBilinear b, int level, int layer) {
-  vec4 top = mix(texelFetch(carbtf_range, ivec3(b.i0.x, b.i0.y, layer), level),
-                 texelFetch(carbtf_range, ivec3(b.i1.x, b.i0.y, layer), level), b.f.x);
-  vec4 bottom = mix(texelFetch(carbtf_range, ivec3(b.i0.x, b.i1.y, layer), level),
-                    texelFetch(carbtf_range, ivec3(b.i1.x, b.i1.y, layer), level), b.f.x);
+// The range texture's layer 0 (the height in texels) bilinearly at b of mip level `level`.
+float carbtf_height_texel(CarbtfBilinear b, int level) {
+  float top = mix(texelFetch(carbtf_range, ivec3(b.i0.x, b.i0.y, 0), level).r,
+                  texelFetch(carbtf_range, ivec3(b.i1.x, b.i0.y, 0), level).r, b.f.x);
+  float bottom = mix(texelFetch(carbtf_range, ivec3(b.i0.x, b.i1.y, 0), level).r,
+                     texelFetch(carbtf_range, ivec3(b.i1.x, b.i1.y, 0), level).r, b.f.x);
   return mix(top, bottom, b.f.y);
 }
 
@@ -104,26 +103,41 @@ float carbtf_material_lod(vec2 uv) {
   return footprint > 1.0 ? min(0.5 * log2(footprint), top) : 0.0;
 }
 
-vec4 carbtf_range_at(vec2 uv, float lod, int layer) {
-  CarbtfLod s = carbtf_split_lod(lod);
-  vec4 value = carbtf_range_texel(carbtf_bilinear(uv, s.level), s.level, layer);
-  if (s.t > 0.0) value = mix(value, carbtf_range_texel(carbtf_bilinear(uv, s.level + 1), s.level + 1, layer), s.t);
-  return value;
-}
-
 // The range map's height at uv, in texels, its mean removed.
 float carbtf_height(vec2 uv, float lod) {
-  return carbtf_range_at(uv, lod, 0).r - carbtf_header.range_mean;
+  CarbtfLod s = carbtf_split_lod(lod);
+  float value = carbtf_height_texel(carbtf_bilinear(uv, s.level), s.level);
+  if (s.t > 0.0) value = mix(value, carbtf_height_texel(carbtf_bilinear(uv, s.level + 1), s.level + 1), s.t);
+  return value - carbtf_header.range_mean;
 }
 float carbtf_height(vec2 uv) {
   return carbtf_height(uv, 0.0);
 }
 
-// The relief at uv (tangent frame): xyz the filtered unit normals of the range map (relief_normals.hpp;
-// shorter than 1 where the facets under the footprint differ, which dims the relit factor as their
-// own mean would), w the relief tone, the factor on the smooth texture's colour that follows the relief.
+// The range texture's layer 1 bilinearly at b of mip level `level`: rgb the normal, a the tone. The
+// blend of the texels' normals is scaled to the blend of their lengths: at level 0, whose normals are
+// unit, it is normalised (interpolation between facets must not shorten it: at a sharp crease the
+// blend of two unit normals is short, and relit would draw a dark line); above, each texel's normal is
+// the mean of the unit normals under it, as short as they differ, and keeps that length.
+vec4 carbtf_relief_texel(CarbtfBilinear b, int level) {
+  vec4 t00 = texelFetch(carbtf_range, ivec3(b.i0.x, b.i0.y, 1), level);
+  vec4 t10 = texelFetch(carbtf_range, ivec3(b.i1.x, b.i0.y, 1), level);
+  vec4 t01 = texelFetch(carbtf_range, ivec3(b.i0.x, b.i1.y, 1), level);
+  vec4 t11 = texelFetch(carbtf_range, ivec3(b.i1.x, b.i1.y, 1), level);
+  vec4 value = mix(mix(t00, t10, b.f.x), mix(t01, t11, b.f.x), b.f.y);
+  float target = mix(mix(length(t00.xyz), length(t10.xyz), b.f.x), mix(length(t01.xyz), length(t11.xyz), b.f.x), b.f.y);
+  return vec4(value.xyz * (target / length(value.xyz)), value.w);
+}
+
+// The relief at uv (tangent frame): xyz the filtered normal of the range map (relief_normals.hpp; unit
+// at level 0, shorter above where the facets under the footprint differ, which dims the relit factor
+// as their own mean would), w the relief tone, the factor on the smooth texture's colour that follows
+// the relief.
 vec4 carbtf_relief(vec2 uv, float lod) {
-  return carbtf_range_at(uv, lod, 1);
+  CarbtfLod s = carbtf_split_lod(lod);
+  vec4 value = carbtf_relief_texel(carbtf_bilinear(uv, s.level), s.level);
+  if (s.t > 0.0) value = mix(value, carbtf_relief_texel(carbtf_bilinear(uv, s.level + 1), s.level + 1), s.t);
+  return value;
 }
 
 // Parallax mapping with offset limiting: the texture point seen along `view` (tangent frame, unit,

@@ -115,7 +115,27 @@ struct Sampler {
     return value;
   }
   float height_at(glm::vec2 uv, float lod) const { return filtered(range, uv, lod).x - range_mean; }
-  glm::vec4 relief_at(glm::vec2 uv, float lod) const { return filtered(relief, uv, lod); }
+  // The shader's carbtf_relief(): the bilinear blend of the normals scaled to the blend of their lengths.
+  glm::vec4 relief_at(glm::vec2 uv, float lod) const {
+    auto at_level = [&](int level) {
+      const Bilinear b = bilinear(uv, level);
+      const std::vector<float>& map = relief.levels[static_cast<std::size_t>(level)];
+      const std::size_t w = width >> level;
+      auto at = [&](int x, int y) {
+        const std::size_t base = (static_cast<std::size_t>(y) * w + x) * 4;
+        return glm::vec4(map[base], map[base + 1], map[base + 2], map[base + 3]);
+      };
+      const glm::vec4 t00 = at(b.x0, b.y0), t10 = at(b.x1, b.y0), t01 = at(b.x0, b.y1), t11 = at(b.x1, b.y1);
+      const glm::vec4 value = glm::mix(glm::mix(t00, t10, b.fx), glm::mix(t01, t11, b.fx), b.fy);
+      auto length = [](const glm::vec4& t) { return glm::length(glm::vec3(t)); };
+      const float target = glm::mix(glm::mix(length(t00), length(t10), b.fx), glm::mix(length(t01), length(t11), b.fx), b.fy);
+      return glm::vec4(glm::vec3(value) * (target / glm::length(glm::vec3(value))), value.w);
+    };
+    const Lod s(lod);
+    glm::vec4 value = at_level(s.level);
+    if (s.t > 0.0f) value = glm::mix(value, at_level(s.level + 1), s.t);
+    return value;
+  }
   glm::vec3 subspace_at(glm::vec2 uv, float lod, std::uint32_t subspace) const {
     return glm::vec3(filtered(images[subspace], uv, lod));
   }
@@ -221,7 +241,15 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
       const glm::vec2 shifted =
           uv + shift * glm::vec2(view.x, -view.y) / glm::vec2(static_cast<float>(tw), static_cast<float>(th));
       const glm::vec4 relief = sampler.relief_at(shifted, lod);
-      const glm::vec3 normal(relief);
+      glm::vec3 normal(relief);
+      if (input.normals_from_heights) {
+        const glm::vec2 texel(1.0f / static_cast<float>(tw), 1.0f / static_cast<float>(th));
+        const float dx = 0.5f * (sampler.height_at(shifted + glm::vec2(texel.x, 0), 0.0f) -
+                                 sampler.height_at(shifted - glm::vec2(texel.x, 0), 0.0f));
+        const float dy = 0.5f * (sampler.height_at(shifted - glm::vec2(0, texel.y), 0.0f) -
+                                 sampler.height_at(shifted + glm::vec2(0, texel.y), 0.0f));
+        normal = glm::normalize(glm::vec3(-dx, -dy, 1.0f));
+      }
       const float tone = relief.w;
 
       glm::vec3 colour(0.0f);

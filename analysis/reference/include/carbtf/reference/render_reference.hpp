@@ -25,6 +25,10 @@ struct ReferenceRenderInput {
   // them as the means of 2 x 2 texels (mip_chain.hpp) and picks each pixel's level of detail from the
   // uv of its 2 x 2 quad's neighbours, as the fragment stage's fine derivatives do. 1: level 0 only.
   std::uint32_t mip_levels = 1;
+  // The normal as the render pass computed it before normals were stored: per pixel, the central
+  // differences of the bilinear heights one texel apart, normalised (level 0 only). The tests bound
+  // what storing them changed (relief_normals.hpp).
+  bool normals_from_heights = false;
   // The textures tile (a periodic synthesis): texel addresses wrap instead of repeating the edge.
   bool wrap = false;
 };
