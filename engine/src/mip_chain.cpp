@@ -3,24 +3,16 @@
 #include <new>
 #include <vector>
 
+#include "image_barrier.hpp"
 #include "vk_check.hpp"
 
 namespace carbtf {
 
 namespace {
 
-VkImageMemoryBarrier level_barrier(VkImage image, std::uint32_t level, std::uint32_t layer,
-                                   VkAccessFlags from, VkAccessFlags to, VkImageLayout old_layout,
-                                   VkImageLayout new_layout) {
-  auto barrier = vk_struct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
-  barrier.srcAccessMask = from;
-  barrier.dstAccessMask = to;
-  barrier.oldLayout = old_layout;
-  barrier.newLayout = new_layout;
-  barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  barrier.image = image;
-  barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, level, 1, layer, 1};
-  return barrier;
+VkImageMemoryBarrier level_barrier(VkImage image, std::uint32_t level, std::uint32_t layer, VkAccessFlags from,
+                                   VkAccessFlags to, VkImageLayout old_layout, VkImageLayout new_layout) {
+  return detail::colour_barrier(image, {level, 1, layer, 1}, from, to, old_layout, new_layout);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "carbtf/engine/vulkan/mip_chain.hpp"
+#include "image_barrier.hpp"
 #include "vk_check.hpp"
 
 namespace carbtf {
@@ -15,16 +16,7 @@ namespace {
 VkImageMemoryBarrier layout_change(VkImage image, std::uint32_t first, std::uint32_t count,
                                    VkAccessFlags from, VkAccessFlags to, VkImageLayout old_layout,
                                    VkImageLayout new_layout, std::uint32_t levels = 1) {
-  VkImageMemoryBarrier barrier{};
-  barrier.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
-  barrier.srcAccessMask = from;
-  barrier.dstAccessMask = to;
-  barrier.oldLayout = old_layout;
-  barrier.newLayout = new_layout;
-  barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  barrier.image = image;
-  barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, levels, first, count};
-  return barrier;
+  return detail::colour_barrier(image, {0, levels, first, count}, from, to, old_layout, new_layout);
 }
 
 }  // namespace

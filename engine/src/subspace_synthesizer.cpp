@@ -25,6 +25,7 @@
 #include "carbtf/engine/vulkan/gpu_timer.hpp"
 #include "carbtf/engine/vulkan/mip_chain.hpp"
 #include "compute_pipeline.hpp"
+#include "image_barrier.hpp"
 #include "synthesis_plan.hpp"
 #include "vk_check.hpp"
 
@@ -58,15 +59,8 @@ void transition_image(const VulkanFunctions& vk, VkCommandBuffer command_buffer,
                       std::uint32_t layers, VkImageLayout from, VkImageLayout to, VkPipelineStageFlags source,
                       VkAccessFlags source_access, VkPipelineStageFlags destination,
                       VkAccessFlags destination_access) {
-  auto barrier = vk_struct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
-  barrier.srcAccessMask = source_access;
-  barrier.dstAccessMask = destination_access;
-  barrier.oldLayout = from;
-  barrier.newLayout = to;
-  barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  barrier.image = image;
-  barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers};
+  const VkImageMemoryBarrier barrier =
+      detail::colour_barrier(image, {0, 1, 0, layers}, source_access, destination_access, from, to);
   vk.vkCmdPipelineBarrier(command_buffer, source, destination, 0, 0, nullptr, 0, nullptr, 1, &barrier);
 }
 
