@@ -16,7 +16,8 @@ namespace carbtf::cli {
 
 RenderedImage render_measured(Context& context, const Material& material, const BtfDataset& dataset,
                               const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs,
-                              const Mesh& mesh, const RenderScene& scene, const RenderTargetInfo& target) {
+                              const Mesh& mesh, const RenderScene& scene, const RenderTargetInfo& target,
+                              std::uint32_t mip_levels) {
   const std::uint32_t w = dataset.width(), h = dataset.height();
   const double bytes = static_cast<double>(pairs.size()) * w * h * 4;
   if (bytes > 1.5 * 1024 * 1024 * 1024) {
@@ -33,7 +34,7 @@ RenderedImage render_measured(Context& context, const Material& material, const 
   std::unique_ptr<TextureArray> array;
   check(
       TextureArray::create(context, w, h, static_cast<std::uint32_t>(std::max<std::size_t>(pairs.size(), 1)),
-                           VK_FORMAT_R8G8B8A8_SRGB, array, 0),
+                           VK_FORMAT_R8G8B8A8_SRGB, array, mip_levels),
       "cannot hold the measured images");
   MaterialTextures textures;
   textures.view = array->view();

@@ -17,10 +17,11 @@ namespace carbtf::cli {
 
 // The measured images of `pairs` (light, view indices; those the frame can use) as texture layers, a
 // flat range map (the relief is in the photographs already) and no parallax, rendered once. Throws
-// CommandError when the images exceed 1.5 GiB or the device's array layers.
+// CommandError when the images exceed 1.5 GiB or the device's array layers. `mip_levels`: as
+// SynthesisRequest::mip_levels (0: all), so that the measurement is filtered as the model is.
 RenderedImage render_measured(Context& context, const Material& material, const BtfDataset& dataset,
                               const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs, const Mesh& mesh,
-                              const RenderScene& scene, const RenderTargetInfo& target);
+                              const RenderScene& scene, const RenderTargetInfo& target, std::uint32_t mip_levels = 0);
 
 // render --compare: the measured BTF rendered as above into an RGBA32F target of the model frame's size,
 // written beside the model's frame `out` as OUT_measured and OUT_compare (model | measured), with a line
