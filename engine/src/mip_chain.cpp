@@ -73,6 +73,7 @@ Status record_mip_blits(const Context& context, VkCommandBuffer command_buffer, 
       }
       vk.vkCmdBlitImage(command_buffer, from, from_layout, target, written,
                         static_cast<std::uint32_t>(blits.size()), blits.data(), VK_FILTER_LINEAR);
+      if (l + 1 == count) break;
       // The level just written is the next blit's source.
       barriers.clear();
       for (std::uint32_t layer : layers) {
