@@ -462,6 +462,13 @@ TEST_CASE("mip levels: a distant plane matches its box-filtered render and does 
   REQUIRE(level0->upload_and_wait().ok());
   REQUIRE(mipped->mip_levels() == 9);
   REQUIRE(level0->mip_levels() == 1);
+  for (const std::uint32_t claimed : {0u, 10u}) {
+    // A 256^2 texture has 1 to 9 levels: the binding refuses another count instead of sampling garbage.
+    MaterialTextures wrong = textures;
+    wrong.mip_levels = claimed;
+    std::unique_ptr<MaterialBinding> refused;
+    CHECK(MaterialBinding::create(*context, m, wrong, info, refused).code() == ErrorCode::invalid_argument);
+  }
   {
     // A host may cap the levels (MaterialBindingInfo::max_mip_levels).
     MaterialBindingInfo capped = info;
