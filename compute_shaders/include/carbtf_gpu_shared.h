@@ -253,6 +253,7 @@ CARBTF_CONST_UINT(CARBTF_MATERIAL_BINDING_TABLES, 2u)
 CARBTF_CONST_UINT(CARBTF_NO_LAYER, 0xFFFFFFFFu)
 // A lookup-cell entry with this bit is a boundary edge, else a triangle.
 CARBTF_CONST_UINT(CARBTF_LOOKUP_EDGE_BIT, 0x80000000u)
+CARBTF_CONST_UINT(CARBTF_LOOKUP_ENTRY_WORDS, 9u)
 // A fragment inside a triangle up to this barycentric slack uses it; further out, the nearest edge.
 CARBTF_CONST_FLOAT(CARBTF_LOOKUP_INSIDE_SLACK, 1.0e-5f)
 // Direction weights below this are dropped (and the rest renormalised), so that a fragment at or next
@@ -264,16 +265,20 @@ CARBTF_CONST_UINT(CARBTF_RENDER_MAX_LIGHTS, 4u)
 
 // One direction set's lookup (engine/internal/carbtf/engine/internal/direction_lookup.hpp): a grid of
 // grid_size^2 cells over the projected disk [-1, 1]^2, row y, column x; cell c lists entries
-// [cells[c], cells[c + 1]). Offsets count uints from the start of the data after the header.
+// [cells[c], cells[c + 1]). Offsets count uints from the start of the data after the header. Each entry
+// is CARBTF_LOOKUP_ENTRY_WORDS uints holding all a fragment needs, so that it reads them after one
+// indirection, not three (entry, then triangle, then points: gathers that wait on each other):
+//   a triangle: i0, i1, i2 (direction indices), then the projections of i0, i1, i2 (x, y as uint bits);
+//   a boundary edge: CARBTF_LOOKUP_EDGE_BIT | i0, i1, i1, then the projections of i0, i1, i1.
 struct DirectionLookupGpu {
   uint count;      // directions
   uint grid_size;  // cells per side
   uint cells;      // grid_size^2 + 1 entry starts
-  uint entries;    // triangle index, or CARBTF_LOOKUP_EDGE_BIT | boundary edge index
-  uint points;     // 2 floats (as uint bits) per direction: its projection
-  uint triangles;  // 3 direction indices per triangle
-  uint edges;      // 2 direction indices per boundary edge
-  uint reserved;
+  uint entries;    // CARBTF_LOOKUP_ENTRY_WORDS uints per entry
+  uint reserved0;
+  uint reserved1;
+  uint reserved2;
+  uint reserved3;
 };
 
 struct MaterialTablesHeader {

@@ -163,9 +163,9 @@ vec2 carbtf_project_direction(vec3 d) {
   return (theta / (0.5 * CARBTF_PI)) * azimuth;
 }
 
-vec2 carbtf_lookup_point(DirectionLookupGpu set, uint index) {
-  return vec2(uintBitsToFloat(carbtf_data[set.points + 2u * index]),
-              uintBitsToFloat(carbtf_data[set.points + 2u * index + 1u]));
+// Projection k (0 to 2) of the entry at word `base`.
+vec2 carbtf_lookup_point(uint base, uint k) {
+  return vec2(uintBitsToFloat(carbtf_data[base + 3u + 2u * k]), uintBitsToFloat(carbtf_data[base + 4u + 2u * k]));
 }
 
 // Barycentric weights of the measured directions around projected point p: the triangle of p's grid
@@ -184,11 +184,12 @@ void carbtf_direction_weights(DirectionLookupGpu set, vec2 p, out uvec3 index, o
   uvec3 edge_index = uvec3(0u);
   vec3 edge_weight = vec3(1.0, 0.0, 0.0);
   for (uint e = begin; e < end; ++e) {
-    uint entry = carbtf_data[set.entries + e];
-    if ((entry & CARBTF_LOOKUP_EDGE_BIT) == 0u) {
-      uvec3 t = uvec3(carbtf_data[set.triangles + 3u * entry], carbtf_data[set.triangles + 3u * entry + 1u],
-                      carbtf_data[set.triangles + 3u * entry + 2u]);
-      vec2 a = carbtf_lookup_point(set, t.x), b = carbtf_lookup_point(set, t.y), q = carbtf_lookup_point(set, t.z);
+    uint base = set.entries + CARBTF_LOOKUP_ENTRY_WORDS * e;
+    uint first = carbtf_data[base];
+    vec2 a = carbtf_lookup_point(base, 0u), b = carbtf_lookup_point(base, 1u);
+    if ((first & CARBTF_LOOKUP_EDGE_BIT) == 0u) {
+      uvec3 t = uvec3(first, carbtf_data[base + 1u], carbtf_data[base + 2u]);
+      vec2 q = carbtf_lookup_point(base, 2u);
       vec2 ab = b - a, aq = q - a;
       float area = ab.x * aq.y - ab.y * aq.x;
       vec2 pb = b - p, pq = q - p;
@@ -204,9 +205,7 @@ void carbtf_direction_weights(DirectionLookupGpu set, vec2 p, out uvec3 index, o
         weight = l / (l.x + l.y + l.z);
       }
     } else {
-      uint edge = entry & ~CARBTF_LOOKUP_EDGE_BIT;
-      uint i0 = carbtf_data[set.edges + 2u * edge], i1 = carbtf_data[set.edges + 2u * edge + 1u];
-      vec2 a = carbtf_lookup_point(set, i0), b = carbtf_lookup_point(set, i1);
+      uint i0 = first & ~CARBTF_LOOKUP_EDGE_BIT, i1 = carbtf_data[base + 1u];
       vec2 ab = b - a;
       float s = clamp(dot(p - a, ab) / dot(ab, ab), 0.0, 1.0);
       vec2 d = a + s * ab - p;

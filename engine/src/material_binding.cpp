@@ -1,6 +1,7 @@
 #include "carbtf/engine/render/material_binding.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -31,7 +32,8 @@ std::uint32_t float_bits(float value) {
   return bits;
 }
 
-// Appends one direction set's lookup after the header; offsets count from the data start.
+// Appends one direction set's lookup after the header (DirectionLookupGpu: each entry inline with its
+// directions' projections); offsets count from the data start.
 void append_lookup(const DirectionTriangulation& triangulation, const DirectionLookupGrid& grid,
                    std::vector<std::uint32_t>& data, gpu::DirectionLookupGpu& out) {
   auto offset = [&] { return static_cast<std::uint32_t>(data.size() - kHeaderWords); };
@@ -40,16 +42,22 @@ void append_lookup(const DirectionTriangulation& triangulation, const DirectionL
   out.cells = offset();
   data.insert(data.end(), grid.cell_starts.begin(), grid.cell_starts.end());
   out.entries = offset();
-  data.insert(data.end(), grid.entries.begin(), grid.entries.end());
-  out.points = offset();
-  for (const auto& p : triangulation.points) {
-    data.push_back(float_bits(static_cast<float>(p[0])));
-    data.push_back(float_bits(static_cast<float>(p[1])));
+  for (const std::uint32_t entry : grid.entries) {
+    std::array<std::uint32_t, 3> index;
+    if ((entry & gpu::CARBTF_LOOKUP_EDGE_BIT) == 0) {
+      index = triangulation.triangles[entry];
+    } else {
+      const auto& edge = triangulation.boundary[entry & ~gpu::CARBTF_LOOKUP_EDGE_BIT];
+      index = {edge[0], edge[1], edge[1]};
+    }
+    data.push_back(index[0] | (entry & gpu::CARBTF_LOOKUP_EDGE_BIT));
+    data.push_back(index[1]);
+    data.push_back(index[2]);
+    for (const std::uint32_t i : index) {
+      data.push_back(float_bits(static_cast<float>(triangulation.points[i][0])));
+      data.push_back(float_bits(static_cast<float>(triangulation.points[i][1])));
+    }
   }
-  out.triangles = offset();
-  for (const auto& t : triangulation.triangles) data.insert(data.end(), t.begin(), t.end());
-  out.edges = offset();
-  for (const auto& e : triangulation.boundary) data.insert(data.end(), e.begin(), e.end());
 }
 
 // The layer of every (light, view) pair, [light * views + view], as the fragment stage reads it.
