@@ -102,7 +102,7 @@ SubspaceModel fit_channels(const std::vector<Plane>& channels, LightView pair, c
 }
 
 // The model of one subspace image; notes name the band they concern.
-SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plane& range_map, const Plane& tone, const std::array<float, 3>& chroma,
+SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plane& range_map, std::span<const Plane> tone, const std::array<float, 3>& chroma,
                            double light_z_floor, const AnalysisOptions& options, std::vector<std::string>& notes) {
   const std::uint32_t width = dataset.width(), height = dataset.height();
   std::vector<float> rgb(dataset.pixel_count() * 3);
@@ -111,7 +111,7 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
   for (std::size_t p = 0; p < dataset.pixel_count(); ++p) {
     for (int k = 0; k < 3; ++k) channels[static_cast<std::size_t>(k)](static_cast<Eigen::Index>(p / width), static_cast<Eigen::Index>(p % width)) = rgb[p * 3 + k];
   }
-  const bool toned = tone.size() > 0;
+  const bool toned = !tone.empty();
   if (toned || options.deshade_floor > 0.0) {
     undo_parallax(channels, range_map, dataset.views()[pair.view].vector(), kAnalysisParallaxScale);
   }
@@ -126,7 +126,8 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
   };
   if (!toned || options.remainder_clamps.empty()) {
     std::vector<Plane> smooth = prepared(1.0);
-    match_render_mean(smooth, channels, weighted_tone(toned ? tone : Plane::Ones(height, width), 1.0, chroma), relit);
+    const std::vector<Plane> untoned{Plane::Ones(height, width)};
+    match_render_mean(smooth, channels, weighted_tone(toned ? tone : untoned, 1.0, chroma), relit);
     return fit_channels(smooth, pair, options, notes);
   }
 
@@ -224,9 +225,21 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
     tiles.seed = options.segmentation.seed;
     for (const Direction& d : dataset.lights()) result.material.lights.push_back(to_material(d));
     for (const Direction& d : dataset.views()) result.material.views.push_back(to_material(d));
-    if (options.relief_tone) result.tone = relief_tone(dataset, result.stereo_view, result.range_map, relight_floor(result.material));
-    result.material.range = build_range_tiles(result.range_map, tiles, options.relief_tone ? &result.tone : nullptr);
-    if (options.relief_tone && options.coloured_tone) {
+    if (options.relief_tone) {
+      result.tone = relief_tone(dataset, result.stereo_view, result.range_map, relight_floor(result.material));
+      result.tone_planes = {result.tone};
+      if (options.tone_planes != TonePlanes::never) {
+        std::vector<Plane> planes = relief_tone_planes(dataset, result.stereo_view, result.range_map, relight_floor(result.material));
+        const double deviation = tone_colour_deviation(planes);
+        const bool coloured = options.tone_planes == TonePlanes::always || deviation >= kToneColourVisible;
+        if (coloured) result.tone_planes = std::move(planes);
+        std::snprintf(line, sizeof line, "relief tone: colour deviation %.3f, %s", deviation,
+                      coloured ? "stored as R, G and B planes" : "stored grey");
+        note(line);
+      }
+    }
+    result.material.range = build_range_tiles(result.range_map, tiles, result.tone_planes);
+    if (options.relief_tone && options.coloured_tone && result.tone_planes.size() == 1) {
       result.material.range.tone_chroma = relief_tone_chroma(dataset, result.stereo_view, result.range_map, relight_floor(result.material), result.tone);
     }
   }
@@ -239,7 +252,7 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
     Progress progress("subspace models", representatives.size(), options.progress);
     const double z_floor = relight_floor(result.material);  // the render pass's, from the light set
     detail::parallel_for(representatives.size(), options.threads, [&](std::size_t s) {
-      result.material.subspaces[s] = fit_subspace(dataset, representatives[s], result.range_map, result.tone,
+      result.material.subspaces[s] = fit_subspace(dataset, representatives[s], result.range_map, result.tone_planes,
                                                     result.material.range.tone_chroma, z_floor, options, notes[s]);
       progress.advance();
     });
@@ -266,6 +279,8 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
       {"calibrate_collapse", options.calibrate_collapse ? "yes" : "no"},
       {"relief_tone", options.relief_tone ? "yes" : "no"},
       {"coloured_tone", options.relief_tone && options.coloured_tone ? "where it explains the colour" : "no"},
+      {"tone_planes", options.tone_planes == TonePlanes::automatic ? "where its colour is visible"
+                      : options.tone_planes == TonePlanes::always  ? "yes" : "no"},
       {"remainder_clamps", join_numbers(options.remainder_clamps)},
       {"selection_draws", std::to_string(options.selection_draws)},
       {"deshade_floor", std::to_string(options.deshade_floor)},

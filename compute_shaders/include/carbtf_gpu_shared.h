@@ -293,7 +293,9 @@ struct MaterialTablesHeader {
   float range_mean;
   float light_z_floor;  // cos of the largest measured light elevation: the relit factor's denominator floor
   uint wrap;            // 1: the textures tile, texel addresses wrap; 0: edge texels repeat
-  float tone_chroma[3];  // RangeTiles::tone_chroma: channel c takes max(1 + tone_chroma[c] * (tone - 1), 0)
+  uint reserved4;  // (was the tone chroma; the range texture's tone holds it applied)
+  uint reserved5;
+  uint reserved6;
   uint mip_levels;       // levels of the range map and the subspace images, level 0 included (mip_chain.hpp)
 };
 
@@ -332,7 +334,7 @@ static_assert(sizeof(ColourItemGpu) == 32 + 16 * CARBTF_SYNTH_MAX_CHANNELS + 4 *
 static_assert(sizeof(SynthPassParams) == 36 && sizeof(InterpolateParams) == 112);
 static_assert(sizeof(DirectionLookupGpu) == 32 && sizeof(MaterialTablesHeader) == 112);
 static_assert(offsetof(MaterialTablesHeader, layer_table) == 64 && offsetof(MaterialTablesHeader, parallax_scale) == 80);
-static_assert(offsetof(MaterialTablesHeader, tone_chroma) == 96);
+static_assert(offsetof(MaterialTablesHeader, mip_levels) == 108);
 static_assert(sizeof(RenderFrameUniforms) == 160 + 32 * CARBTF_RENDER_MAX_LIGHTS, "RenderFrameUniforms must match std140");
 static_assert(offsetof(RenderFrameUniforms, camera) == 128 && offsetof(RenderFrameUniforms, light_position) == 144);
 static_assert(offsetof(RenderFrameUniforms, counts) == 144 + 32 * CARBTF_RENDER_MAX_LIGHTS);

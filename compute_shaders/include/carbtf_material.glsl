@@ -114,29 +114,46 @@ float carbtf_height(vec2 uv) {
   return carbtf_height(uv, 0.0);
 }
 
-// The range texture's layer 1 bilinearly at b of mip level `level`: rgb the normal, a the tone. The
-// blend of the texels' normals is scaled to the blend of their lengths: at level 0, whose normals are
-// unit, it is normalised (interpolation between facets must not shorten it: at a sharp crease the
-// blend of two unit normals is short, and relit would draw a dark line); above, each texel's normal is
-// the mean of the unit normals under it, as short as they differ, and keeps that length.
-vec4 carbtf_relief_texel(CarbtfBilinear b, int level) {
-  vec4 t00 = texelFetch(carbtf_range, ivec3(b.i0.x, b.i0.y, 1), level);
-  vec4 t10 = texelFetch(carbtf_range, ivec3(b.i1.x, b.i0.y, 1), level);
-  vec4 t01 = texelFetch(carbtf_range, ivec3(b.i0.x, b.i1.y, 1), level);
-  vec4 t11 = texelFetch(carbtf_range, ivec3(b.i1.x, b.i1.y, 1), level);
-  vec4 value = mix(mix(t00, t10, b.f.x), mix(t01, t11, b.f.x), b.f.y);
-  float target = mix(mix(length(t00.xyz), length(t10.xyz), b.f.x), mix(length(t01.xyz), length(t11.xyz), b.f.x), b.f.y);
-  return vec4(value.xyz * (target / length(value.xyz)), value.w);
+// The relief at a point (tangent frame): the filtered normal of the range map (relief_normals.hpp;
+// unit at level 0, shorter above where the facets under the footprint differ, which dims the relit
+// factor as their own mean would), and the relief tone of each colour channel, the factor on the smooth
+// texture's colour that follows the relief (the material's tone chroma applied).
+struct CarbtfRelief {
+  vec3 normal;
+  vec3 tone;
+};
+
+// The range texture bilinearly at b of mip level `level`: the normal from layer 1, the tone from
+// layer 0's gba. The blend of the texels' normals is scaled to the blend of their lengths: at level 0,
+// whose normals are unit, it is normalised (interpolation between facets must not shorten it: at a
+// sharp crease the blend of two unit normals is short, and relit would draw a dark line); above, each
+// texel's normal is the mean of the unit normals under it, as short as they differ, and keeps that length.
+CarbtfRelief carbtf_relief_texel(CarbtfBilinear b, int level) {
+  vec3 t00 = texelFetch(carbtf_range, ivec3(b.i0.x, b.i0.y, 1), level).xyz;
+  vec3 t10 = texelFetch(carbtf_range, ivec3(b.i1.x, b.i0.y, 1), level).xyz;
+  vec3 t01 = texelFetch(carbtf_range, ivec3(b.i0.x, b.i1.y, 1), level).xyz;
+  vec3 t11 = texelFetch(carbtf_range, ivec3(b.i1.x, b.i1.y, 1), level).xyz;
+  vec3 value = mix(mix(t00, t10, b.f.x), mix(t01, t11, b.f.x), b.f.y);
+  float target = mix(mix(length(t00), length(t10), b.f.x), mix(length(t01), length(t11), b.f.x), b.f.y);
+  vec3 top = mix(texelFetch(carbtf_range, ivec3(b.i0.x, b.i0.y, 0), level).yzw,
+                 texelFetch(carbtf_range, ivec3(b.i1.x, b.i0.y, 0), level).yzw, b.f.x);
+  vec3 bottom = mix(texelFetch(carbtf_range, ivec3(b.i0.x, b.i1.y, 0), level).yzw,
+                    texelFetch(carbtf_range, ivec3(b.i1.x, b.i1.y, 0), level).yzw, b.f.x);
+  CarbtfRelief relief;
+  relief.normal = value * (target / length(value));
+  relief.tone = mix(top, bottom, b.f.y);
+  return relief;
 }
 
-// The relief at uv (tangent frame): xyz the filtered normal of the range map (relief_normals.hpp; unit
-// at level 0, shorter above where the facets under the footprint differ, which dims the relit factor
-// as their own mean would), w the relief tone, the factor on the smooth texture's colour that follows
-// the relief.
-vec4 carbtf_relief(vec2 uv, float lod) {
+// The relief at uv, trilinear between mip levels.
+CarbtfRelief carbtf_relief(vec2 uv, float lod) {
   CarbtfLod s = carbtf_split_lod(lod);
-  vec4 value = carbtf_relief_texel(carbtf_bilinear(uv, s.level), s.level);
-  if (s.t > 0.0) value = mix(value, carbtf_relief_texel(carbtf_bilinear(uv, s.level + 1), s.level + 1), s.t);
+  CarbtfRelief value = carbtf_relief_texel(carbtf_bilinear(uv, s.level), s.level);
+  if (s.t > 0.0) {
+    CarbtfRelief up = carbtf_relief_texel(carbtf_bilinear(uv, s.level + 1), s.level + 1);
+    value.normal = mix(value.normal, up.normal, s.t);
+    value.tone = mix(value.tone, up.tone, s.t);
+  }
   return value;
 }
 
@@ -226,10 +243,10 @@ void carbtf_direction_weights(DirectionLookupGpu set, vec2 p, out uvec3 index, o
 }
 
 // The smooth BTF colour at (already parallax-shifted) uv for tangent-frame light and view directions,
-// with the relief tone `tone` at uv: sum over the 3 x 3 nearest measured (light, view) pairs of
-// weight * max(1 + tone weight * tone_chroma * (tone - 1), 0) * subspace image of the pair, per
-// channel (a grey tone where tone_chroma is 1, as render_reference.cpp computes it).
-vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, vec3 view, float tone, float lod) {
+// with the relief tone `tone` at uv (one per colour channel): sum over the 3 x 3 nearest measured
+// (light, view) pairs of weight * max(1 + tone weight * (tone - 1), 0) * subspace image of the pair,
+// per channel, as render_reference.cpp computes it.
+vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, vec3 view, vec3 tone, float lod) {
   uvec3 li, vi;
   vec3 lw, vw;
   carbtf_direction_weights(carbtf_header.lights, carbtf_project_direction(light), li, lw);
@@ -239,7 +256,7 @@ vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, vec3 view, float tone, float l
   CarbtfBilinear b_up = carbtf_bilinear(uv, s.level + (s.t > 0.0 ? 1 : 0));
   vec3 colour = vec3(0.0);
   uint views = carbtf_header.views.count;
-  vec3 tone_offset = vec3(carbtf_header.tone_chroma[0], carbtf_header.tone_chroma[1], carbtf_header.tone_chroma[2]) * (tone - 1.0);
+  vec3 tone_offset = tone - 1.0;
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
       float w = lw[i] * vw[j];
@@ -265,9 +282,9 @@ vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, vec3 view, float tone, float l
 // `lod`: carbtf_material_lod() of the fragment (0, level 0 only, where the host has none).
 vec3 carbtf_material_shade(vec2 uv, vec3 light, vec3 view, float lod) {
   if (light.z <= 0.0 || view.z <= 0.0) return vec3(0.0);
-  vec4 relief = carbtf_relief(uv, lod);
-  float relit = max(dot(relief.xyz, light), 0.0) / max(light.z, carbtf_header.light_z_floor);
-  return relit * carbtf_interpolated_btf(uv, light, view, relief.w, lod);
+  CarbtfRelief relief = carbtf_relief(uv, lod);
+  float relit = max(dot(relief.normal, light), 0.0) / max(light.z, carbtf_header.light_z_floor);
+  return relit * carbtf_interpolated_btf(uv, light, view, relief.tone, lod);
 }
 vec3 carbtf_material_shade(vec2 uv, vec3 light, vec3 view) {
   return carbtf_material_shade(uv, light, view, 0.0);

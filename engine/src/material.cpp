@@ -112,7 +112,10 @@ Status validate_range(const RangeTiles& r) {
   const std::size_t c = r.edge_colours;
   if (r.patches.size() != 2 * c * texels) return invalid("range map: patch data has the wrong size");
   if (!r.tone.empty()) {
-    if (r.tone.size() != r.patches.size()) return invalid("range map: the relief tone has " + std::to_string(r.tone.size()) + " texels, the patches " + std::to_string(r.patches.size()));
+    if (r.tone.size() != r.patches.size() && r.tone.size() != 3 * r.patches.size()) {
+      return invalid("range map: the relief tone has " + std::to_string(r.tone.size()) + " texels, the patches " + std::to_string(r.patches.size()) +
+                     " (it takes one plane or three)");
+    }
     // The range the stored values reach (a tone quantized to fewer than 8 bits stays below 255).
     const auto [low_q, high_q] = std::minmax_element(r.tone.begin(), r.tone.end());
     const double lowest = std::min(r.tone_offset + double{r.tone_scale} * *low_q, r.tone_offset + double{r.tone_scale} * *high_q);

@@ -85,8 +85,8 @@ struct MaterialBinding::Resources {
   std::uint32_t width = 0;
   std::uint32_t height = 0;
   Buffer table_buffer;
-  // RGBA32F, mip_levels levels: layer 0 the height (r), layer 1 the relief normal (rgb, relief_normals.hpp)
-  // and the relief tone (a).
+  // RGBA32F, mip_levels levels: layer 0 the height (r) and the relief tone of each colour channel (gba),
+  // layer 1 the relief normal (rgb, relief_normals.hpp).
   std::unique_ptr<TextureArray> range_image;
   std::uint32_t mip_levels = 1;
   UniqueHandle<VkSampler> sampler;
@@ -165,7 +165,6 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     header.height = textures.height;
     header.parallax_scale = info.parallax_scale;
     header.light_z_floor = relight_floor(material);
-    for (std::size_t c = 0; c < 3; ++c) header.tone_chroma[c] = material.range.tone_chroma[c];
     // The range map gets as many levels as the subspace images have (fewer where the device cannot blit
     // RGBA32F with a linear filter); the render pass reads the levels both have.
     r.mip_levels = textures.mip_levels;
@@ -173,13 +172,22 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     if (!can_blit_mips(context, VK_FORMAT_R32G32B32A32_SFLOAT)) r.mip_levels = 1;
     header.mip_levels = r.mip_levels;
     r.range_map.assign(std::size_t{textures.width} * textures.height, 0.0f);
-    r.tone_map.assign(r.range_map.size(), 1.0f);
+    r.tone_map.assign(3 * r.range_map.size(), 1.0f);
     header.wrap = textures.periodic_overlap > 0 ? 1u : 0u;
     if (material.range.tile_size > 0) {
       const RangeBlock block{info.seed, info.row0, info.col0, textures.width, textures.height,
                              textures.periodic_overlap};
       enlarge_range_map(material.range, block, r.range_map);
-      if (!material.range.tone.empty()) enlarge_range_map(material.range, block, r.tone_map, RangeChannel::tone);
+      if (!material.range.tone.empty()) {
+        // Each channel's tone with its chroma applied (material.hpp), so the fragment stage reads one
+        // factor per channel whether the tone has one plane or three.
+        std::vector<float> plane(r.range_map.size());
+        for (std::size_t k = 0; k < 3; ++k) {
+          enlarge_range_map(material.range, block, plane, tone_channel(k));
+          const float chroma = material.range.tone_chroma[k];
+          for (std::size_t i = 0; i < plane.size(); ++i) r.tone_map[3 * i + k] = 1.0f + chroma * (plane[i] - 1.0f);
+        }
+      }
     }
     double sum = 0.0;
     for (float h : r.range_map) sum += h;
@@ -196,16 +204,19 @@ Status MaterialBinding::create(Context& context, const Material& material, const
                                     r.range_image, r.mip_levels));
     if (r.range_image->mip_levels() != r.mip_levels)
       return {ErrorCode::vulkan_error, "the range map did not get the subspace images' mip levels"};
-    // Layer 0: the heights (parallax); layer 1: the normal and the tone (shading), read together.
+    // Layer 0: the heights (parallax) and the tone; layer 1: the normal (shading).
     std::vector<float> normals;
     relief_normals(r.range_map, textures.width, textures.height, header.wrap != 0u, normals);
     std::vector<float> texels(4 * r.range_map.size(), 0.0f);
-    for (std::size_t i = 0; i < r.range_map.size(); ++i) texels[4 * i] = r.range_map[i];
+    for (std::size_t i = 0; i < r.range_map.size(); ++i) {
+      texels[4 * i] = r.range_map[i];
+      for (std::size_t k = 0; k < 3; ++k) texels[4 * i + 1 + k] = r.tone_map[3 * i + k];
+    }
     CARBTF_TRY(r.range_image->set_layer(
         0, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(texels.data()), texels.size() * 4)));
     for (std::size_t i = 0; i < r.range_map.size(); ++i) {
       for (std::size_t k = 0; k < 3; ++k) texels[4 * i + k] = normals[3 * i + k];
-      texels[4 * i + 3] = r.tone_map[i];
+      texels[4 * i + 3] = 0.0f;
     }
     CARBTF_TRY(r.range_image->set_layer(
         1, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(texels.data()), texels.size() * 4)));

@@ -492,7 +492,7 @@ std::optional<RasterLayout> chunk_rasters(Chunk chunk, const Material& m) {
   const std::uint32_t patches = 2 * r.edge_colours;
   // The cuts after the patches are runs of small steps: Sub over u16 turns them into 0s and 1s.
   if (chunk == Chunk::range) return RasterLayout{kRangeHeaderBytes, 2, r.tile_size, r.tile_size, patches, 2};
-  if (chunk == Chunk::tone) return RasterLayout{kToneHeaderBytes, 1, r.tile_size, r.tile_size, patches, 0};
+  if (chunk == Chunk::tone) return RasterLayout{kToneHeaderBytes, 1, r.tile_size, r.tile_size, patches * static_cast<std::uint32_t>(tone_planes(r)), 0};
   return std::nullopt;
 }
 
@@ -649,7 +649,7 @@ bool decode_tone(ByteReader& r, Material& m) {
   t.tone_offset = r.f32();
   t.tone_scale = r.f32();
   const std::uint32_t count = r.u32();
-  constexpr std::size_t kMaxToneTexels = 2 * std::size_t{kMaxEdgeColours} * kMaxTileSize * kMaxTileSize;
+  constexpr std::size_t kMaxToneTexels = 3 * 2 * std::size_t{kMaxEdgeColours} * kMaxTileSize * kMaxTileSize;  // three planes
   if (r.failed() || count > kMaxToneTexels || !r.can_read(count, 1)) return false;
   const auto bytes = r.bytes(count);
   t.tone.assign(bytes.begin(), bytes.end());

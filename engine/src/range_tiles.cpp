@@ -142,8 +142,10 @@ void for_each_tile_texel(const RangeTiles& tiles, std::uint32_t tile, Texel&& te
 float patch_value_at_tile_texel(const RangeTiles& tiles, RangeChannel channel, std::uint32_t patch, std::uint32_t x,
                                 std::uint32_t y) {
   const std::size_t texel = patch_texel(tiles, patch, x, y);
-  if (channel == RangeChannel::tone) {
-    return tiles.tone.empty() ? 1.0f : tiles.tone_offset + tiles.tone_scale * static_cast<float>(tiles.tone[texel]);
+  if (channel != RangeChannel::height) {
+    if (tiles.tone.empty()) return 1.0f;
+    const std::size_t plane = tone_planes(tiles) == 3 ? static_cast<std::size_t>(channel) - static_cast<std::size_t>(RangeChannel::tone) : 0;
+    return tiles.tone_offset + tiles.tone_scale * static_cast<float>(tiles.tone[plane * tiles.patches.size() + texel]);
   }
   return tiles.height_offset + tiles.height_scale * static_cast<float>(tiles.patches[texel]);
 }
@@ -185,7 +187,10 @@ void fill_unseen_patch_texels(RangeTiles& tiles) {
         const std::size_t texel = p * texels + std::size_t{y} * size + x;
         if (seen[texel]) continue;
         tiles.patches[texel] = static_cast<std::uint16_t>(detail::raster_prediction(tiles.patches.data() + p * texels, size, x, y));
-        if (!tiles.tone.empty()) tiles.tone[texel] = static_cast<std::uint8_t>(detail::raster_prediction(tiles.tone.data() + p * texels, size, x, y));
+        for (std::size_t plane = 0; plane < tone_planes(tiles); ++plane) {
+          std::uint8_t* tone = tiles.tone.data() + plane * tiles.patches.size();
+          tone[texel] = static_cast<std::uint8_t>(detail::raster_prediction(tone + p * texels, size, x, y));
+        }
       }
     }
   }
@@ -205,8 +210,9 @@ void fill_unseen_patch_texels(RangeTiles& tiles, std::span<const PatchWindow> wi
   const auto source_texel = [&](std::size_t patch, std::uint32_t x, std::uint32_t y) {
     return std::size_t{windows[patch].row + y} * cols + windows[patch].col + x;
   };
-  std::vector<std::uint16_t> heights(std::size_t{rows} * cols);
-  std::vector<std::uint8_t> tone(tiles.tone.empty() ? 0 : heights.size());
+  const std::size_t map_texels = std::size_t{rows} * cols, planes = tone_planes(tiles);
+  std::vector<std::uint16_t> heights(map_texels);
+  std::vector<std::uint8_t> tone(planes * map_texels);  // plane-major, as RangeTiles::tone
   std::vector<bool> shown(heights.size(), false);
   for (std::size_t p = 0; p < windows.size(); ++p) {
     for (std::uint32_t y = 0; y < size; ++y) {
@@ -216,7 +222,7 @@ void fill_unseen_patch_texels(RangeTiles& tiles, std::span<const PatchWindow> wi
         const std::size_t at = source_texel(p, x, y);
         shown[at] = true;
         heights[at] = tiles.patches[texel];
-        if (!tone.empty()) tone[at] = tiles.tone[texel];
+        for (std::size_t plane = 0; plane < planes; ++plane) tone[plane * map_texels + at] = tiles.tone[plane * tiles.patches.size() + texel];
       }
     }
   }
@@ -225,7 +231,10 @@ void fill_unseen_patch_texels(RangeTiles& tiles, std::span<const PatchWindow> wi
       const std::size_t at = std::size_t{y} * cols + x;
       if (shown[at]) continue;
       heights[at] = static_cast<std::uint16_t>(detail::raster_prediction(heights.data(), cols, x, y));
-      if (!tone.empty()) tone[at] = static_cast<std::uint8_t>(detail::raster_prediction(tone.data(), cols, x, y));
+      for (std::size_t plane = 0; plane < planes; ++plane) {
+        std::uint8_t* map = tone.data() + plane * map_texels;
+        map[at] = static_cast<std::uint8_t>(detail::raster_prediction(map, cols, x, y));
+      }
     }
   }
   for (std::size_t p = 0; p < windows.size(); ++p) {
@@ -233,7 +242,9 @@ void fill_unseen_patch_texels(RangeTiles& tiles, std::span<const PatchWindow> wi
       for (std::uint32_t x = 0; x < size; ++x) {
         const std::size_t texel = p * texels + std::size_t{y} * size + x;
         tiles.patches[texel] = heights[source_texel(p, x, y)];
-        if (!tone.empty()) tiles.tone[texel] = tone[source_texel(p, x, y)];
+        for (std::size_t plane = 0; plane < planes; ++plane) {
+          tiles.tone[plane * tiles.patches.size() + texel] = tone[plane * map_texels + source_texel(p, x, y)];
+        }
       }
     }
   }

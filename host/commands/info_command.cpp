@@ -99,7 +99,9 @@ void run_material_info(const std::string& path) {
     std::printf("relief tone:  taken whole by %zu subspaces, by none %zu, in part by %zu\n", whole, none,
                 material.subspaces.size() - whole - none);
     const auto& chroma = material.range.tone_chroma;
-    if (chroma != std::array<float, 3>{1.0f, 1.0f, 1.0f}) {
+    if (tone_planes(material.range) == 3) {
+      std::printf("tone colour:  per texel (R, G and B planes)\n");
+    } else if (chroma != std::array<float, 3>{1.0f, 1.0f, 1.0f}) {
       std::printf("tone colour:  red, green and blue follow it by %.2f, %.2f and %.2f\n", chroma[0], chroma[1], chroma[2]);
     } else {
       std::printf("tone colour:  grey\n");

@@ -3,6 +3,8 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <array>
+#include <functional>
 #include <cmath>
 #include <mutex>
 #include <numeric>
@@ -189,7 +191,7 @@ TEST_CASE("the relief tone is tiled under the heights' layout, texel for texel",
   RangeTileOptions options;
   options.tile_size = 32;
   options.height_bits = 16;
-  const RangeTiles tiles = build_range_tiles(heights, options, &tone);
+  const RangeTiles tiles = build_range_tiles(heights, options, std::span<const Plane>(&tone, 1));
   REQUIRE(tiles.tone.size() == tiles.patches.size());
 
   const std::uint32_t size = 200;
@@ -204,12 +206,31 @@ TEST_CASE("the relief tone is tiled under the heights' layout, texel for texel",
   // The tone varies (the check above is not met by a constant), and its range is the source's.
   CHECK(*std::max_element(toned.begin(), toned.end()) - *std::min_element(toned.begin(), toned.end()) > 1.0);
 
+  // A tone of three colour planes, each its own function of the height: each channel enlarges to its
+  // own function (a plane laid out or filled on its own, or read from another plane, would break it).
+  const std::array<std::function<double(double)>, 3> channel_of{
+      tone_of, [&](double h) { return 2.0 - 0.5 * tone_of(h); }, [&](double h) { return 0.5 + 0.25 * tone_of(h); }};
+  std::vector<Plane> planes;
+  for (const auto& f : channel_of) planes.push_back(heights.unaryExpr(f));
+  const RangeTiles coloured = build_range_tiles(heights, options, planes);
+  REQUIRE(tone_planes(coloured) == 3);
+  enlarge_range_map(coloured, 5, -13, 7, size, size, map);
+  for (std::size_t k = 0; k < 3; ++k) {
+    enlarge_range_map(coloured, 5, -13, 7, size, size, toned, tone_channel(k));
+    double channel_worst = 0.0;
+    for (std::size_t i = 0; i < map.size(); ++i) channel_worst = std::max(channel_worst, std::abs(toned[i] - channel_of[k](map[i])));
+    INFO("channel " << k << ": worst |tone - f(height)| " << channel_worst << ", tone step " << coloured.tone_scale);
+    CHECK(channel_worst <= 0.5 * coloured.tone_scale + 1e-4);
+  }
+  const std::vector<Plane> two(2, tone);
+  CHECK_THROWS_AS(build_range_tiles(heights, options, two), std::invalid_argument);
+
   // A material without a tone enlarges to 1 everywhere; a tone of the wrong size is refused.
   RangeTiles plain = build_range_tiles(heights, options);
   enlarge_range_map(plain, 5, 0, 0, size, size, toned, RangeChannel::tone);
   CHECK(std::all_of(toned.begin(), toned.end(), [](float t) { return t == 1.0f; }));
   const Plane small = Plane::Ones(64, 64);
-  CHECK_THROWS_AS(build_range_tiles(heights, options, &small), std::invalid_argument);
+  CHECK_THROWS_AS(build_range_tiles(heights, options, std::span<const Plane>(&small, 1)), std::invalid_argument);
 }
 
 // The largest change of the enlarged map under a shift by `period` texels along rows or columns: 0 (to

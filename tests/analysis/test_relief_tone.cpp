@@ -123,7 +123,7 @@ TEST_CASE("the smooth texture is scaled so that the render keeps the measured me
   for (const Plane& channel : measured) target += channel.mean();
   REQUIRE(render_mean(smooth) < 0.97 * target);  // the case is one the scaling has to mend
   const std::vector<Plane> before = smooth;
-  match_render_mean(smooth, measured, weighted_tone(tone, 1.0, {1.0f, 1.0f, 1.0f}), relit);
+  match_render_mean(smooth, measured, weighted_tone(std::span<const Plane>(&tone, 1), 1.0, {1.0f, 1.0f, 1.0f}), relit);
   CHECK(render_mean(smooth) == Approx(target).epsilon(1e-12));
   // One gain for all channels: the colour's chroma stays the smooth texture's.
   const double gain = smooth[0].mean() / before[0].mean();
@@ -133,7 +133,7 @@ TEST_CASE("the smooth texture is scaled so that the render keeps the measured me
   // Nothing to match: a black measurement leaves the texture as it was.
   std::vector<Plane> black(3, Plane::Zero(n, n));
   std::vector<Plane> unchanged = before;
-  match_render_mean(unchanged, black, weighted_tone(tone, 1.0, {1.0f, 1.0f, 1.0f}), relit);
+  match_render_mean(unchanged, black, weighted_tone(std::span<const Plane>(&tone, 1), 1.0, {1.0f, 1.0f, 1.0f}), relit);
   for (std::size_t k = 0; k < 3; ++k) CHECK((unchanged[k] == before[k]).all());
 }
 
@@ -160,6 +160,54 @@ TEST_CASE("a two-colour weave gets a coloured tone and a leather a grey one", "[
   Surface uniform = make_sample_surface("leather", size, 3);
   for (float& a : uniform.albedo) a = 0.5f;
   CHECK(chroma_of(uniform) == std::array<float, 3>{1.0f, 1.0f, 1.0f});
+}
+
+}  // namespace carbtf
+
+namespace carbtf {
+
+TEST_CASE("the tone's colour planes follow each thread's colour, and only a weave's colour counts as visible", "[tone]") {
+  constexpr std::uint32_t size = 64;
+  const double z_floor = std::max(std::cos(75.0 * M_PI / 180.0), 1e-3);
+  auto planes_of = [&](const Surface& surface) {
+    return relief_tone_planes(top_view_dataset(surface), 0, heights_of(surface), z_floor);
+  };
+  // The fabric sample's threads are blue or white: the blue-to-red ratio of the tone's planes follows
+  // that of the albedo, texel by texel (which one grey plane with a slope per channel cannot).
+  const Surface fabric = make_sample_surface("fabric", size, 1);
+  const std::vector<Plane> planes = planes_of(fabric);
+  REQUIRE(planes.size() == 3);
+  std::vector<double> tone_hue, albedo_hue;
+  for (std::uint32_t i = 0; i < size * size; ++i) {
+    tone_hue.push_back(std::log(planes[2](i / size, i % size) / planes[0](i / size, i % size)));
+    albedo_hue.push_back(std::log(double{fabric.albedo[3 * i + 2]} / double{fabric.albedo[3 * i]}));
+  }
+  auto correlation = [](const std::vector<double>& a, const std::vector<double>& b) {
+    const auto n = static_cast<double>(a.size());
+    double ma = 0.0, mb = 0.0, ab = 0.0, aa = 0.0, bb = 0.0;
+    for (std::size_t i = 0; i < a.size(); ++i) ma += a[i] / n, mb += b[i] / n;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      ab += (a[i] - ma) * (b[i] - mb);
+      aa += (a[i] - ma) * (a[i] - ma);
+      bb += (b[i] - mb) * (b[i] - mb);
+    }
+    return ab / std::sqrt(aa * bb);
+  };
+  const double follows = correlation(tone_hue, albedo_hue);
+  const double fabric_deviation = tone_colour_deviation(planes);
+  INFO("hue correlation " << follows << ", colour deviation " << fabric_deviation);
+  CHECK(follows > 0.9);
+  CHECK(fabric_deviation >= kToneColourVisible);
+  // The leather's creases darken every channel about alike; a grey albedo gives grey planes.
+  const double leather_deviation = tone_colour_deviation(planes_of(make_sample_surface("leather", size, 3)));
+  INFO("leather colour deviation " << leather_deviation);
+  CHECK(leather_deviation < kToneColourVisible);
+  Surface uniform = make_sample_surface("leather", size, 3);
+  for (float& a : uniform.albedo) a = 0.5f;
+  CHECK(tone_colour_deviation(planes_of(uniform)) < 1e-6);
+  const std::vector<Plane> two(2, planes[0]);
+  CHECK_THROWS_AS(tone_colour_deviation(two), std::invalid_argument);
+  CHECK_THROWS_AS(weighted_tone(two, 1.0, {1.0f, 1.0f, 1.0f}), std::invalid_argument);
 }
 
 }  // namespace carbtf

@@ -243,6 +243,24 @@ Material patch_filled_material() {
   return m;
 }
 
+// Which patch texels some tile shows, found by changing each and looking, independent of the code.
+std::vector<bool> shown_patch_texels(const RangeTiles& tiles) {
+  const std::size_t tile_texels = std::size_t{tiles.tile_size} * tiles.tile_size;
+  auto composed = [&](const RangeTiles& t) {
+    std::vector<float> all(tile_texels * range_tile_count(t));
+    for (std::uint32_t i = 0; i < range_tile_count(t); ++i) compose_range_tile(t, i, std::span<float>(all).subspan(i * tile_texels, tile_texels));
+    return all;
+  };
+  std::vector<bool> shown(tiles.patches.size());
+  const std::vector<float> heights = composed(tiles);
+  for (std::size_t i = 0; i < tiles.patches.size(); ++i) {
+    RangeTiles probe = tiles;
+    probe.patches[i] = static_cast<std::uint16_t>(probe.patches[i] ^ 1u);
+    shown[i] = composed(probe) != heights;
+  }
+  return shown;
+}
+
 // `m` deflated, after checking that it reads back equal.
 std::vector<std::uint8_t> deflated_round_trip(const Material& m) {
   const std::vector<std::uint8_t> packed = deflated(m);
@@ -355,14 +373,7 @@ TEST_CASE("patch texels that no tile shows are filled so they cost nothing and n
     for (std::uint32_t i = 0; i < range_tile_count(t); ++i) compose_range_tile(t, i, std::span<float>(all).subspan(i * tile_texels, tile_texels), channel);
     return all;
   };
-  // Which patch texels some tile shows, found by changing each and looking, independent of the code.
-  std::vector<bool> shown(tiles.patches.size());
-  const std::vector<float> heights = composed(tiles, RangeChannel::height);
-  for (std::size_t i = 0; i < tiles.patches.size(); ++i) {
-    RangeTiles probe = tiles;
-    probe.patches[i] = static_cast<std::uint16_t>(probe.patches[i] ^ 1u);
-    shown[i] = composed(probe, RangeChannel::height) != heights;
-  }
+  const std::vector<bool> shown = shown_patch_texels(tiles);
   const auto unseen = static_cast<std::size_t>(std::count(shown.begin(), shown.end(), false));
   CHECK(unseen > tiles.patches.size() / 5);
   CHECK(unseen < tiles.patches.size());
@@ -444,6 +455,55 @@ TEST_CASE("a relief tone outside its range or of the wrong size is refused", "[m
   Material short_tone = good;
   short_tone.range.tone.pop_back();
   CHECK_THAT(message(short_tone), Catch::Contains("the relief tone has"));
+  // One plane or three (R, G, B); two is neither.
+  Material two_planes = good, three_planes = good;
+  two_planes.range.tone.insert(two_planes.range.tone.end(), good.range.tone.begin(), good.range.tone.end());
+  CHECK_THAT(message(two_planes), Catch::Contains("the relief tone has") && Catch::Contains("one plane or three"));
+  for (int k = 0; k < 2; ++k) three_planes.range.tone.insert(three_planes.range.tone.end(), good.range.tone.begin(), good.range.tone.end());
+  CHECK(validate_material(three_planes).ok());
+}
+
+TEST_CASE("a relief tone of three colour planes reads back, is filtered as rasters and filled plane by plane",
+          "[material_file][tone][raster]") {
+  Material m = smooth_relief_material();
+  RangeTiles& r = m.range;
+  const std::vector<std::uint8_t> grey = r.tone;
+  const std::uint8_t top = *std::max_element(grey.begin(), grey.end());
+  for (std::uint8_t q : grey) r.tone.push_back(static_cast<std::uint8_t>(top - q));
+  for (std::uint8_t q : grey) r.tone.push_back(static_cast<std::uint8_t>(q / 2));
+  REQUIRE(tone_planes(r) == 3);
+  const std::size_t tile_texels = std::size_t{r.tile_size} * r.tile_size;
+  auto composed = [&](const RangeTiles& t, RangeChannel channel) {
+    std::vector<float> all(tile_texels * range_tile_count(t));
+    for (std::uint32_t i = 0; i < range_tile_count(t); ++i) compose_range_tile(t, i, std::span<float>(all).subspan(i * tile_texels, tile_texels), channel);
+    return all;
+  };
+  const std::vector<float> green = composed(r, RangeChannel::tone_green), blue = composed(r, RangeChannel::tone_blue);
+  CHECK(green != composed(r, RangeChannel::tone));
+  CHECK(blue != green);
+  // Filling what no tile shows changes no plane's tiles, and sets every plane's unseen texels from
+  // that plane's shown ones alone: random values there are overwritten alike.
+  fill_unseen_patch_texels(r);
+  CHECK(composed(r, RangeChannel::tone_green) == green);
+  CHECK(composed(r, RangeChannel::tone_blue) == blue);
+  const std::vector<bool> shown = shown_patch_texels(r);
+  RangeTiles scrambled = r;
+  std::mt19937 rng(3);
+  for (std::size_t k = 0; k < 3; ++k) {
+    for (std::size_t i = 0; i < shown.size(); ++i) {
+      if (!shown[i]) scrambled.tone[k * shown.size() + i] = static_cast<std::uint8_t>(rng() % 256);
+    }
+  }
+  REQUIRE(scrambled != r);
+  fill_unseen_patch_texels(scrambled);
+  CHECK(scrambled == r);
+  const std::vector<std::uint8_t> packed = deflated_round_trip(m);
+  const std::size_t tone_at = deflated_chunk_at(packed, "TONE");
+  REQUIRE(tone_at != std::string::npos);
+  REQUIRE(packed[tone_at + 16] >= 9);  // a raster filter, over every plane's patches
+  std::uint32_t rasters = 0;
+  for (int i = 0; i < 4; ++i) rasters |= std::uint32_t{packed[tone_at + 30 + static_cast<std::size_t>(i)]} << (8 * i);
+  CHECK(rasters == 3 * 2 * r.edge_colours);
 }
 
 TEST_CASE("tone weights read back, are left out when all 1, and are refused out of range", "[material_file][tone]") {

@@ -12,6 +12,7 @@
 #include "carbtf/reference/render_reference.hpp"
 #include "carbtf/reference/synthetic_material.hpp"
 #include "carbtf/engine/internal/direction_lookup.hpp"
+#include "carbtf/engine/material/range_tiles.hpp"
 #include "carbtf/engine/render/material_binding.hpp"
 #include "carbtf/engine/render/mesh_renderer.hpp"
 #include "carbtf/engine/render/resident_images.hpp"
@@ -47,6 +48,19 @@ std::unique_ptr<SubspaceSynthesizer> synthesized(Context& context, const Materia
   INFO(status.message());
   REQUIRE(status.ok());
   return synthesizer;
+}
+
+// The reference's tone input (ReferenceRenderInput::tone_map) for the binding's block: each colour
+// channel's plane of the enlarged tone, interleaved, before its chroma.
+std::vector<float> tone_planes(const Material& m, const RangeBlock& block) {
+  const std::size_t texels = std::size_t{block.width} * block.height;
+  if (m.range.tile_size == 0) return {};
+  std::vector<float> plane(texels), out(3 * texels);
+  for (std::size_t k = 0; k < 3; ++k) {
+    enlarge_range_map(m.range, block, plane, tone_channel(k));
+    for (std::size_t i = 0; i < texels; ++i) out[3 * i + k] = plane[i];
+  }
+  return out;
 }
 
 std::vector<float> as_floats(const RenderedImage& image) {
@@ -93,10 +107,19 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
   test::ValidatedContext context;
   // With a relief tone and a different tone weight per subspace (0 to 1), which both sides must apply,
   // and a coloured tone whose red channel darkens to the clamp at 0 in the creases and whose blue
-  // channel brightens there.
-  const Material m = [] {
+  // channel brightens there: a grey plane with those slopes, or three planes of their own (green the
+  // grey one inverted, blue half of it) with the same slopes on top.
+  const bool three_planes = GENERATE(false, true);
+  const Material m = [&] {
     Material coloured = test::bumpy_material(true);
     coloured.range.tone_chroma = {2.5f, 1.0f, -0.5f};
+    if (three_planes) {
+      const std::vector<std::uint8_t> grey = coloured.range.tone;
+      const std::uint8_t top = *std::max_element(grey.begin(), grey.end());
+      for (std::uint8_t q : grey) coloured.range.tone.push_back(static_cast<std::uint8_t>(top - q));
+      for (std::uint8_t q : grey) coloured.range.tone.push_back(static_cast<std::uint8_t>(q / 2));
+    }
+    REQUIRE(validate_material(coloured).ok());
     return coloured;
   }();
   // Plain textures (edge texels repeat) and periodic ones (addresses wrap, the range map's tile grid
@@ -125,7 +148,18 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
   input.material = &m;
   input.images = &images;
   input.range_map = binding->range_map();
-  input.tone_map = binding->tone_map();
+  const std::vector<float> tone = tone_planes(m, {binding_info.seed, 0, 0, 96, 80, periodic ? 12u : 0u});
+  {
+    // The binding uploads each channel's tone with its chroma applied.
+    const std::vector<float>& uploaded = binding->tone_map();
+    REQUIRE(uploaded.size() == tone.size());
+    float worst = 0.0f;
+    for (std::size_t i = 0; i < tone.size(); ++i) {
+      worst = std::max(worst, std::abs(uploaded[i] - (1.0f + m.range.tone_chroma[i % 3] * (tone[i] - 1.0f))));
+    }
+    CHECK(worst < 1e-6f);
+  }
+  input.tone_map = tone;
   input.parallax_scale = binding_info.parallax_scale;
   input.wrap = periodic;
   input.mip_levels = binding->mip_levels();
@@ -495,7 +529,8 @@ TEST_CASE("mip levels: a distant plane matches its box-filtered render and does 
   input.material = &m;
   input.images = &images;
   input.range_map = mipped->range_map();
-  input.tone_map = mipped->tone_map();
+  const std::vector<float> tone = tone_planes(m, {info.seed, 0, 0, kTexels, kTexels, 0});
+  input.tone_map = tone;
   auto box_reference = [&](const RenderScene& scene) {
     const std::uint32_t fine = kPixels * kSuper;
     const std::vector<float> big = reference::render_plane(input, scene, fine, fine, target.clear);

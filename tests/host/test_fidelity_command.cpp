@@ -101,14 +101,23 @@ void check_fidelity_ranking(const std::string& name) {
   INFO(name << ": fitted rel " << fitted_rel << ", without the relief tone " << without_tone_rel);
   CHECK(without_tone_rel > fitted_rel);
   if (name == "fabric") {
-    // Its threads are blue and white: a tone that follows them in colour looks nearer the measurement.
-    const fs::path coloured = folder / "coloured_tone.cbtf";
+    // Its threads are blue and white: a tone that follows them in colour looks nearer the measurement,
+    // with a slope per channel, and more so with a plane per channel (chosen by its colour).
+    const fs::path coloured = folder / "coloured_tone.cbtf", planes = folder / "tone_planes.cbtf";
     REQUIRE(run("analyze " + btf.string() + " --coloured-tone --out " + coloured.string()).status == 0);
-    const Run info = run("info " + coloured.string());
-    CHECK_THAT(info.output, Catch::Contains("tone colour:  red, green and blue follow it by"));
+    REQUIRE(run("analyze " + btf.string() + " --tone-planes auto --out " + planes.string()).status == 0);
+    CHECK_THAT(run("info " + coloured.string()).output, Catch::Contains("tone colour:  red, green and blue follow it by"));
+    CHECK_THAT(run("info " + planes.string()).output, Catch::Contains("tone colour:  per texel (R, G and B planes)"));
     const double coloured_rel = fidelity_of(coloured, btf, folder / "coloured_tone");
-    INFO(name << ": fitted rel " << fitted_rel << ", with the coloured tone " << coloured_rel);
+    const double planes_rel = fidelity_of(planes, btf, folder / "tone_planes");
+    INFO(name << ": fitted rel " << fitted_rel << ", with the coloured tone " << coloured_rel << ", with tone planes " << planes_rel);
     CHECK(coloured_rel < fitted_rel);
+    CHECK(planes_rel < coloured_rel);
+  } else {
+    // Creases that darken every channel alike: asked to choose, the analysis keeps the tone grey.
+    const fs::path planes = folder / "tone_planes.cbtf";
+    REQUIRE(run("analyze " + btf.string() + " --tone-planes auto --out " + planes.string()).status == 0);
+    CHECK_THAT(run("info " + planes.string()).output, Catch::Contains("tone colour:  grey"));
   }
   fs::remove_all(folder);
 }

@@ -44,15 +44,23 @@ struct MipChain {
   }
 };
 
-// The range texture's layer 1: the relief normal and the tone (1 without one), 4 floats per texel.
-std::vector<float> relief_texels(std::span<const float> heights, std::span<const float> tone, std::uint32_t width,
-                                 std::uint32_t height, bool wrap) {
-  std::vector<float> normals;
-  relief_normals(heights, width, height, wrap, normals);
+// The range texture's layer 0: the height and the tone of each colour channel (1 without one).
+std::vector<float> height_texels(std::span<const float> heights, std::span<const float> tone) {
   std::vector<float> out(heights.size() * 4);
   for (std::size_t i = 0; i < heights.size(); ++i) {
+    out[4 * i] = heights[i];
+    for (std::size_t k = 0; k < 3; ++k) out[4 * i + 1 + k] = tone.empty() ? 1.0f : tone[3 * i + k];
+  }
+  return out;
+}
+
+// The range texture's layer 1: the relief normal, 4 floats per texel.
+std::vector<float> relief_texels(std::span<const float> heights, std::uint32_t width, std::uint32_t height, bool wrap) {
+  std::vector<float> normals;
+  relief_normals(heights, width, height, wrap, normals);
+  std::vector<float> out(heights.size() * 4, 0.0f);
+  for (std::size_t i = 0; i < heights.size(); ++i) {
     for (std::size_t k = 0; k < 3; ++k) out[4 * i + k] = normals[3 * i + k];
-    out[4 * i + 3] = tone.empty() ? 1.0f : tone[i];
   }
   return out;
 }
@@ -68,7 +76,7 @@ struct Sampler {
   const ReferenceRenderInput& input;
   std::uint32_t width, height;
   float range_mean;
-  MipChain range, relief;  // heights; normal (relief_normals.hpp) and tone
+  MipChain range, relief;  // heights and tone; normal (relief_normals.hpp)
   std::vector<MipChain> images;  // per subspace, empty levels where it was not synthesized
 
   struct Bilinear {
@@ -115,6 +123,10 @@ struct Sampler {
     return value;
   }
   float height_at(glm::vec2 uv, float lod) const { return filtered(range, uv, lod).x - range_mean; }
+  glm::vec3 tone_at(glm::vec2 uv, float lod) const {
+    const glm::vec4 texel = filtered(range, uv, lod);
+    return {texel.y, texel.z, texel.w};
+  }
   // The shader's carbtf_relief(): the bilinear blend of the normals scaled to the blend of their lengths.
   glm::vec4 relief_at(glm::vec2 uv, float lod) const {
     auto at_level = [&](int level) {
@@ -159,7 +171,7 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
   if (input.range_map.size() != std::size_t{tw} * th) {
     throw std::invalid_argument("render_plane: the range map is not the subspace images' size");
   }
-  if (!input.tone_map.empty() && input.tone_map.size() != input.range_map.size()) {
+  if (!input.tone_map.empty() && input.tone_map.size() != 3 * input.range_map.size()) {
     throw std::invalid_argument("render_plane: the relief tone is not the range map's size");
   }
   MaterialDirections directions;
@@ -174,8 +186,8 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
                   tw,
                   th,
                   static_cast<float>(sum / static_cast<double>(input.range_map.size())),
-                  MipChain(input.range_map, tw, th, 1, levels),
-                  MipChain(relief_texels(input.range_map, input.tone_map, tw, th, input.wrap), tw, th, 4, levels),
+                  MipChain(height_texels(input.range_map, input.tone_map), tw, th, 4, levels),
+                  MipChain(relief_texels(input.range_map, tw, th, input.wrap), tw, th, 4, levels),
                   {}};
   for (std::size_t i = 0; i < input.images->images.size(); ++i) {
     const auto& image = input.images->images[i];
@@ -250,7 +262,8 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
                                  sampler.height_at(shifted + glm::vec2(0, texel.y), 0.0f));
         normal = glm::normalize(glm::vec3(-dx, -dy, 1.0f));
       }
-      const float tone = relief.w;
+      const glm::vec3 chroma(material.range.tone_chroma[0], material.range.tone_chroma[1], material.range.tone_chroma[2]);
+      const glm::vec3 tone_offset = chroma * (sampler.tone_at(shifted, lod) - 1.0f);
 
       glm::vec3 colour(0.0f);
       for (std::size_t i = 0; i < std::min<std::size_t>(scene.lights.size(), 4); ++i) {
@@ -265,8 +278,6 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
         angles(view, vt, vp_angle);
         const PairWeights w = directions.weights(lt, lp, vt, vp_angle);
         glm::vec3 btf(0.0f);
-        const glm::vec3 tone_offset =
-            glm::vec3(material.range.tone_chroma[0], material.range.tone_chroma[1], material.range.tone_chroma[2]) * (tone - 1.0f);
         for (int k = 0; k < 9; ++k) {
           if (w.weight[k] == 0.0f) continue;
           const std::uint32_t subspace = subspace_of(material, w.light[k], w.view[k]);

@@ -50,13 +50,38 @@ ToneSums tone_sums(const BtfDataset& dataset, std::uint32_t view, const Plane& r
 
 }  // namespace
 
-Plane relief_tone(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor) {
-  const ToneSums sums = tone_sums(dataset, view, range_map, light_z_floor, "relief_tone");
-  const Plane& measured = sums.measured[0];
-  const Plane& explained = sums.explained[0];
+namespace {
+
+Plane tone_of(const Plane& measured, const Plane& explained) {
   if (explained.maxCoeff() <= 0.0) return Plane::Ones(measured.rows(), measured.cols());
   // Where no light reaches a texel by the range map's account, nothing is known about its tone.
   return (explained > 0.0).select(measured / explained.max(1e-30), 1.0).max(kReliefToneFloor).min(kReliefToneCeiling);
+}
+
+}  // namespace
+
+Plane relief_tone(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor) {
+  const ToneSums sums = tone_sums(dataset, view, range_map, light_z_floor, "relief_tone");
+  return tone_of(sums.measured[0], sums.explained[0]);
+}
+
+std::vector<Plane> relief_tone_planes(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor) {
+  const ToneSums sums = tone_sums(dataset, view, range_map, light_z_floor, "relief_tone_planes");
+  std::vector<Plane> planes;
+  for (std::size_t k = 1; k < 4; ++k) planes.push_back(tone_of(sums.measured[k], sums.explained[k]));
+  return planes;
+}
+
+double tone_colour_deviation(std::span<const Plane> planes) {
+  if (planes.size() != 3) throw std::invalid_argument("tone_colour_deviation: the tone needs three planes");
+  double sum = 0.0;
+  for (Eigen::Index i = 0; i < planes[0].size(); ++i) {
+    std::array<double, 3> log_tone{};
+    for (std::size_t k = 0; k < 3; ++k) log_tone[k] = std::log(std::max(planes[k](i), kReliefToneFloor));
+    const double grey = (log_tone[0] + log_tone[1] + log_tone[2]) / 3.0;
+    for (double l : log_tone) sum += (l - grey) * (l - grey);
+  }
+  return std::sqrt(sum / (3.0 * static_cast<double>(std::max<Eigen::Index>(1, planes[0].size()))));
 }
 
 void clamp_remainder(std::vector<Plane>& channels, double k) {
@@ -112,9 +137,13 @@ std::array<float, 3> relief_tone_chroma(const BtfDataset& dataset, std::uint32_t
   return chroma;
 }
 
-std::vector<Plane> weighted_tone(const Plane& tone, double weight, const std::array<float, 3>& chroma) {
+std::vector<Plane> weighted_tone(std::span<const Plane> tone, double weight, const std::array<float, 3>& chroma) {
+  if (tone.size() != 1 && tone.size() != 3) throw std::invalid_argument("weighted_tone: a relief tone has one plane or three");
   std::vector<Plane> channels;
-  for (const float k : chroma) channels.push_back((1.0 + weight * (double{k} * (tone - 1.0))).max(0.0));
+  for (std::size_t k = 0; k < 3; ++k) {
+    const Plane& plane = tone[tone.size() == 3 ? k : 0];
+    channels.push_back((1.0 + weight * (double{chroma[k]} * (plane - 1.0))).max(0.0));
+  }
   return channels;
 }
 

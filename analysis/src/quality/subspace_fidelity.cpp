@@ -29,15 +29,18 @@ std::vector<RgbField> representative_images(const BtfDataset& dataset, const Mat
 SubspaceFidelity subspace_fidelity(const Material& material, const SynthesizedImages& images,
                                    const std::vector<RgbField>& measured) {
   const std::uint32_t w = images.width, h = images.height;
-  std::vector<float> heights(std::size_t{w} * h, 0.0f), tones(heights.size(), 1.0f);
+  std::vector<float> heights(std::size_t{w} * h, 0.0f);
+  std::vector<std::vector<float>> tones(3, std::vector<float>(heights.size(), 1.0f));
   if (material.range.tile_size > 0) {
     enlarge_range_map(material.range, 1, 0, 0, w, h, heights);
-    enlarge_range_map(material.range, 1, 0, 0, w, h, tones, RangeChannel::tone);
+    for (std::size_t k = 0; k < 3; ++k) enlarge_range_map(material.range, 1, 0, 0, w, h, tones[k], tone_channel(k));
   }
-  Plane height_plane(h, w), tone(h, w);
+  Plane height_plane(h, w);
+  std::vector<Plane> tone(3, Plane(h, w));
   for (std::size_t p = 0; p < heights.size(); ++p) {
-    height_plane(static_cast<Eigen::Index>(p / w), static_cast<Eigen::Index>(p % w)) = heights[p];
-    tone(static_cast<Eigen::Index>(p / w), static_cast<Eigen::Index>(p % w)) = tones[p];
+    const auto row = static_cast<Eigen::Index>(p / w), col = static_cast<Eigen::Index>(p % w);
+    height_plane(row, col) = heights[p];
+    for (std::size_t k = 0; k < 3; ++k) tone[k](row, col) = tones[k][p];
   }
   SubspaceFidelity result;
   for (std::size_t s = 0; s < measured.size() && s < images.images.size(); ++s) {

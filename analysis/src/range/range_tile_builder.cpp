@@ -151,10 +151,11 @@ std::vector<PatchOrigin> choose_patch_origins(const Plane& map, std::uint32_t si
 
 }  // namespace
 
-RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& options, const Plane* tone) {
+RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& options, std::span<const Plane> tone) {
   if (heights.rows() < 4 || heights.cols() < 4) throw std::invalid_argument("a range map needs at least 4 x 4 texels for tiles");
-  if (tone != nullptr && (tone->rows() != heights.rows() || tone->cols() != heights.cols())) {
-    throw std::invalid_argument("the relief tone is not the range map's size");
+  if (tone.size() != 0 && tone.size() != 1 && tone.size() != 3) throw std::invalid_argument("a relief tone has one plane or three");
+  for (const Plane& plane : tone) {
+    if (plane.rows() != heights.rows() || plane.cols() != heights.cols()) throw std::invalid_argument("the relief tone is not the range map's size");
   }
   if (options.edge_colours == 0 || options.edge_colours > kMaxEdgeColours) throw std::invalid_argument("edge colours must be within 1..4");
   RangeTiles tiles;
@@ -172,13 +173,19 @@ RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& optio
   std::mt19937_64 rng(options.seed);
   const std::uint32_t patch_count = 2 * tiles.edge_colours;
   tiles.patches.resize(std::size_t{patch_count} * size * size);
+  // One quantization over every plane of the tone.
   double tone_low = 0.0;
-  if (tone != nullptr) {
-    tone_low = tone->minCoeff();
-    tiles.tone_offset = static_cast<float>(tone_low);
+  if (!tone.empty()) {
     if (options.tone_bits < 1 || options.tone_bits > 8) throw std::invalid_argument("tone bits must be within 1..8");
-    tiles.tone_scale = static_cast<float>((tone->maxCoeff() - tone_low) / static_cast<double>((1u << options.tone_bits) - 1u));
-    tiles.tone.resize(tiles.patches.size());
+    tone_low = tone[0].minCoeff();
+    double tone_high = tone[0].maxCoeff();
+    for (const Plane& plane : tone) {
+      tone_low = std::min(tone_low, plane.minCoeff());
+      tone_high = std::max(tone_high, plane.maxCoeff());
+    }
+    tiles.tone_offset = static_cast<float>(tone_low);
+    tiles.tone_scale = static_cast<float>((tone_high - tone_low) / static_cast<double>((1u << options.tone_bits) - 1u));
+    tiles.tone.resize(tiles.patches.size() * tone.size());
   }
   const std::vector<PatchOrigin> origins = choose_patch_origins(heights, size, tiles.edge_colours, rng);
   for (std::uint32_t p = 0; p < patch_count; ++p) {
@@ -189,9 +196,9 @@ RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& optio
         const double q = tiles.height_scale > 0.0f ? std::round((h - low) / tiles.height_scale) : 0.0;
         const std::size_t texel = (std::size_t{p} * size + r) * size + c;
         tiles.patches[texel] = static_cast<std::uint16_t>(std::clamp(q, 0.0, top_level));
-        if (tone != nullptr) {
-          const double t = tiles.tone_scale > 0.0f ? std::round(((*tone)(row0 + r, col0 + c) - tone_low) / tiles.tone_scale) : 0.0;
-          tiles.tone[texel] = static_cast<std::uint8_t>(std::clamp(t, 0.0, static_cast<double>((1u << options.tone_bits) - 1u)));
+        for (std::size_t k = 0; k < tone.size(); ++k) {
+          const double t = tiles.tone_scale > 0.0f ? std::round((tone[k](row0 + r, col0 + c) - tone_low) / tiles.tone_scale) : 0.0;
+          tiles.tone[k * tiles.patches.size() + texel] = static_cast<std::uint8_t>(std::clamp(t, 0.0, static_cast<double>((1u << options.tone_bits) - 1u)));
         }
       }
     }

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 
 #include "carbtf/analysis/model/plane.hpp"
 #include "carbtf/engine/material/material.hpp"
@@ -36,12 +37,13 @@ struct RangeTileOptions {
   std::uint64_t seed = 1;
 };
 
-// Heights in texel units are quantized to height_bits over the map's range (stored in u16). `tone` (optional, the map's
-// size) is the relief tone (model/relief_tone.hpp): its patches are cut from the same places, so it
-// stays aligned with the heights, and it is quantized to tone_bits over its range. Patch texels that no
-// tile shows are set to what the file's predictor expects (fill_unseen_patch_texels), so they cost
-// nearly nothing in the file. Throws
-// std::invalid_argument for a map smaller than 4 x 4 or a tone of another size.
-RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& options, const Plane* tone = nullptr);
+// Heights in texel units are quantized to height_bits over the map's range (stored in u16). `tone`
+// (optional: none, one grey plane or three, R, G and B, each the map's size) is the relief tone
+// (model/relief_tone.hpp): its patches are cut from the same places, so it stays aligned with the
+// heights, and it is quantized to tone_bits over the range of all its planes. Patch texels that no tile
+// shows are set to what the file's predictor expects (fill_unseen_patch_texels), so they cost nearly
+// nothing in the file. Throws std::invalid_argument for a map smaller than 4 x 4, or a tone of another
+// size or plane count.
+RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& options, std::span<const Plane> tone = {});
 
 }  // namespace carbtf

@@ -19,7 +19,9 @@ struct ReferenceRenderInput {
   const Material* material = nullptr;
   const SynthesizedImages* images = nullptr;  // the subspace images (host copies); unsynthesized ones empty
   std::span<const float> range_map;           // images->width * images->height heights in texels
-  std::span<const float> tone_map;            // the relief tone, the same size, or empty (1 everywhere)
+  // The relief tone, 3 per texel: each colour channel's plane (RangeChannel::tone to tone_blue) before its
+  // chroma, which the reference applies from the material; or empty (1 everywhere).
+  std::span<const float> tone_map;
   float parallax_scale = 1.0f;
   // Mip levels to filter with, level 0 included (MaterialBinding::mip_levels()): the reference builds
   // them as the means of 2 x 2 texels (mip_chain.hpp) and picks each pixel's level of detail from the

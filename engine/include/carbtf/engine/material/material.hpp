@@ -90,13 +90,15 @@ struct RangeTiles {
   // creases, bright ridges: albedo and occlusion the relit range map cannot give). The analysis divides
   // it out of the subspace images before their fit and the render pass multiplies it back, so the CAR
   // models only the smooth remainder. tone = tone_offset + tone_scale * quantized, mean about 1.
+  // One plane (a grey tone) or three (linear R, G, B, plane-major, each patches.size()): a fabric whose
+  // dark threads are blue and bright ones white has a tone of its own per channel, per texel.
   float tone_offset = 0.0f;
   float tone_scale = 0.0f;
-  std::vector<std::uint8_t> tone;  // empty or patches.size()
+  std::vector<std::uint8_t> tone;  // empty, patches.size() or 3 * patches.size()
   // How far each colour channel (linear R, G, B) follows the tone: channel c takes
-  // 1 + tone_chroma[c] * (tone - 1), at least 0. All 1 (the default, and any file without a TCHR chunk),
-  // the tone is grey. A woven fabric's dark threads are blue and its bright ones white, so its tone is
-  // not grey: the blue channel follows it less than the red.
+  // 1 + tone_chroma[c] * (tone_c - 1), at least 0, where tone_c is the channel's plane or the grey one.
+  // All 1 (the default, and any file without a TCHR chunk), each channel takes its plane as it is. A
+  // grey tone with slopes is the cheap form of colour that follows the relief, the planes the full one.
   std::array<float, 3> tone_chroma{1.0f, 1.0f, 1.0f};
   // Cuts cross-fade the two patches over the texels within `feather` of them (range_tiles.hpp), so a
   // join shows no step; the patches then hold their real values that far beyond each cut. 0 (any file
@@ -140,6 +142,11 @@ inline constexpr float kMaxRangeTone = 16.0f;
 // A channel's tone chroma lies within [-kMaxToneChroma, kMaxToneChroma], so a channel's tone stays
 // below 1 + 4 * 15 and the colour bounded.
 inline constexpr float kMaxToneChroma = 4.0f;
+
+// How many planes the relief tone has: 0 (none), 1 (grey) or 3 (per colour channel).
+inline std::size_t tone_planes(const RangeTiles& range) {
+  return range.patches.empty() ? 0 : range.tone.size() / range.patches.size();
+}
 
 // The subspace index of (light, view); the caller keeps both in range.
 inline std::uint32_t subspace_of(const Material& material, std::uint32_t light, std::uint32_t view) {

@@ -20,7 +20,8 @@
 //         1100:1 over the stream) and checks the filter's layout before it allocates
 //   TONE  (1.1, optional) f32 tone_offset, f32 tone_scale, u32 count, u8 tone[count]: the relief tone
 //         per patch texel (count = the patches' texel count). A 1.0 reader skips it and renders the
-//         smooth texture without the crease darkening it carries.
+//         smooth texture without the crease darkening it carries. From 1.7 the count may be three
+//         times that: one plane per colour channel (R, G, B); a 1.1-1.6 reader rejects such a file.
 //   TWGT  (1.2, optional) u32 count, f32 tone_weight per subspace (count = the subspaces): how much of
 //         the relief tone each subspace image takes. Absent, every weight is 1 (as a 1.1 file means);
 //         a 1.1 reader skips it and applies the whole tone everywhere.
@@ -44,7 +45,7 @@
 namespace carbtf {
 
 inline constexpr std::uint16_t kMaterialFormatMajor = 1;
-inline constexpr std::uint16_t kMaterialFormatMinor = 6;
+inline constexpr std::uint16_t kMaterialFormatMinor = 7;
 
 struct MaterialEncoding {
   // Deflate every chunk but SETT where that is smaller (format 1.1). Off, every chunk is stored plain:

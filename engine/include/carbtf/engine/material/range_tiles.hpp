@@ -58,8 +58,14 @@ inline void quadrant_to_tile(std::uint32_t tile_size, TileQuadrant quadrant, std
 }
 
 // What a tile texel holds: the height (texel units), or the relief tone (a factor on colour, 1 where
-// the material has none). Both follow the same patches and cuts, so they stay aligned.
-enum class RangeChannel : std::uint32_t { height = 0, tone = 1 };
+// the material has none). All follow the same patches and cuts, so they stay aligned. `tone` is the
+// grey tone or the red channel's; tone_green and tone_blue read their planes where the tone has three
+// (material.hpp), and the grey tone where it has one.
+enum class RangeChannel : std::uint32_t { height = 0, tone = 1, tone_green = 2, tone_blue = 3 };
+// The tone channel of colour channel `k` (0 red, 1 green, 2 blue).
+inline RangeChannel tone_channel(std::size_t k) {
+  return static_cast<RangeChannel>(static_cast<std::uint32_t>(RangeChannel::tone) + static_cast<std::uint32_t>(k));
+}
 
 // The value patch `patch` shows at tile texel (x, y), following the geometry above; the caller
 // passes a patch that covers (x, y).

@@ -97,7 +97,8 @@ class MaterialBinding {
   const std::vector<std::uint32_t>& tables() const noexcept;
   // The enlarged range map as uploaded: width() * height() heights in texels, row-major.
   const std::vector<float>& range_map() const noexcept;
-  // The enlarged relief tone, the same size (1 everywhere for a material without one).
+  // The enlarged relief tone as uploaded: 3 floats per texel, the factor's tone of each colour channel
+  // (R, G, B) with its chroma applied (RangeTiles::tone_chroma), 1 everywhere for a material without one.
   const std::vector<float>& tone_map() const noexcept;
 
  private:
