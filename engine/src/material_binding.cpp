@@ -183,7 +183,7 @@ Status MaterialBinding::create(Context& context, const Material& material, const
         // factor per channel whether the tone has one plane or three.
         std::vector<float> plane(r.range_map.size());
         for (std::size_t k = 0; k < 3; ++k) {
-          enlarge_range_map(material.range, block, plane, tone_channel(k));
+          if (k == 0 || tone_planes(material.range) == 3) enlarge_range_map(material.range, block, plane, tone_channel(k));
           const float chroma = material.range.tone_chroma[k];
           for (std::size_t i = 0; i < plane.size(); ++i) r.tone_map[3 * i + k] = 1.0f + chroma * (plane[i] - 1.0f);
         }
