@@ -61,10 +61,10 @@ const std::vector<ModelVariant>& model_variants() {
       {"deshade", "the default with the relit range map divided out (floor 0.3)", [](AnalysisOptions& o) { o.deshade_floor = 0.3; }},
       {"feather", "the default with range-tile cuts cross-faded over 3 texels", [](AnalysisOptions& o) { o.tiles.feather = 1; }},
       {"tone_planes", "the default with the relief tone as R, G and B planes", [](AnalysisOptions& o) { o.tone_planes = TonePlanes::always; }},
-      {"tone_planes_deshade", "the relief tone as R, G and B planes of 8 bits, and the relit range map divided out (floor 0.3)",
+      {"tone_planes_deshade", "the relief tone as R, G and B planes of 6 bits, and the relit range map divided out (floor 0.3)",
        [](AnalysisOptions& o) {
          o.tone_planes = TonePlanes::always;
-         o.tiles.tone_bits = 8;
+         o.tiles.tone_bits = 6;
          o.deshade_floor = 0.3;
        }},
   };
