@@ -48,10 +48,7 @@ ToneSums tone_sums(const BtfDataset& dataset, std::uint32_t view, const Plane& r
   return sums;
 }
 
-}  // namespace
-
-namespace {
-
+// The tone from one channel's sums (or the grey image's).
 Plane tone_of(const Plane& measured, const Plane& explained) {
   if (explained.maxCoeff() <= 0.0) return Plane::Ones(measured.rows(), measured.cols());
   // Where no light reaches a texel by the range map's account, nothing is known about its tone.
