@@ -220,7 +220,8 @@ TEST_CASE("the relief tone is tiled under the heights' layout, texel for texel",
     double channel_worst = 0.0;
     for (std::size_t i = 0; i < map.size(); ++i) channel_worst = std::max(channel_worst, std::abs(toned[i] - channel_of[k](map[i])));
     INFO("channel " << k << ": worst |tone - f(height)| " << channel_worst << ", tone step " << coloured.tone_scale);
-    CHECK(channel_worst <= 0.5 * coloured.tone_scale + 1e-4);
+    // Each channel is rounded down or up, whichever keeps the colour (range_tile_builder.hpp).
+    CHECK(channel_worst <= coloured.tone_scale + 1e-4);
   }
   const std::vector<Plane> two(2, tone);
   CHECK_THROWS_AS(build_range_tiles(heights, options, two), std::invalid_argument);
@@ -231,6 +232,47 @@ TEST_CASE("the relief tone is tiled under the heights' layout, texel for texel",
   CHECK(std::all_of(toned.begin(), toned.end(), [](float t) { return t == 1.0f; }));
   const Plane small = Plane::Ones(64, 64);
   CHECK_THROWS_AS(build_range_tiles(heights, options, std::span<const Plane>(&small, 1)), std::invalid_argument);
+}
+
+TEST_CASE("a tone of three colour planes is rounded to keep its colour", "[range][tone]") {
+  // A tone of one colour (red 1.25 and blue 0.7 times green) whose brightness follows the relief: at
+  // 4 bits, rounding each channel to its nearest level on its own would give each texel a colour of its
+  // own (speckle); the stored levels keep the colour nearer, each channel still within one level.
+  const Surface surface = make_sample_surface("leather", 128, 7);
+  Plane heights(128, 128);
+  for (int i = 0; i < 128 * 128; ++i) heights(i / 128, i % 128) = surface.height[static_cast<std::size_t>(i)];
+  const double low = heights.minCoeff(), high = heights.maxCoeff();
+  const Plane green = heights.unaryExpr([&](double h) { return 0.4 + 1.2 * (h - low) / (high - low); });
+  const std::vector<Plane> planes{1.25 * green, green, 0.7 * green};
+  RangeTileOptions options;
+  options.tile_size = 32;
+  options.tone_bits = 4;
+  const RangeTiles tiles = build_range_tiles(heights, options, planes);
+  REQUIRE(tone_planes(tiles) == 3);
+  const double step = tiles.tone_scale, offset = tiles.tone_offset, top = 15.0;
+  // The colour error of a texel: its log ratios of red and blue to green against the tone's.
+  auto colour_error = [](double r, double g, double b) {
+    const double red = std::log(r / g) - std::log(1.25), blue = std::log(b / g) - std::log(0.7);
+    return red * red + blue * blue;
+  };
+  // Stored: as the enlarged map shows it (patch texels no tile shows hold predictions, not the tone).
+  const std::uint32_t size = 200;
+  std::array<std::vector<float>, 3> shown;
+  for (std::size_t k = 0; k < 3; ++k) {
+    shown[k].resize(std::size_t{size} * size);
+    enlarge_range_map(tiles, 5, 0, 0, size, size, shown[k], tone_channel(k));
+  }
+  double stored = 0.0;
+  for (std::size_t i = 0; i < shown[0].size(); ++i) stored += colour_error(shown[0][i], shown[1][i], shown[2][i]) / static_cast<double>(shown[0].size());
+  // Each channel to its nearest level on its own, over every texel of the map.
+  auto nearest = [&](double v) { return offset + step * std::clamp(std::round((v - offset) / step), 0.0, top); };
+  double independent = 0.0;
+  for (Eigen::Index i = 0; i < green.size(); ++i) {
+    independent += colour_error(nearest(planes[0](i)), nearest(planes[1](i)), nearest(planes[2](i))) / static_cast<double>(green.size());
+  }
+  INFO("RMS colour error (log ratio): stored " << std::sqrt(stored) << ", rounded channel by channel " << std::sqrt(independent));
+  // Measured: 0.045 against 0.057 (the brightness error counts too, at a quarter).
+  CHECK(std::sqrt(stored) < 0.85 * std::sqrt(independent));
 }
 
 // The largest change of the enlarged map under a shift by `period` texels along rows or columns: 0 (to

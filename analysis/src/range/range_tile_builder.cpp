@@ -149,6 +149,40 @@ std::vector<PatchOrigin> choose_patch_origins(const Plane& map, std::uint32_t si
   return origins;
 }
 
+// The stored levels of one texel's tone (`values`, one per plane) quantized at `low + scale * level`,
+// levels within [0, top]. One plane: the nearest level. Three (R, G, B): of the 8 ways to round each
+// channel down or up, the one whose colour (the channels' log ratios) is nearest the tone's, its
+// brightness error counted at a quarter. Rounding each channel to its nearest level on its own draws
+// colour speckle where the tone has none: at 4 bits it is visible on fabric's white threads.
+std::array<std::uint8_t, 3> tone_levels(const std::array<double, 3>& values, std::size_t planes, double low, double scale, double top) {
+  std::array<std::uint8_t, 3> levels{};
+  auto clamped = [&](double level) { return std::clamp(level, 0.0, top); };
+  if (!(scale > 0.0)) return levels;
+  if (planes != 3) {
+    for (std::size_t k = 0; k < planes; ++k) levels[k] = static_cast<std::uint8_t>(clamped(std::round((values[k] - low) / scale)));
+    return levels;
+  }
+  constexpr double kFloor = 1e-3;  // tones are at least kReliefToneFloor; this only keeps the logs finite
+  constexpr double kBrightnessWeight = 0.25;
+  double best = std::numeric_limits<double>::infinity();
+  for (unsigned ways = 0; ways < 8; ++ways) {
+    std::array<double, 3> level{}, error{};
+    for (std::size_t k = 0; k < 3; ++k) {
+      const double exact = (values[k] - low) / scale;
+      level[k] = clamped((ways >> k & 1u) ? std::ceil(exact) : std::floor(exact));
+      error[k] = std::log(std::max(low + scale * level[k], kFloor)) - std::log(std::max(values[k], kFloor));
+    }
+    const double mean = (error[0] + error[1] + error[2]) / 3.0;
+    double cost = 3.0 * kBrightnessWeight * mean * mean;
+    for (double e : error) cost += (e - mean) * (e - mean);
+    if (cost < best) {
+      best = cost;
+      for (std::size_t k = 0; k < 3; ++k) levels[k] = static_cast<std::uint8_t>(level[k]);
+    }
+  }
+  return levels;
+}
+
 }  // namespace
 
 RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& options, std::span<const Plane> tone) {
@@ -196,10 +230,11 @@ RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& optio
         const double q = tiles.height_scale > 0.0f ? std::round((h - low) / tiles.height_scale) : 0.0;
         const std::size_t texel = (std::size_t{p} * size + r) * size + c;
         tiles.patches[texel] = static_cast<std::uint16_t>(std::clamp(q, 0.0, top_level));
-        for (std::size_t k = 0; k < tone.size(); ++k) {
-          const double t = tiles.tone_scale > 0.0f ? std::round((tone[k](row0 + r, col0 + c) - tone_low) / tiles.tone_scale) : 0.0;
-          tiles.tone[k * tiles.patches.size() + texel] = static_cast<std::uint8_t>(std::clamp(t, 0.0, static_cast<double>((1u << options.tone_bits) - 1u)));
-        }
+        std::array<double, 3> values{};
+        for (std::size_t k = 0; k < tone.size(); ++k) values[k] = tone[k](row0 + r, col0 + c);
+        const std::array<std::uint8_t, 3> levels =
+            tone_levels(values, tone.size(), tone_low, tiles.tone_scale, static_cast<double>((1u << options.tone_bits) - 1u));
+        for (std::size_t k = 0; k < tone.size(); ++k) tiles.tone[k * tiles.patches.size() + texel] = levels[k];
       }
     }
   }

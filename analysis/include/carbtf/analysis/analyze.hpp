@@ -44,7 +44,7 @@ struct AnalysisOptions {
   // Whether the relief tone gets a plane per colour channel (RangeTiles::tone, model/relief_tone.hpp),
   // so that colour follows the relief texel by texel; automatic: where the tone's colour departs from
   // grey by at least kToneColourVisible. Opt-in: on fabric at 256^2 the planes lower mean rel from 0.479
-  // to 0.375 (fidelity seeds 1-3), but the fitted noise is then no longer the measure's best (every sigma
+  // to 0.372 (fidelity seeds 1-3), but the fitted noise is then no longer the measure's best (every sigma
   // halved scores 0.367, and 0.362 against 0.386 at 64^2), which a fitted model must not allow.
   TonePlanes tone_planes = TonePlanes::never;
   // With the relief tone: the smooth remainder is clamped to its median +- k robust standard

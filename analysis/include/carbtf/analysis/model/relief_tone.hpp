@@ -41,9 +41,9 @@ std::vector<Plane> relief_tone_planes(const BtfDataset& dataset, std::uint32_t v
 double tone_colour_deviation(std::span<const Plane> planes);
 // The colour deviation from which the analysis, asked to choose (AnalysisOptions::tone_planes), stores
 // the tone's three planes rather than its grey plane. Measured at 256^2: fabric, blue and white
-// threads, 0.266, and its mean rel (fidelity seeds 1-3) falls from 0.479 to 0.375 with the planes;
-// leather 0.073 and coast_sand_rocks 0.067, whose mean rel rises with them (0.326 -> 0.337,
-// 0.264 -> 0.302) and whose file grows by 23-25 KiB.
+// threads, 0.266, and its mean rel (fidelity seeds 1-3) falls from 0.479 to 0.372 with the planes;
+// leather 0.073 and coast_sand_rocks 0.067, whose mean rel rises with them (0.326 -> 0.336,
+// 0.264 -> 0.278) and whose file grows by 23-24 KiB.
 inline constexpr double kToneColourVisible = 0.15;
 
 // Clamps every channel to its median +- k robust standard deviations (1.4826 x the median absolute

@@ -40,7 +40,8 @@ struct RangeTileOptions {
 // Heights in texel units are quantized to height_bits over the map's range (stored in u16). `tone`
 // (optional: none, one grey plane or three, R, G and B, each the map's size) is the relief tone
 // (model/relief_tone.hpp): its patches are cut from the same places, so it stays aligned with the
-// heights, and it is quantized to tone_bits over the range of all its planes. Patch texels that no tile
+// heights, and it is quantized to tone_bits over the range of all its planes (three planes: each channel
+// rounded down or up, whichever keeps the texel's colour nearest). Patch texels that no tile
 // shows are set to what the file's predictor expects (fill_unseen_patch_texels), so they cost nearly
 // nothing in the file. Throws std::invalid_argument for a map smaller than 4 x 4, or a tone of another
 // size or plane count.
