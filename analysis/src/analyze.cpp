@@ -12,6 +12,7 @@
 #include "carbtf/analysis/model/colour_pca.hpp"
 #include "carbtf/analysis/model/deshade.hpp"
 #include "carbtf/analysis/model/pyramid.hpp"
+#include "carbtf/analysis/model/relief_shadows.hpp"
 #include "carbtf/analysis/model/relief_tone.hpp"
 #include "carbtf/analysis/progress.hpp"
 #include "carbtf/analysis/quality/texture_similarity.hpp"
@@ -102,8 +103,8 @@ SubspaceModel fit_channels(const std::vector<Plane>& channels, LightView pair, c
 }
 
 // The model of one subspace image; notes name the band they concern.
-SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plane& range_map, std::span<const Plane> tone, const std::array<float, 3>& chroma,
-                           double light_z_floor, const AnalysisOptions& options, std::vector<std::string>& notes) {
+SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plane& range_map, std::span<const float> horizons,
+                           std::span<const Plane> tone, const std::array<float, 3>& chroma, double light_z_floor, const AnalysisOptions& options, std::vector<std::string>& notes) {
   const std::uint32_t width = dataset.width(), height = dataset.height();
   std::vector<float> rgb(dataset.pixel_count() * 3);
   dataset.linear_rgb(pair, rgb);
@@ -115,7 +116,7 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
   if (toned || options.deshade_floor > 0.0) {
     undo_parallax(channels, range_map, dataset.views()[pair.view].vector(), kAnalysisParallaxScale);
   }
-  const Plane relit = relit_factor(range_map, dataset.lights()[pair.light].vector(), light_z_floor);
+  const Plane relit = relit_factor(range_map, dataset.lights()[pair.light].vector(), light_z_floor, horizons);
   // The smooth texture a model of tone weight `weight` is fitted to: the tone's share and, with
   // --deshade, the relit factor divided out.
   const auto prepared = [&](double weight) {
@@ -225,11 +226,22 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
     tiles.seed = options.segmentation.seed;
     for (const Direction& d : dataset.lights()) result.material.lights.push_back(to_material(d));
     for (const Direction& d : dataset.views()) result.material.views.push_back(to_material(d));
+    double shadow_scale = 0.0;
     if (options.relief_tone) {
-      result.tone = relief_tone(dataset, result.stereo_view, result.range_map, relight_floor(result.material));
+      const double z_floor = relight_floor(result.material);
+      if (options.relief_shadows == AutoChoice::always) shadow_scale = 1.0;
+      if (options.relief_shadows == AutoChoice::automatic) {
+        const ShadowFit fit = fit_shadow_scale(dataset, result.stereo_view, result.range_map, z_floor);
+        shadow_scale = fit.scale;
+        std::snprintf(line, sizeof line, "relief shadows: scale %.2f%s (the view's images explained with error %.4f, without shadows %.4f)",
+                      fit.scale, fit.scale > 0.0 ? "" : ", none", fit.error, fit.error_without);
+        note(line);
+      }
+      result.horizons = range_map_horizons(result.range_map, shadow_scale);
+      result.tone = relief_tone(dataset, result.stereo_view, result.range_map, z_floor, result.horizons);
       result.tone_planes = {result.tone};
       if (options.tone_planes != TonePlanes::never) {
-        std::vector<Plane> planes = relief_tone_planes(dataset, result.stereo_view, result.range_map, relight_floor(result.material));
+        std::vector<Plane> planes = relief_tone_planes(dataset, result.stereo_view, result.range_map, z_floor, result.horizons);
         const double deviation = tone_colour_deviation(planes);
         const bool coloured = options.tone_planes == TonePlanes::always || deviation >= kToneColourVisible;
         if (coloured) result.tone_planes = std::move(planes);
@@ -239,8 +251,10 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
       }
     }
     result.material.range = build_range_tiles(result.range_map, tiles, result.tone_planes);
+    result.material.range.shadow_scale = static_cast<float>(shadow_scale);
     if (options.relief_tone && options.coloured_tone && result.tone_planes.size() == 1) {
-      result.material.range.tone_chroma = relief_tone_chroma(dataset, result.stereo_view, result.range_map, relight_floor(result.material), result.tone);
+      result.material.range.tone_chroma =
+          relief_tone_chroma(dataset, result.stereo_view, result.range_map, relight_floor(result.material), result.tone, result.horizons);
     }
   }
 
@@ -252,7 +266,7 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
     Progress progress("subspace models", representatives.size(), options.progress);
     const double z_floor = relight_floor(result.material);  // the render pass's, from the light set
     detail::parallel_for(representatives.size(), options.threads, [&](std::size_t s) {
-      result.material.subspaces[s] = fit_subspace(dataset, representatives[s], result.range_map, result.tone_planes,
+      result.material.subspaces[s] = fit_subspace(dataset, representatives[s], result.range_map, result.horizons, result.tone_planes,
                                                     result.material.range.tone_chroma, z_floor, options, notes[s]);
       progress.advance();
     });
@@ -281,6 +295,8 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
       {"coloured_tone", options.relief_tone && options.coloured_tone ? "where it explains the colour" : "no"},
       {"tone_planes", options.tone_planes == TonePlanes::automatic ? "where its colour is visible"
                       : options.tone_planes == TonePlanes::always  ? "yes" : "no"},
+      {"relief_shadows", options.relief_shadows == AutoChoice::automatic ? "where they explain the images"
+                         : options.relief_shadows == AutoChoice::always  ? "yes" : "no"},
       {"remainder_clamps", join_numbers(options.remainder_clamps)},
       {"selection_draws", std::to_string(options.selection_draws)},
       {"deshade_floor", std::to_string(options.deshade_floor)},

@@ -243,7 +243,8 @@ CARBTF_FUNCTION float carbtf_polar_angle(float r, float z) {
 // ---- Material render pass (carbtf_material.glsl, engine/include/carbtf/engine/render/material_binding.hpp) --
 // The material descriptor set: binding 0 the subspace images (sampler2DArray, one layer per
 // synthesized subspace image), binding 1 the enlarged range map (sampler2DArray: layer 0 r the heights
-// in texels, layer 1 rgb the relief normal and a the relief tone), binding 2 the lookup tables (readonly
+// in texels and gba each colour channel's relief tone, layer 1 rgb the relief normal, layers 2 and 3 the
+// horizons of azimuths 0-3 and 4-7 for cast shadows), binding 2 the lookup tables (readonly
 // storage buffer: MaterialTablesHeader, then uints). Both textures have MaterialTablesHeader::mip_levels
 // levels.
 CARBTF_CONST_UINT(CARBTF_MATERIAL_BINDING_SUBSPACES, 0u)
@@ -260,6 +261,8 @@ CARBTF_CONST_FLOAT(CARBTF_LOOKUP_INSIDE_SLACK, 1.0e-5f)
 // to a measured direction uses exactly the directions it is nearest, whichever of two triangles that
 // share an edge its rounding picks; scene pruning relies on it.
 CARBTF_CONST_FLOAT(CARBTF_LOOKUP_MIN_WEIGHT, 1.0e-5f)
+// The penumbra of the relief's cast shadows, in tangent of elevation (relief_horizons.hpp).
+CARBTF_CONST_FLOAT(CARBTF_RELIEF_SHADOW_SOFTNESS, 0.25f)
 // Lights one draw of carbtf's own mesh pipeline shades with.
 CARBTF_CONST_UINT(CARBTF_RENDER_MAX_LIGHTS, 4u)
 
@@ -293,7 +296,7 @@ struct MaterialTablesHeader {
   float range_mean;
   float light_z_floor;  // cos of the largest measured light elevation: the relit factor's denominator floor
   uint wrap;            // 1: the textures tile, texel addresses wrap; 0: edge texels repeat
-  uint reserved4;  // (was the tone chroma; the range texture's tone holds it applied)
+  uint shadows;    // 1: the relief casts shadows (the range texture's layers 2 and 3 hold its horizons)
   uint reserved5;
   uint reserved6;
   uint mip_levels;       // levels of the range map and the subspace images, level 0 included (mip_chain.hpp)

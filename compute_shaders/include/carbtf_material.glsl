@@ -10,7 +10,8 @@
 // Per fragment: parallax mapping with offset limiting (Welsh 2004) from the enlarged range map, the
 // 9-weight interpolation of the subspace images (docs/design.md 4.5) through precomputed lookup grids
 // (a fixed, short list of candidates per grid cell: no search over the direction set), times the range
-// map relit for the light. The CPU twin is analysis/reference/src/render_reference.cpp.
+// map relit for the light, hidden where the relief casts a shadow (the material's shadow scale above
+// 0). The CPU twin is analysis/reference/src/render_reference.cpp.
 #ifndef CARBTF_MATERIAL_GLSL
 #define CARBTF_MATERIAL_GLSL
 
@@ -121,10 +122,12 @@ float carbtf_height(vec2 uv) {
 struct CarbtfRelief {
   vec3 normal;
   vec3 tone;
+  vec4 horizon_a;  // horizon tangents of azimuths 0-3 and 4-7 (relief_horizons.hpp)
+  vec4 horizon_b;
 };
 
 // The range texture bilinearly at b of mip level `level`: the normal from layer 1, the tone from
-// layer 0's gba. The blend of the texels' normals is scaled to the blend of their lengths: at level 0,
+// layer 0's gba, the horizons from layers 2 and 3. The blend of the texels' normals is scaled to the blend of their lengths: at level 0,
 // whose normals are unit, it is normalised (interpolation between facets must not shorten it: at a
 // sharp crease the blend of two unit normals is short, and relit would draw a dark line); above, each
 // texel's normal is the mean of the unit normals under it, as short as they differ, and keeps that length.
@@ -142,6 +145,10 @@ CarbtfRelief carbtf_relief_texel(CarbtfBilinear b, int level) {
   CarbtfRelief relief;
   relief.normal = value * (target / length(value));
   relief.tone = mix(top, bottom, b.f.y);
+  relief.horizon_a = mix(mix(texelFetch(carbtf_range, ivec3(b.i0.x, b.i0.y, 2), level), texelFetch(carbtf_range, ivec3(b.i1.x, b.i0.y, 2), level), b.f.x),
+                         mix(texelFetch(carbtf_range, ivec3(b.i0.x, b.i1.y, 2), level), texelFetch(carbtf_range, ivec3(b.i1.x, b.i1.y, 2), level), b.f.x), b.f.y);
+  relief.horizon_b = mix(mix(texelFetch(carbtf_range, ivec3(b.i0.x, b.i0.y, 3), level), texelFetch(carbtf_range, ivec3(b.i1.x, b.i0.y, 3), level), b.f.x),
+                         mix(texelFetch(carbtf_range, ivec3(b.i0.x, b.i1.y, 3), level), texelFetch(carbtf_range, ivec3(b.i1.x, b.i1.y, 3), level), b.f.x), b.f.y);
   return relief;
 }
 
@@ -153,8 +160,25 @@ CarbtfRelief carbtf_relief(vec2 uv, float lod) {
     CarbtfRelief up = carbtf_relief_texel(carbtf_bilinear(uv, s.level + 1), s.level + 1);
     value.normal = mix(value.normal, up.normal, s.t);
     value.tone = mix(value.tone, up.tone, s.t);
+    value.horizon_a = mix(value.horizon_a, up.horizon_a, s.t);
+    value.horizon_b = mix(value.horizon_b, up.horizon_b, s.t);
   }
   return value;
+}
+
+// The share of a directional light (tangent frame) the relief leaves at a point: relief_visibility()
+// of relief_horizons.hpp, the horizon interpolated between the two azimuths nearest the light's.
+float carbtf_relief_visibility(CarbtfRelief relief, vec3 light) {
+  float across = length(light.xy);
+  if (across <= 0.0) return 1.0;
+  float sector = atan(light.y, light.x) * (4.0 / CARBTF_PI);
+  float base = floor(sector);
+  int k0 = (int(base) % 8 + 8) % 8;
+  int k1 = (k0 + 1) % 8;
+  float h[8] = float[8](relief.horizon_a.x, relief.horizon_a.y, relief.horizon_a.z, relief.horizon_a.w,
+                        relief.horizon_b.x, relief.horizon_b.y, relief.horizon_b.z, relief.horizon_b.w);
+  float horizon = h[k0] + (sector - base) * (h[k1] - h[k0]);
+  return clamp(0.5 + (light.z / across - horizon) / CARBTF_RELIEF_SHADOW_SOFTNESS, 0.0, 1.0);
 }
 
 // Parallax mapping with offset limiting: the texture point seen along `view` (tangent frame, unit,
@@ -284,6 +308,7 @@ vec3 carbtf_material_shade(vec2 uv, vec3 light, vec3 view, float lod) {
   if (light.z <= 0.0 || view.z <= 0.0) return vec3(0.0);
   CarbtfRelief relief = carbtf_relief(uv, lod);
   float relit = max(dot(relief.normal, light), 0.0) / max(light.z, carbtf_header.light_z_floor);
+  if (carbtf_header.shadows != 0u) relit *= carbtf_relief_visibility(relief, light);
   return relit * carbtf_interpolated_btf(uv, light, view, relief.tone, lod);
 }
 vec3 carbtf_material_shade(vec2 uv, vec3 light, vec3 view) {

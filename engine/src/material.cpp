@@ -95,6 +95,9 @@ Status validate_range(const RangeTiles& r) {
                      std::to_string(int(kMaxToneChroma)) + ".." + std::to_string(int(kMaxToneChroma)));
     }
   }
+  if (!(r.shadow_scale >= 0.0f && r.shadow_scale <= kMaxShadowScale)) {
+    return invalid("range map: shadow scale " + std::to_string(r.shadow_scale) + " is outside 0.." + std::to_string(int(kMaxShadowScale)));
+  }
   if (r.feather > kMaxFeather)
     return invalid("range map: feather " + std::to_string(r.feather) + " (at most " + std::to_string(kMaxFeather) + ")");
   if (r.tile_size == 0) {

@@ -14,6 +14,7 @@
 #include "carbtf/engine/internal/direction_lookup.hpp"
 #include "carbtf/engine/material/material_directions.hpp"
 #include "carbtf/engine/material/range_tiles.hpp"
+#include "carbtf/engine/render/relief_horizons.hpp"
 #include "carbtf/engine/render/relief_normals.hpp"
 #include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
 #include "carbtf/engine/vulkan/mip_chain.hpp"
@@ -86,7 +87,8 @@ struct MaterialBinding::Resources {
   std::uint32_t height = 0;
   Buffer table_buffer;
   // RGBA32F, mip_levels levels: layer 0 the height (r) and the relief tone of each colour channel (gba),
-  // layer 1 the relief normal (rgb, relief_normals.hpp).
+  // layer 1 the relief normal (rgb, relief_normals.hpp), layers 2 and 3 the horizons of azimuths 0-3
+  // and 4-7 (relief_horizons.hpp; 0 where the material casts no shadows).
   std::unique_ptr<TextureArray> range_image;
   std::uint32_t mip_levels = 1;
   UniqueHandle<VkSampler> sampler;
@@ -174,6 +176,7 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     r.range_map.assign(std::size_t{textures.width} * textures.height, 0.0f);
     r.tone_map.assign(3 * r.range_map.size(), 1.0f);
     header.wrap = textures.periodic_overlap > 0 ? 1u : 0u;
+    header.shadows = material.range.tile_size > 0 && material.range.shadow_scale > 0.0f ? 1u : 0u;
     if (material.range.tile_size > 0) {
       const RangeBlock block{info.seed, info.row0, info.col0, textures.width, textures.height,
                              textures.periodic_overlap};
@@ -200,7 +203,7 @@ Status MaterialBinding::create(Context& context, const Material& material, const
                                MemoryUsage::host_upload, "carbtf material tables"},
                               r.table_buffer));
     std::memcpy(r.table_buffer.mapped(), r.tables.data(), r.tables.size() * 4);
-    CARBTF_TRY(TextureArray::create(context, textures.width, textures.height, 2, VK_FORMAT_R32G32B32A32_SFLOAT,
+    CARBTF_TRY(TextureArray::create(context, textures.width, textures.height, 4, VK_FORMAT_R32G32B32A32_SFLOAT,
                                     r.range_image, r.mip_levels));
     if (r.range_image->mip_levels() != r.mip_levels)
       return {ErrorCode::vulkan_error, "the range map did not get the subspace images' mip levels"};
@@ -220,6 +223,16 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     }
     CARBTF_TRY(r.range_image->set_layer(
         1, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(texels.data()), texels.size() * 4)));
+    // Layers 2 and 3: the horizons of azimuths 0-3 and 4-7 (relief_horizons.hpp), 0 without shadows.
+    std::vector<float> horizons(kReliefHorizonDirections * r.range_map.size(), 0.0f);
+    if (header.shadows) relief_horizons(r.range_map, textures.width, textures.height, header.wrap != 0u, material.range.shadow_scale, horizons);
+    for (std::uint32_t half = 0; half < 2; ++half) {
+      for (std::size_t i = 0; i < r.range_map.size(); ++i) {
+        for (std::size_t k = 0; k < 4; ++k) texels[4 * i + k] = horizons[kReliefHorizonDirections * i + 4 * half + k];
+      }
+      CARBTF_TRY(r.range_image->set_layer(
+          2 + half, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(texels.data()), texels.size() * 4)));
+    }
 
     const VulkanFunctions& vk = context.vk();
     const VkDevice device = context.device();

@@ -25,9 +25,9 @@ constexpr std::array<std::uint8_t, 4> kMagic{'C', 'B', 'T', 'F'};
 constexpr std::uint32_t kMaxChunks = 64;
 constexpr std::size_t kChunkOverhead = 12;  // tag, size, CRC
 
-enum class Chunk { settings, directions, index, subspaces, range, tone, tone_weights, tone_chroma, feather, count };
+enum class Chunk { settings, directions, index, subspaces, range, tone, tone_weights, tone_chroma, feather, shadows, count };
 constexpr std::array<std::string_view, static_cast<std::size_t>(Chunk::count)> kChunkTags{"SETT", "DIRS", "INDX", "SUBS",
-                                                                                         "RNGE", "TONE", "TWGT", "TCHR", "FTHR"};
+                                                                                         "RNGE", "TONE", "TWGT", "TCHR", "FTHR", "SHDW"};
 
 // A deflated chunk (format 1.1): payload = inner tag (4 bytes), u32 inner payload size, u8 filter, the
 // filter's parameters, then one zlib stream of the filtered payload. Filters:
@@ -638,6 +638,17 @@ bool decode_feather(ByteReader& r, std::uint32_t& feather) {
   return !r.failed();
 }
 
+// Optional (format 1.8): written only when the relief casts shadows.
+void encode_shadows(const Material& m, ByteWriter& w) {
+  w.f32(m.range.shadow_scale);
+}
+
+// Into `scale`: the range chunk may come later in the file.
+bool decode_shadows(ByteReader& r, float& scale) {
+  scale = r.f32();
+  return !r.failed();
+}
+
 // Into `chroma`: the range chunk may come later in the file.
 bool decode_tone_chroma(ByteReader& r, std::array<float, 3>& chroma) {
   for (float& c : chroma) c = r.f32();
@@ -720,12 +731,13 @@ Status encode_material(const Material& material, std::vector<std::uint8_t>& out,
   written[static_cast<std::size_t>(Chunk::tone_weights)] = has_tone_weights(material);
   written[static_cast<std::size_t>(Chunk::tone_chroma)] = has_tone_chroma(material);
   written[static_cast<std::size_t>(Chunk::feather)] = material.range.feather > 0;
+  written[static_cast<std::size_t>(Chunk::shadows)] = material.range.shadow_scale > 0.0f;
   w.u32(static_cast<std::uint32_t>(std::count(written.begin(), written.end(), true)));
   Deflater deflater;
   using Encoder = void (*)(const Material&, ByteWriter&);
   constexpr std::array<Encoder, static_cast<std::size_t>(Chunk::count)> encoders{
       encode_settings, encode_directions, encode_index, encode_subspaces, encode_range, encode_tone, encode_tone_weights,
-      encode_tone_chroma, encode_feather};
+      encode_tone_chroma, encode_feather, encode_shadows};
   for (std::size_t c = 0; c < encoders.size(); ++c) {
     if (!written[c]) continue;
     std::vector<std::uint8_t> payload;
@@ -752,6 +764,7 @@ Status decode_material(std::span<const std::uint8_t> bytes, const std::string& n
   std::vector<float> tone_weights;
   std::array<float, 3> tone_chroma{1.0f, 1.0f, 1.0f};
   std::uint32_t feather = 0;
+  float shadow_scale = 0.0f;
   Status walked = walk_chunks(bytes, name, [&](std::span<const std::uint8_t> outer_tag, std::span<const std::uint8_t> outer_payload) -> Status {
     std::span<const std::uint8_t> tag = outer_tag;
     std::span<const std::uint8_t> payload = outer_payload;
@@ -780,6 +793,7 @@ Status decode_material(std::span<const std::uint8_t> bytes, const std::string& n
       case Chunk::tone_weights: ok = decode_tone_weights(r, tone_weights); break;
       case Chunk::tone_chroma: ok = decode_tone_chroma(r, tone_chroma); break;
       case Chunk::feather: ok = decode_feather(r, feather); break;
+      case Chunk::shadows: ok = decode_shadows(r, shadow_scale); break;
       case Chunk::count: break;
     }
     if (!ok) return fail(name, "chunk " + printable_tag(tag) + " is truncated or has out-of-range counts");
@@ -790,7 +804,7 @@ Status decode_material(std::span<const std::uint8_t> bytes, const std::string& n
   for (std::size_t c = 0; c < seen.size(); ++c) {
     const bool optional = static_cast<Chunk>(c) == Chunk::settings || static_cast<Chunk>(c) == Chunk::tone ||
                           static_cast<Chunk>(c) == Chunk::tone_weights || static_cast<Chunk>(c) == Chunk::tone_chroma ||
-                          static_cast<Chunk>(c) == Chunk::feather;
+                          static_cast<Chunk>(c) == Chunk::feather || static_cast<Chunk>(c) == Chunk::shadows;
     if (!seen[c] && !optional) return fail(name, "chunk " + std::string(kChunkTags[c]) + " is missing");
   }
   if (index_lights != m.lights.size() || index_views != m.views.size()) {
@@ -806,6 +820,7 @@ Status decode_material(std::span<const std::uint8_t> bytes, const std::string& n
   }
   m.range.tone_chroma = tone_chroma;
   m.range.feather = feather;
+  m.range.shadow_scale = shadow_scale;
   if (Status s = validate_material(m); !s.ok()) return fail(name, s.message());
   out = std::move(m);
   return {};

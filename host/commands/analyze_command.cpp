@@ -26,6 +26,7 @@ struct AnalyzeCommandOptions {
   std::string out;
   std::string report;
   std::string tone_planes = "no";
+  std::string shadows = "auto";
   AnalysisOptions analysis;
 };
 
@@ -96,6 +97,13 @@ void register_analyze_command(CLI::App& app) {
                       "nearer its measurement with it (mean rel 0.48 -> 0.38 at 256^2), but its fitted noise is then too strong")
       ->check(CLI::IsMember({"auto", "yes", "no"}))
       ->capture_default_str();
+  command->add_option("--shadows", options->shadows,
+                      "With the relief tone, let the relief cast shadows in the render pass (a crease wall that faces the "
+                      "light stays lit, the crease behind it goes dark): auto at the strength that best explains the "
+                      "photometric-stereo view's images, where shadows explain them better (a rocky scan, not a leather); "
+                      "yes at full strength; no")
+      ->check(CLI::IsMember({"auto", "yes", "no"}))
+      ->capture_default_str();
   command->add_option("--remainder-clamp", a.remainder_clamps,
                       "With the relief tone, each subspace image's smooth remainder is clamped to its median +- K robust "
                       "standard deviations before the CAR fit, so that relief lines the tone does not explain do not become "
@@ -127,6 +135,9 @@ void register_analyze_command(CLI::App& app) {
     options->analysis.tone_planes = options->tone_planes == "yes"  ? TonePlanes::always
                                     : options->tone_planes == "no" ? TonePlanes::never
                                                                    : TonePlanes::automatic;
+    options->analysis.relief_shadows = options->shadows == "yes"  ? AutoChoice::always
+                                       : options->shadows == "no" ? AutoChoice::never
+                                                                  : AutoChoice::automatic;
     run_analyze(*options);
   });
 }

@@ -107,6 +107,13 @@ void run_material_info(const std::string& path) {
       std::printf("tone colour:  grey\n");
     }
   }
+  if (material.range.tile_size > 0) {
+    if (material.range.shadow_scale > 0.0f) {
+      std::printf("shadows:      cast by the relief, heights x %.2f\n", material.range.shadow_scale);
+    } else {
+      std::printf("shadows:      none\n");
+    }
+  }
   std::printf("file size:    %zu bytes (%.1f KiB)\n", bytes.size(), static_cast<double>(bytes.size()) / 1024.0);
   std::printf("  %-6s %10s %7s\n", "chunk", "bytes", "share");
   std::printf("  %-6s %10d %6.1f%%\n", "header", 12, 1200.0 / static_cast<double>(bytes.size()));

@@ -11,27 +11,13 @@
 #include "carbtf/analysis/model/relief_tone.hpp"
 #include "carbtf/analysis/sample/height_field_renderer.hpp"
 #include "carbtf/analysis/sample/sample_materials.hpp"
+#include "test_top_view.hpp"
 
 namespace carbtf {
 namespace {
 
-// The top view of `surface` under every UBO2003 light.
-BtfDataset top_view_dataset(const Surface& surface) {
-  const std::vector<Direction> views{Direction{}};
-  BtfDataset dataset(ubo2003_directions(), views, surface.size, surface.size, ColorEncoding::linear_half);
-  RenderOptions render;
-  render.progress = false;
-  render_btf(surface, dataset.lights(), views, render,
-             [&](std::uint32_t l, std::uint32_t v, std::span<const float> image) { dataset.set_linear({l, v}, image); });
-  return dataset;
-}
-
-Plane heights_of(const Surface& surface) {
-  const auto n = static_cast<Eigen::Index>(surface.size);
-  Plane heights(n, n);
-  for (Eigen::Index i = 0; i < n * n; ++i) heights(i / n, i % n) = surface.height[static_cast<std::size_t>(i)];
-  return heights - heights.mean();
-}
+using test::heights_of;
+using test::top_view_dataset;
 
 double correlation(const Plane& a, const Plane& b) {
   const Plane da = a - a.mean(), db = b - b.mean();

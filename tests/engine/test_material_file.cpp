@@ -615,6 +615,31 @@ TEST_CASE("feathered cuts read back while a file without FTHR has hard cuts and 
   }
 }
 
+TEST_CASE("cast shadows read back while a file without SHDW has none and a hostile scale is refused",
+          "[material_file][shadows]") {
+  Material m = sample_material();
+  const std::string shdw = "SHDW";
+  const std::vector<std::uint8_t> unshadowed = encoded(m);
+  CHECK(std::search(unshadowed.begin(), unshadowed.end(), shdw.begin(), shdw.end()) == unshadowed.end());
+  Material back;
+  REQUIRE(decode_material(unshadowed, "x.cbtf", back).ok());
+  CHECK(back.range.shadow_scale == 0.0f);
+  m.range.shadow_scale = 0.5f;
+  for (const auto& bytes : {encoded(m), deflated(m)}) {
+    REQUIRE(decode_material(bytes, "x.cbtf", back).ok());
+    CHECK(back == m);
+  }
+  std::vector<std::uint8_t> bytes = encoded(m);
+  const auto at = static_cast<std::size_t>(std::search(bytes.begin(), bytes.end(), shdw.begin(), shdw.end()) - bytes.begin());
+  REQUIRE(at < bytes.size());
+  for (const float hostile : {-0.5f, 4.5f, std::nanf(""), std::numeric_limits<float>::infinity()}) {
+    std::memcpy(&bytes[at + 8], &hostile, 4);  // after the tag and the size
+    fix_crcs(bytes);
+    const Status s = decode_material(bytes, "bad.cbtf", back);
+    CHECK_THAT(s.message(), Catch::Contains("bad.cbtf") && Catch::Contains("shadow scale") && Catch::Contains("outside 0..4"));
+  }
+}
+
 TEST_CASE("10,000 random corruptions and truncations are rejected or read without a crash", "[material_file][fuzz]") {
   const bool deflate = GENERATE(false, true);
   INFO("deflated chunks: " << deflate);

@@ -110,9 +110,13 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
   // channel brightens there: a grey plane with those slopes, or three planes of their own (green the
   // grey one inverted, blue half of it) with the same slopes on top.
   const bool three_planes = GENERATE(false, true);
+  // With and without the relief's cast shadows (relief_horizons.hpp): both sides compute the horizons
+  // of the enlarged heights, filter them as textures and hide the light below them.
+  const bool shadows = GENERATE(false, true);
   const Material m = [&] {
     Material coloured = test::bumpy_material(true);
     coloured.range.tone_chroma = {2.5f, 1.0f, -0.5f};
+    coloured.range.shadow_scale = shadows ? 1.0f : 0.0f;
     if (three_planes) {
       const std::vector<std::uint8_t> grey = coloured.range.tone;
       const std::uint8_t top = *std::max_element(grey.begin(), grey.end());
@@ -215,7 +219,7 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
     }
   }
   const double rms = std::sqrt(sum_squares / static_cast<double>(3 * std::max<std::size_t>(both, 1)));
-  INFO(what << (periodic ? ", periodic" : ", plain") << ": " << both << " pixels, peak " << peak << ", max error " << worst << ", rms " << rms
+  INFO(what << (periodic ? ", periodic" : ", plain") << (shadows ? ", shadows" : "") << ": " << both << " pixels, peak " << peak << ", max error " << worst << ", rms " << rms
             << ", coverage differs at " << coverage_differs);
   REQUIRE(both > gpu.size() / 4 / 4);
   // Rasterization decides edge pixels by its own rules: at most the plane's outline may differ.
@@ -272,6 +276,29 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
   reference::ReferenceRenderInput grey_input = input;
   grey_input.material = &grey;
   CHECK(reference::render_plane(grey_input, scene, target.width, target.height, target.clear) != cpu);
+  // The shadows change the picture, by at least a percent of the peak RMS, so the comparison above
+  // covers them; and they take light away: the picture's mean falls (a pixel may not, where a noisy
+  // synthesized texel is negative under one of two lights).
+  if (shadows) {
+    Material unshadowed = m;
+    unshadowed.range.shadow_scale = 0.0f;
+    reference::ReferenceRenderInput lit = input;
+    lit.material = &unshadowed;
+    const auto cpu_lit = reference::render_plane(lit, scene, target.width, target.height, target.clear);
+    double taken = 0.0, sum = 0.0, sum_lit = 0.0;
+    for (std::size_t i = 0; i < cpu.size(); i += 4) {
+      if (cpu[i + 3] != 1.0f) continue;
+      for (int k = 0; k < 3; ++k) {
+        taken += (cpu_lit[i + k] - cpu[i + k]) * (cpu_lit[i + k] - cpu[i + k]);
+        sum += cpu[i + k];
+        sum_lit += cpu_lit[i + k];
+      }
+    }
+    const double taken_rms = std::sqrt(taken / static_cast<double>(3 * std::max<std::size_t>(both, 1)));
+    INFO("shadows take " << taken_rms / peak << " of the peak RMS, the mean from " << sum_lit << " to " << sum);
+    CHECK(taken_rms >= 0.01 * peak);
+    CHECK(sum < sum_lit);
+  }
   context.require_clean();
 }
 

@@ -9,6 +9,7 @@
 
 #include "carbtf/engine/material/material_directions.hpp"
 #include "carbtf/engine/render/mip_levels.hpp"
+#include "carbtf/engine/render/relief_horizons.hpp"
 #include "carbtf/engine/render/relief_normals.hpp"
 
 namespace carbtf::reference {
@@ -65,6 +66,17 @@ std::vector<float> relief_texels(std::span<const float> heights, std::uint32_t w
   return out;
 }
 
+// The range texture's layers 2 and 3: the horizons of azimuths 0-3 (half 0) and 4-7 (half 1), 0 where
+// the material casts no shadows.
+std::vector<float> horizon_texels(std::span<const float> horizons, std::size_t texels, int half) {
+  std::vector<float> out(texels * 4, 0.0f);
+  if (horizons.empty()) return out;
+  for (std::size_t i = 0; i < texels; ++i) {
+    for (std::size_t k = 0; k < 4; ++k) out[4 * i + k] = horizons[kReliefHorizonDirections * i + 4 * static_cast<std::size_t>(half) + k];
+  }
+  return out;
+}
+
 // A level of detail split as the shader's carbtf_split_lod().
 struct Lod {
   int level;
@@ -77,6 +89,7 @@ struct Sampler {
   std::uint32_t width, height;
   float range_mean;
   MipChain range, relief;  // heights and tone; normal (relief_normals.hpp)
+  MipChain horizons_a, horizons_b;  // horizons of azimuths 0-3 and 4-7 (relief_horizons.hpp)
   std::vector<MipChain> images;  // per subspace, empty levels where it was not synthesized
 
   struct Bilinear {
@@ -182,12 +195,17 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
   // The mean in double, as the binding computes it.
   const double sum = std::accumulate(input.range_map.begin(), input.range_map.end(), 0.0);
   const std::uint32_t levels = std::clamp(input.mip_levels, 1u, mip_level_count(tw, th));
+  const bool shadows = material.range.tile_size > 0 && material.range.shadow_scale > 0.0f;
+  std::vector<float> horizons;
+  if (shadows) relief_horizons(input.range_map, tw, th, input.wrap, material.range.shadow_scale, horizons);
   Sampler sampler{input,
                   tw,
                   th,
                   static_cast<float>(sum / static_cast<double>(input.range_map.size())),
                   MipChain(height_texels(input.range_map, input.tone_map), tw, th, 4, levels),
                   MipChain(relief_texels(input.range_map, tw, th, input.wrap), tw, th, 4, levels),
+                  MipChain(horizon_texels(horizons, input.range_map.size(), 0), tw, th, 4, levels),
+                  MipChain(horizon_texels(horizons, input.range_map.size(), 1), tw, th, 4, levels),
                   {}};
   for (std::size_t i = 0; i < input.images->images.size(); ++i) {
     const auto& image = input.images->images[i];
@@ -262,6 +280,11 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
                                  sampler.height_at(shifted + glm::vec2(0, texel.y), 0.0f));
         normal = glm::normalize(glm::vec3(-dx, -dy, 1.0f));
       }
+      std::array<float, kReliefHorizonDirections> horizon_at{};
+      if (shadows) {
+        const glm::vec4 a = sampler.filtered(sampler.horizons_a, shifted, lod), b = sampler.filtered(sampler.horizons_b, shifted, lod);
+        horizon_at = {a.x, a.y, a.z, a.w, b.x, b.y, b.z, b.w};
+      }
       const glm::vec3 chroma(material.range.tone_chroma[0], material.range.tone_chroma[1], material.range.tone_chroma[2]);
       const glm::vec3 tone_offset = chroma * (sampler.tone_at(shifted, lod) - 1.0f);
 
@@ -285,7 +308,8 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
           const float tone_weight = material.subspaces[subspace].tone_weight;
           btf += (w.weight[k] * glm::max(1.0f + tone_weight * tone_offset, glm::vec3(0.0f))) * sampler.subspace_at(shifted, lod, subspace);
         }
-        const float relit = std::max(glm::dot(normal, l), 0.0f) / std::max(l.z, light_z_floor);
+        float relit = std::max(glm::dot(normal, l), 0.0f) / std::max(l.z, light_z_floor);
+        if (shadows) relit *= relief_visibility(horizon_at, {l.x, l.y, l.z});
         colour += falloff * glm::vec3(light.colour[0], light.colour[1], light.colour[2]) * relit * btf;
       }
       pixel[0] = colour.r;

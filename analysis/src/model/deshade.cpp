@@ -4,10 +4,18 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "carbtf/engine/render/relief_horizons.hpp"
+
 namespace carbtf {
 
-Plane relit_factor(const Plane& range_map, const std::array<double, 3>& light, double light_z_floor) {
+Plane relit_factor(const Plane& range_map, const std::array<double, 3>& light, double light_z_floor,
+                   std::span<const float> horizons) {
   const Eigen::Index rows = range_map.rows(), cols = range_map.cols();
+  constexpr std::size_t n = kReliefHorizonDirections;
+  if (!horizons.empty() && horizons.size() != static_cast<std::size_t>(rows * cols) * n) {
+    throw std::invalid_argument("relit_factor: the horizons are not the range map's");
+  }
+  const std::array<float, 3> light_f{static_cast<float>(light[0]), static_cast<float>(light[1]), static_cast<float>(light[2])};
   Plane factor(rows, cols);
   auto h = [&](Eigen::Index r, Eigen::Index c) {
     return range_map(std::clamp<Eigen::Index>(r, 0, rows - 1), std::clamp<Eigen::Index>(c, 0, cols - 1));
@@ -21,6 +29,9 @@ Plane relit_factor(const Plane& range_map, const std::array<double, 3>& light, d
       const double length = std::sqrt(dx * dx + dy * dy + 1.0);
       const double dot = (-dx * light[0] - dy * light[1] + light[2]) / length;
       factor(r, c) = std::max(dot, 0.0) / denominator;
+      if (!horizons.empty()) {
+        factor(r, c) *= relief_visibility(horizons.subspan(static_cast<std::size_t>(r * cols + c) * n).first<n>(), light_f);
+      }
     }
   }
   return factor;

@@ -20,7 +20,8 @@ struct ToneSums {
   std::array<Plane, 4> measured, explained;
 };
 
-ToneSums tone_sums(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor, const char* who) {
+ToneSums tone_sums(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor, std::span<const float> horizons,
+                   const char* who) {
   const auto rows = static_cast<Eigen::Index>(dataset.height()), cols = static_cast<Eigen::Index>(dataset.width());
   if (range_map.rows() != rows || range_map.cols() != cols) throw std::invalid_argument(std::string(who) + ": the range map is not the dataset's size");
   ToneSums sums;
@@ -37,7 +38,7 @@ ToneSums tone_sums(const BtfDataset& dataset, std::uint32_t view, const Plane& r
       for (std::size_t k = 1; k < 4; ++k) image[k](i / cols, i % cols) = rgb[3 * p + k - 1];
       image[0](i / cols, i % cols) = (rgb[3 * p] + rgb[3 * p + 1] + rgb[3 * p + 2]) / 3.0;
     }
-    const Plane relit = relit_factor(range_map, dataset.lights()[l].vector(), light_z_floor);
+    const Plane relit = relit_factor(range_map, dataset.lights()[l].vector(), light_z_floor, horizons);
     const double relit_mean = relit.mean();
     if (relit_mean <= 0.0) continue;
     for (std::size_t k = 0; k < 4; ++k) {
@@ -57,13 +58,14 @@ Plane tone_of(const Plane& measured, const Plane& explained) {
 
 }  // namespace
 
-Plane relief_tone(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor) {
-  const ToneSums sums = tone_sums(dataset, view, range_map, light_z_floor, "relief_tone");
+Plane relief_tone(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor, std::span<const float> horizons) {
+  const ToneSums sums = tone_sums(dataset, view, range_map, light_z_floor, horizons, "relief_tone");
   return tone_of(sums.measured[0], sums.explained[0]);
 }
 
-std::vector<Plane> relief_tone_planes(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor) {
-  const ToneSums sums = tone_sums(dataset, view, range_map, light_z_floor, "relief_tone_planes");
+std::vector<Plane> relief_tone_planes(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor,
+                                      std::span<const float> horizons) {
+  const ToneSums sums = tone_sums(dataset, view, range_map, light_z_floor, horizons, "relief_tone_planes");
   std::vector<Plane> planes;
   for (std::size_t k = 1; k < 4; ++k) planes.push_back(tone_of(sums.measured[k], sums.explained[k]));
   return planes;
@@ -97,10 +99,10 @@ void clamp_remainder(std::vector<Plane>& channels, double k) {
 }
 
 std::array<float, 3> relief_tone_chroma(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor,
-                                        const Plane& tone) {
+                                        const Plane& tone, std::span<const float> horizons) {
   if (tone.rows() != range_map.rows() || tone.cols() != range_map.cols()) throw std::invalid_argument("relief_tone_chroma: the tone is not the range map's size");
   const Eigen::Index cols = tone.cols();
-  const ToneSums sums = tone_sums(dataset, view, range_map, light_z_floor, "relief_tone_chroma");
+  const ToneSums sums = tone_sums(dataset, view, range_map, light_z_floor, horizons, "relief_tone_chroma");
   const auto& measured = sums.measured;
   const auto& explained = sums.explained;
   // The least-squares slope of each channel's tone on the grey tone, over the texels both are known at,

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "carbtf/analysis/model/deshade.hpp"
+#include "carbtf/analysis/model/relief_shadows.hpp"
 #include "carbtf/analysis/model/relief_tone.hpp"
 #include "carbtf/engine/material/range_tiles.hpp"
 
@@ -42,6 +43,8 @@ SubspaceFidelity subspace_fidelity(const Material& material, const SynthesizedIm
     height_plane(row, col) = heights[p];
     for (std::size_t k = 0; k < 3; ++k) tone[k](row, col) = tones[k][p];
   }
+  // The enlarged heights' own cast shadows, as the render pass draws them (edges repeated as here).
+  const std::vector<float> horizons = range_map_horizons(height_plane, material.range.tile_size > 0 ? material.range.shadow_scale : 0.0);
   SubspaceFidelity result;
   for (std::size_t s = 0; s < measured.size() && s < images.images.size(); ++s) {
     if (images.images[s].empty() || material.subspaces[s].channels != 3) continue;
@@ -51,7 +54,7 @@ SubspaceFidelity subspace_fidelity(const Material& material, const SynthesizedIm
     RgbField model{images.images[s], w, h};
     apply_relief(model.rgb,
                  weighted_tone(tone, material.subspaces[s].tone_weight, material.range.tone_chroma),
-                 relit_factor(height_plane, light, relight_floor(material)));
+                 relit_factor(height_plane, light, relight_floor(material), horizons));
     const CalibratedFidelity f = calibrated_fidelity(model, measured[s]);
     result.mean_rel += f.rel;
     result.mean_gaussian_rel += f.gaussian_rel;

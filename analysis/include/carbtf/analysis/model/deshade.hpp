@@ -9,6 +9,7 @@
 #pragma once
 
 #include <array>
+#include <span>
 #include <vector>
 
 #include "carbtf/analysis/model/plane.hpp"
@@ -16,8 +17,11 @@
 namespace carbtf {
 
 // The render pass's relit factor at every texel of `range_map` (heights in texel units, row 0 at the
-// top, borders mirrored), for the unit direction `light` towards the light in the tangent frame.
-Plane relit_factor(const Plane& range_map, const std::array<double, 3>& light, double light_z_floor);
+// top, borders mirrored), for the unit direction `light` towards the light in the tangent frame; with
+// `horizons` (range_map_horizons() of model/relief_shadows.hpp), times the share of the light the
+// relief's cast shadows leave, as the render pass of a material that casts shadows computes it.
+Plane relit_factor(const Plane& range_map, const std::array<double, 3>& light, double light_z_floor,
+                   std::span<const float> horizons = {});
 
 // Divides every channel by max(factor, floor); the channels and the factor share one size.
 void divide_shading(std::vector<Plane>& channels, const Plane& factor, double floor);

@@ -4,7 +4,8 @@
 // crease dark in a photograph: a darker albedo there, and the light its walls occlude and shadow. The
 // relief tone is that remainder, measured on the photometric-stereo view under every light l:
 //   tone(x) = sum_l I_l(x) / sum_l m_l relit_l(x),   m_l = mean I_l / mean relit_l
-// (I_l the grey image, relit_l the render pass's relit factor of the range map), so that the render's
+// (I_l the grey image, relit_l the render pass's relit factor of the range map, with its cast shadows
+// where the material has them: model/relief_shadows.hpp), so that the render's
 // own product relit * tone reproduces the view's brightness on average over the lights. It is stored
 // under the range map's Wang layout, divided out of every subspace image before the CAR fit and
 // multiplied back per fragment: the CAR then models the smooth remainder, and the creases darken where
@@ -27,14 +28,16 @@ inline constexpr double kReliefToneFloor = 0.1;
 inline constexpr double kReliefToneCeiling = 4.0;
 
 // The relief tone of `view` of `dataset` over `range_map` (heights in texels, the dataset's size),
-// for the render pass's relit factor floor `light_z_floor`. Lights without an image are skipped; with
-// none, the tone is 1 everywhere.
-Plane relief_tone(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor);
+// for the render pass's relit factor floor `light_z_floor`, with the cast shadows of `horizons` (none
+// when empty). Lights without an image are skipped; with none, the tone is 1 everywhere.
+Plane relief_tone(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor,
+                  std::span<const float> horizons = {});
 
 // The relief tone of each colour channel (linear R, G, B), the formula above on that channel's image:
 // the tone's full colour, where a woven fabric's blue threads and white threads differ in hue, which
 // one grey plane with a slope per channel (relief_tone_chroma) cannot draw.
-std::vector<Plane> relief_tone_planes(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor);
+std::vector<Plane> relief_tone_planes(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor,
+                                      std::span<const float> horizons = {});
 
 // How far the tone's colour departs from grey: the RMS over texels and channels of each channel's
 // log tone minus the mean of the three. Requires three planes of one size.
@@ -62,7 +65,7 @@ void clamp_remainder(std::vector<Plane>& channels, double k);
 // measurement lacks (mean rel 0.334 -> 0.354 and 0.276 -> 0.293 with it).
 inline constexpr double kToneChromaExplained = 0.5;
 std::array<float, 3> relief_tone_chroma(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor,
-                                        const Plane& tone);
+                                        const Plane& tone, std::span<const float> horizons = {});
 
 // The tone per colour channel as a subspace image of tone weight `weight` takes it:
 // max(1 + weight * chroma[c] * (tone_c - 1), 0), as the render pass composes it (SubspaceModel::tone_weight,

@@ -104,6 +104,10 @@ struct RangeTiles {
   // join shows no step; the patches then hold their real values that far beyond each cut. 0 (any file
   // without an FTHR chunk): hard cuts.
   std::uint32_t feather = 0;
+  // The relief casts shadows (relief_horizons.hpp) when this is above 0: the render pass hides a light
+  // from a texel whose horizon, of the heights times this scale, rises above it, and the tone was
+  // measured with the same shadows divided out. 0 (any file without an SHDW chunk): no cast shadows.
+  float shadow_scale = 0.0f;
   bool operator==(const RangeTiles&) const = default;
 };
 
@@ -130,6 +134,8 @@ inline constexpr std::uint32_t kMaxTileSize = 1024;
 inline constexpr std::uint32_t kMaxEdgeColours = 4;
 // The widest cross-fade of a cut (RangeTiles::feather), in texels.
 inline constexpr std::uint32_t kMaxFeather = 4;
+// The largest RangeTiles::shadow_scale.
+inline constexpr float kMaxShadowScale = 4.0f;
 inline constexpr std::uint32_t kMaxSettings = 256;
 inline constexpr std::uint32_t kMaxSettingLength = 4096;
 // Every model number (colour mean and transform, band mean, std, sigma, gamma, range heights in

@@ -29,6 +29,8 @@
 //         Absent, all 1 (a grey tone, as earlier files mean); an earlier reader skips it.
 //   FTHR  (1.6, optional) u32 feather: the cuts' cross-fade in texels (RangeTiles::feather). Absent, 0
 //         (hard cuts, as earlier files mean); an earlier reader skips it and draws hard cuts.
+//   SHDW  (1.8, optional) f32 shadow scale: the relief's cast shadows (RangeTiles::shadow_scale). Absent,
+//         0 (no shadows, as earlier files mean); an earlier reader skips it and draws no shadows.
 // A reader of major version 1 rejects any other major version. Every count is bounded (material.hpp)
 // before anything is allocated, every read is bounds-checked, and the decoded material is validated,
 // so a truncated, corrupted or hostile file gives an error, never a crash or an unbounded allocation.
@@ -45,7 +47,7 @@
 namespace carbtf {
 
 inline constexpr std::uint16_t kMaterialFormatMajor = 1;
-inline constexpr std::uint16_t kMaterialFormatMinor = 7;
+inline constexpr std::uint16_t kMaterialFormatMinor = 8;
 
 struct MaterialEncoding {
   // Deflate every chunk but SETT where that is smaller (format 1.1). Off, every chunk is stored plain:

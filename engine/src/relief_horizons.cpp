@@ -1,0 +1,54 @@
+#include "carbtf/engine/render/relief_horizons.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <carbtf_gpu_shared.h>
+
+namespace carbtf {
+
+static_assert(kReliefShadowSoftness == gpu::CARBTF_RELIEF_SHADOW_SOFTNESS, "the shader's penumbra is the CPU's");
+
+void relief_horizons(std::span<const float> heights, std::uint32_t width, std::uint32_t height, bool wrap, float scale,
+                     std::vector<float>& out) {
+  constexpr std::uint32_t n = kReliefHorizonDirections;
+  out.assign(std::size_t{width} * height * n, 0.0f);
+  if (width == 0 || height == 0 || heights.size() != std::size_t{width} * height) return;
+  // Whole-texel steps along the 8 azimuths (y up is row - 1), so no height is interpolated.
+  constexpr int step_x[n] = {1, 1, 0, -1, -1, -1, 0, 1};
+  constexpr int step_row[n] = {0, -1, -1, -1, 0, 1, 1, 1};
+  const auto address = [wrap](std::int64_t j, std::uint32_t size) {
+    if (wrap) return static_cast<std::uint32_t>(((j % size) + size) % size);
+    return static_cast<std::uint32_t>(std::clamp<std::int64_t>(j, 0, std::int64_t{size} - 1));
+  };
+  for (std::uint32_t y = 0; y < height; ++y) {
+    for (std::uint32_t x = 0; x < width; ++x) {
+      const float h0 = heights[std::size_t{y} * width + x];
+      float* horizon = &out[(std::size_t{y} * width + x) * n];
+      for (std::uint32_t k = 0; k < n; ++k) {
+        const float step = (step_x[k] != 0 && step_row[k] != 0) ? std::numbers::sqrt2_v<float> : 1.0f;
+        float best = 0.0f;
+        for (std::uint32_t t = 1; t <= kReliefHorizonReach; ++t) {
+          const std::uint32_t cx = address(std::int64_t{x} + std::int64_t{step_x[k]} * t, width);
+          const std::uint32_t cy = address(std::int64_t{y} + std::int64_t{step_row[k]} * t, height);
+          best = std::max(best, (heights[std::size_t{cy} * width + cx] - h0) / (step * static_cast<float>(t)));
+        }
+        horizon[k] = scale * best;
+      }
+    }
+  }
+}
+
+float relief_visibility(std::span<const float, kReliefHorizonDirections> horizons, const std::array<float, 3>& light) {
+  const float across = std::sqrt(light[0] * light[0] + light[1] * light[1]);
+  if (!(across > 0.0f)) return 1.0f;  // overhead: nothing rises above the zenith
+  const float sector = std::atan2(light[1], light[0]) * (4.0f / std::numbers::pi_v<float>);
+  const float base = std::floor(sector);
+  const int k0 = (static_cast<int>(base) % 8 + 8) % 8, k1 = (k0 + 1) % 8;
+  const float h0 = horizons[static_cast<std::size_t>(k0)], h1 = horizons[static_cast<std::size_t>(k1)];
+  const float horizon = h0 + (sector - base) * (h1 - h0);
+  return std::clamp(0.5f + (light[2] / across - horizon) / kReliefShadowSoftness, 0.0f, 1.0f);
+}
+
+}  // namespace carbtf

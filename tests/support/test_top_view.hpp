@@ -1,0 +1,34 @@
+// A rendered sample's photometric-stereo view, and its true heights, for the analysis tests of the
+// relief tone and shadows.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "carbtf/analysis/btf/btf_dataset.hpp"
+#include "carbtf/analysis/btf/directions.hpp"
+#include "carbtf/analysis/model/plane.hpp"
+#include "carbtf/analysis/sample/height_field_renderer.hpp"
+
+namespace carbtf::test {
+
+// The top view of `surface` under every UBO2003 light.
+inline BtfDataset top_view_dataset(const Surface& surface) {
+  const std::vector<Direction> views{Direction{}};
+  BtfDataset dataset(ubo2003_directions(), views, surface.size, surface.size, ColorEncoding::linear_half);
+  RenderOptions render;
+  render.progress = false;
+  render_btf(surface, dataset.lights(), views, render,
+             [&](std::uint32_t l, std::uint32_t v, std::span<const float> image) { dataset.set_linear({l, v}, image); });
+  return dataset;
+}
+
+// The surface's heights in texels, mean zero.
+inline Plane heights_of(const Surface& surface) {
+  const auto n = static_cast<Eigen::Index>(surface.size);
+  Plane heights(n, n);
+  for (Eigen::Index i = 0; i < n * n; ++i) heights(i / n, i % n) = surface.height[static_cast<std::size_t>(i)];
+  return heights - heights.mean();
+}
+
+}  // namespace carbtf::test
