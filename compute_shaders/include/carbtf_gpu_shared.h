@@ -261,6 +261,10 @@ CARBTF_CONST_FLOAT(CARBTF_LOOKUP_INSIDE_SLACK, 1.0e-5f)
 // to a measured direction uses exactly the directions it is nearest, whichever of two triangles that
 // share an edge its rounding picks; scene pruning relies on it.
 CARBTF_CONST_FLOAT(CARBTF_LOOKUP_MIN_WEIGHT, 1.0e-5f)
+// The constant id of carbtf_material.glsl's specialization constant that compiles the cast shadows in
+// (its default) or out, unless the including shader defines CARBTF_SHADOWS_CONSTANT_ID (a macro: a
+// layout qualifier takes a literal).
+#define CARBTF_SHADOWS_DEFAULT_CONSTANT_ID 1000
 // The penumbra of the relief's cast shadows, in tangent of elevation (relief_horizons.hpp).
 CARBTF_CONST_FLOAT(CARBTF_RELIEF_SHADOW_SOFTNESS, 0.25f)
 // Lights one draw of carbtf's own mesh pipeline shades with.

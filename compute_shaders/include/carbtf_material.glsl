@@ -28,6 +28,15 @@ layout(std430, set = CARBTF_MATERIAL_SET, binding = CARBTF_MATERIAL_BINDING_TABL
   uint carbtf_data[];
 };
 
+// Specialization constant: false compiles the relief's cast shadows out (no horizon reads), for a
+// pipeline that only draws materials without them (MaterialBinding::casts_shadows()); true, the default,
+// is right for any material (the tables' header says whether this one casts shadows). A host whose own
+// shader uses constant id CARBTF_SHADOWS_CONSTANT_ID defines it to another id before this include.
+#ifndef CARBTF_SHADOWS_CONSTANT_ID
+#define CARBTF_SHADOWS_CONSTANT_ID CARBTF_SHADOWS_DEFAULT_CONSTANT_ID
+#endif
+layout(constant_id = CARBTF_SHADOWS_CONSTANT_ID) const bool carbtf_shadows_compiled = true;
+
 const float CARBTF_PI = 3.14159265358979;
 
 // Bilinear filtering by hand (texelFetch), edge texels repeated: the same arithmetic as the CPU
@@ -145,6 +154,9 @@ CarbtfRelief carbtf_relief_texel(CarbtfBilinear b, int level) {
   CarbtfRelief relief;
   relief.normal = value * (target / length(value));
   relief.tone = mix(top, bottom, b.f.y);
+  relief.horizon_a = vec4(0.0);
+  relief.horizon_b = vec4(0.0);
+  if (!carbtf_shadows_compiled) return relief;
   relief.horizon_a = mix(mix(texelFetch(carbtf_range, ivec3(b.i0.x, b.i0.y, 2), level), texelFetch(carbtf_range, ivec3(b.i1.x, b.i0.y, 2), level), b.f.x),
                          mix(texelFetch(carbtf_range, ivec3(b.i0.x, b.i1.y, 2), level), texelFetch(carbtf_range, ivec3(b.i1.x, b.i1.y, 2), level), b.f.x), b.f.y);
   relief.horizon_b = mix(mix(texelFetch(carbtf_range, ivec3(b.i0.x, b.i0.y, 3), level), texelFetch(carbtf_range, ivec3(b.i1.x, b.i0.y, 3), level), b.f.x),
@@ -308,7 +320,7 @@ vec3 carbtf_material_shade(vec2 uv, vec3 light, vec3 view, float lod) {
   if (light.z <= 0.0 || view.z <= 0.0) return vec3(0.0);
   CarbtfRelief relief = carbtf_relief(uv, lod);
   float relit = max(dot(relief.normal, light), 0.0) / max(light.z, carbtf_header.light_z_floor);
-  if (carbtf_header.shadows != 0u) relit *= carbtf_relief_visibility(relief, light);
+  if (carbtf_shadows_compiled && carbtf_header.shadows != 0u) relit *= carbtf_relief_visibility(relief, light);
   return relit * carbtf_interpolated_btf(uv, light, view, relief.tone, lod);
 }
 vec3 carbtf_material_shade(vec2 uv, vec3 light, vec3 view) {

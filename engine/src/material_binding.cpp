@@ -91,6 +91,7 @@ struct MaterialBinding::Resources {
   // and 4-7 (relief_horizons.hpp; 0 where the material casts no shadows).
   std::unique_ptr<TextureArray> range_image;
   std::uint32_t mip_levels = 1;
+  bool shadows = false;
   UniqueHandle<VkSampler> sampler;
   UniqueHandle<VkDescriptorSetLayout> set_layout;
   UniqueHandle<VkDescriptorPool> pool;
@@ -177,6 +178,7 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     r.tone_map.assign(3 * r.range_map.size(), 1.0f);
     header.wrap = textures.periodic_overlap > 0 ? 1u : 0u;
     header.shadows = material.range.tile_size > 0 && material.range.shadow_scale > 0.0f ? 1u : 0u;
+    r.shadows = header.shadows != 0u;
     if (material.range.tile_size > 0) {
       const RangeBlock block{info.seed, info.row0, info.col0, textures.width, textures.height,
                              textures.periodic_overlap};
@@ -309,6 +311,10 @@ Status MaterialBinding::record_upload(VkCommandBuffer command_buffer) const noex
 
 std::uint32_t MaterialBinding::mip_levels() const noexcept {
   return resources_->mip_levels;
+}
+
+bool MaterialBinding::casts_shadows() const noexcept {
+  return resources_->shadows;
 }
 
 Status MaterialBinding::upload_and_wait() noexcept {

@@ -85,6 +85,10 @@ class MaterialBinding {
   Status record_upload(VkCommandBuffer command_buffer) const noexcept;
   // Levels of the range map and the subspace images the render pass samples, level 0 included.
   std::uint32_t mip_levels() const noexcept;
+  // Whether the material's relief casts shadows (RangeTiles::shadow_scale): a pipeline that draws only
+  // materials without may set carbtf_material.glsl's specialization constant CARBTF_SHADOWS_CONSTANT_ID
+  // (1000 by default) to false, which saves the horizon reads (on lavapipe a fifth of a sphere frame's render pass).
+  bool casts_shadows() const noexcept;
   // Convenience: record_upload() through the context's submit-and-wait.
   Status upload_and_wait() noexcept;
 
