@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 
 #include "carbtf/analysis/analyze.hpp"
 #include "carbtf/analysis/btf/btf_reader.hpp"
@@ -25,8 +26,6 @@ struct AnalyzeCommandOptions {
   std::string dataset;
   std::string out;
   std::string report;
-  std::string tone_planes = "no";
-  std::string shadows = "auto";
   AnalysisOptions analysis;
 };
 
@@ -50,6 +49,16 @@ void run_analyze(const AnalyzeCommandOptions& options) {
   std::printf("material: %s, %.1f KiB (%u subspaces); raw 8-bit data %.1f MiB; ratio 1 : %.0f\n", options.out.c_str(), file_bytes / 1024.0,
               static_cast<unsigned>(result.material.subspaces.size()), raw_bytes / 1048576.0, raw_bytes / file_bytes);
   if (!options.report.empty()) std::printf("report: %s\n", options.report.c_str());
+}
+
+// An option taking auto, yes or no into an AutoChoice; its help shows the current value as default.
+void add_auto_choice(CLI::App* command, const std::string& name, AutoChoice& target, const std::string& help) {
+  static const std::map<std::string, AutoChoice> choices{
+      {"auto", AutoChoice::automatic}, {"yes", AutoChoice::always}, {"no", AutoChoice::never}};
+  const auto current = std::find_if(choices.begin(), choices.end(), [&](const auto& c) { return c.second == target; });
+  command->add_option_function<std::string>(name, [&target](const std::string& value) { target = choices.at(value); }, help)
+      ->check(CLI::IsMember({"auto", "yes", "no"}))
+      ->default_str(current->first);
 }
 
 }  // namespace
@@ -90,20 +99,16 @@ void register_analyze_command(CLI::App& app) {
                     "Let each colour channel follow the relief tone by its own measured slope where those slopes explain "
                     "most of how the channels' tones differ (a fabric of blue and white threads; the tone stays grey "
                     "otherwise). Off by default: it can leave the smooth texture's noise too strong on small images");
-  command->add_option("--tone-planes", options->tone_planes,
-                      "Store the relief tone as one plane per colour channel (R, G, B), so that colour follows the relief "
-                      "texel by texel (threads of different colours keep their colours): auto where the tone's colour departs "
-                      "from grey visibly (a two-colour weave, not a leather), yes, or no. Off by default: fabric looks much "
-                      "nearer its measurement with it (mean rel 0.48 -> 0.38 at 256^2), but its fitted noise is then too strong")
-      ->check(CLI::IsMember({"auto", "yes", "no"}))
-      ->capture_default_str();
-  command->add_option("--shadows", options->shadows,
-                      "With the relief tone, let the relief cast shadows in the render pass (a crease wall that faces the "
-                      "light stays lit, the crease behind it goes dark): auto at the strength that best explains the "
-                      "photometric-stereo view's images, where shadows explain them better (a rocky scan, not a leather); "
-                      "yes at full strength; no")
-      ->check(CLI::IsMember({"auto", "yes", "no"}))
-      ->capture_default_str();
+  add_auto_choice(command, "--tone-planes", a.tone_planes,
+                  "Store the relief tone as one plane per colour channel (R, G, B), so that colour follows the relief "
+                  "texel by texel (threads of different colours keep their colours): auto where the tone's colour departs "
+                  "from grey visibly (a two-colour weave, not a leather), yes, or no. Off by default: fabric looks much "
+                  "nearer its measurement with it (mean rel 0.48 -> 0.38 at 256^2), but its fitted noise is then too strong");
+  add_auto_choice(command, "--shadows", a.relief_shadows,
+                  "With the relief tone, let the relief cast shadows in the render pass (a crease wall that faces the "
+                  "light stays lit, the crease behind it goes dark): auto at the strength that best explains the "
+                  "photometric-stereo view's images, where shadows explain them better (a rocky scan, not a leather); "
+                  "yes at full strength; no");
   command->add_option("--remainder-clamp", a.remainder_clamps,
                       "With the relief tone, each subspace image's smooth remainder is clamped to its median +- K robust "
                       "standard deviations before the CAR fit, so that relief lines the tone does not explain do not become "
@@ -132,12 +137,6 @@ void register_analyze_command(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--threads", a.threads, "Worker threads (0: all cores; at most 256)")->check(CLI::Range(0u, 256u))->capture_default_str();
   command->callback([options] {
-    options->analysis.tone_planes = options->tone_planes == "yes"  ? TonePlanes::always
-                                    : options->tone_planes == "no" ? TonePlanes::never
-                                                                   : TonePlanes::automatic;
-    options->analysis.relief_shadows = options->shadows == "yes"  ? AutoChoice::always
-                                       : options->shadows == "no" ? AutoChoice::never
-                                                                  : AutoChoice::automatic;
     run_analyze(*options);
   });
 }
