@@ -252,6 +252,8 @@ CARBTF_CONST_UINT(CARBTF_MATERIAL_BINDING_RANGE, 1u)
 CARBTF_CONST_UINT(CARBTF_MATERIAL_BINDING_TABLES, 2u)
 // A (light, view) pair whose subspace image was not synthesized.
 CARBTF_CONST_UINT(CARBTF_NO_LAYER, 0xFFFFFFFFu)
+// The same in MaterialTablesHeader::pair_table's 16-bit layer field; layers stop below it.
+CARBTF_CONST_UINT(CARBTF_PAIR_NO_LAYER, 0xFFFFu)
 // A lookup-cell entry with this bit is a boundary edge, else a triangle.
 CARBTF_CONST_UINT(CARBTF_LOOKUP_EDGE_BIT, 0x80000000u)
 CARBTF_CONST_UINT(CARBTF_LOOKUP_ENTRY_WORDS, 9u)
@@ -291,11 +293,12 @@ struct DirectionLookupGpu {
 struct MaterialTablesHeader {
   DirectionLookupGpu lights;
   DirectionLookupGpu views;
-  uint layer_table;  // lights * views uints, [light * views + view]: the texture layer, or CARBTF_NO_LAYER
-  uint width;        // texels of the subspace images and of the range map
+  uint pair_table;  // lights * views uints, [light * views + view]: the pair's texture layer in the low
+                    // 16 bits (CARBTF_PAIR_NO_LAYER where it was not synthesized) and its subspace's tone
+                    // weight (SubspaceModel::tone_weight) as a half float in the high 16: one read per tap
+  uint width;       // texels of the subspace images and of the range map
   uint height;
-  uint tone_weight_table;  // lights * views floats (as uint bits), [light * views + view]: the pair's
-                           // subspace's tone weight (SubspaceModel::tone_weight)
+  uint reserved7;   // (was the tone weight table, now in pair_table)
   float parallax_scale;  // parallax offset in texels = parallax_scale * (height - range_mean) * view.xy
   float range_mean;
   float light_z_floor;  // cos of the largest measured light elevation: the relit factor's denominator floor
@@ -340,7 +343,7 @@ static_assert(sizeof(CollapseItemGpu) == 48, "CollapseItemGpu must match std430"
 static_assert(sizeof(ColourItemGpu) == 32 + 16 * CARBTF_SYNTH_MAX_CHANNELS + 4 * CARBTF_SYNTH_MAX_CHANNELS * CARBTF_SYNTH_MAX_CHANNELS);
 static_assert(sizeof(SynthPassParams) == 36 && sizeof(InterpolateParams) == 112);
 static_assert(sizeof(DirectionLookupGpu) == 32 && sizeof(MaterialTablesHeader) == 112);
-static_assert(offsetof(MaterialTablesHeader, layer_table) == 64 && offsetof(MaterialTablesHeader, parallax_scale) == 80);
+static_assert(offsetof(MaterialTablesHeader, pair_table) == 64 && offsetof(MaterialTablesHeader, parallax_scale) == 80);
 static_assert(offsetof(MaterialTablesHeader, mip_levels) == 108);
 static_assert(sizeof(RenderFrameUniforms) == 160 + 32 * CARBTF_RENDER_MAX_LIGHTS, "RenderFrameUniforms must match std140");
 static_assert(offsetof(RenderFrameUniforms, camera) == 128 && offsetof(RenderFrameUniforms, light_position) == 144);

@@ -297,9 +297,10 @@ vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, vec3 view, vec3 tone, float lo
     for (int j = 0; j < 3; ++j) {
       float w = lw[i] * vw[j];
       if (w == 0.0) continue;
-      uint layer = carbtf_data[carbtf_header.layer_table + li[i] * views + vi[j]];
-      if (layer == CARBTF_NO_LAYER) continue;
-      float tone_weight = uintBitsToFloat(carbtf_data[carbtf_header.tone_weight_table + li[i] * views + vi[j]]);
+      uint pair = carbtf_data[carbtf_header.pair_table + li[i] * views + vi[j]];
+      uint layer = pair & 0xFFFFu;
+      if (layer == CARBTF_PAIR_NO_LAYER) continue;
+      float tone_weight = unpackHalf2x16(pair).y;
       vec3 texel = carbtf_subspace_texel(b, layer, s.level);
       if (s.t > 0.0) texel = mix(texel, carbtf_subspace_texel(b_up, layer, s.level + 1), s.t);
       colour += (w * max(1.0 + tone_weight * tone_offset, vec3(0.0))) * texel;

@@ -10,6 +10,7 @@
 #include <string>
 
 #include <carbtf_gpu_shared.h>
+#include <glm/gtc/packing.hpp>
 
 #include "carbtf/engine/internal/direction_lookup.hpp"
 #include "carbtf/engine/material/material_directions.hpp"
@@ -61,25 +62,30 @@ void append_lookup(const DirectionTriangulation& triangulation, const DirectionL
   }
 }
 
-// The layer of every (light, view) pair, [light * views + view], as the fragment stage reads it.
-void write_layer_table(const Material& material, const MaterialTextures& textures, std::span<std::uint32_t> out) {
+// The pair table (MaterialTablesHeader::pair_table): per (light, view) pair, [light * views + view], its
+// layer in the low 16 bits and its subspace's tone weight as a half float in the high 16.
+void write_pair_table(const Material& material, const MaterialTextures& textures, std::span<std::uint32_t> out) {
   for (std::size_t l = 0; l < material.lights.size(); ++l) {
     for (std::size_t v = 0; v < material.views.size(); ++v) {
+      const std::uint32_t s = subspace_of(material, static_cast<std::uint32_t>(l), static_cast<std::uint32_t>(v));
       const std::uint32_t layer =
-          textures.pair_layers.empty()
-              ? textures.layers[subspace_of(material, static_cast<std::uint32_t>(l), static_cast<std::uint32_t>(v))]
-              : textures.pair_layers[l * material.views.size() + v];
-      out[l * material.views.size() + v] =
-          layer == std::numeric_limits<std::uint32_t>::max() ? gpu::CARBTF_NO_LAYER : layer;
+          textures.pair_layers.empty() ? textures.layers[s] : textures.pair_layers[l * material.views.size() + v];
+      const std::uint32_t field = layer == std::numeric_limits<std::uint32_t>::max() ? gpu::CARBTF_PAIR_NO_LAYER : layer;
+      out[l * material.views.size() + v] = field | std::uint32_t{glm::packHalf1x16(material.subspaces[s].tone_weight)} << 16;
     }
   }
+}
+
+// A layer the pair table can hold: below CARBTF_PAIR_NO_LAYER, or none.
+bool fits_pair_table(std::uint32_t layer) {
+  return layer < gpu::CARBTF_PAIR_NO_LAYER || layer == std::numeric_limits<std::uint32_t>::max();
 }
 
 }  // namespace
 
 struct MaterialBinding::Resources {
   std::vector<std::uint32_t> tables;
-  std::size_t layer_table = 0;  // word offset of the pair layer table in `tables`
+  std::size_t pair_table = 0;  // word offset of the pair table in `tables`
   bool pair_layers = false;     // drawn by (light, view) pair (MaterialTextures::pair_layers)
   std::vector<float> range_map;
   std::vector<float> tone_map;
@@ -129,6 +135,10 @@ Status MaterialBinding::create(Context& context, const Material& material, const
               "the material textures give layers for " + std::to_string(textures.layers.size()) +
                   " subspace images, the material has " + std::to_string(material.subspaces.size())};
     }
+    if (!std::all_of(textures.layers.begin(), textures.layers.end(), fits_pair_table) ||
+        !std::all_of(textures.pair_layers.begin(), textures.pair_layers.end(), fits_pair_table)) {
+      return {ErrorCode::invalid_argument, "the material textures give a layer of 65535 or more"};
+    }
     if (textures.mip_levels == 0 || textures.mip_levels > mip_level_count(textures.width, textures.height)) {
       return {ErrorCode::invalid_argument, "the material textures claim " + std::to_string(textures.mip_levels) +
                                                " mip levels; a " + std::to_string(textures.width) + "x" +
@@ -151,19 +161,11 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     CARBTF_TRY(MaterialDirections::build(material, directions, info.lookup_grid_size));
     append_lookup(directions.light_triangulation(), directions.light_grid(), r.tables, header.lights);
     append_lookup(directions.view_triangulation(), directions.view_grid(), r.tables, header.views);
-    header.layer_table = static_cast<std::uint32_t>(r.tables.size() - kHeaderWords);
+    header.pair_table = static_cast<std::uint32_t>(r.tables.size() - kHeaderWords);
     r.tables.resize(r.tables.size() + material.lights.size() * material.views.size());
-    write_layer_table(material, textures, std::span(r.tables).subspan(kHeaderWords + header.layer_table));
-    r.layer_table = kHeaderWords + header.layer_table;
+    write_pair_table(material, textures, std::span(r.tables).subspan(kHeaderWords + header.pair_table));
+    r.pair_table = kHeaderWords + header.pair_table;
     r.pair_layers = !textures.pair_layers.empty();
-    header.tone_weight_table = static_cast<std::uint32_t>(r.tables.size() - kHeaderWords);
-    for (std::size_t l = 0; l < material.lights.size(); ++l) {
-      for (std::size_t v = 0; v < material.views.size(); ++v) {
-        const std::uint32_t s =
-            subspace_of(material, static_cast<std::uint32_t>(l), static_cast<std::uint32_t>(v));
-        r.tables.push_back(std::bit_cast<std::uint32_t>(material.subspaces[s].tone_weight));
-      }
-    }
     header.width = textures.width;
     header.height = textures.height;
     header.parallax_scale = info.parallax_scale;
@@ -313,6 +315,10 @@ std::uint32_t MaterialBinding::mip_levels() const noexcept {
   return resources_->mip_levels;
 }
 
+float rendered_tone_weight(float tone_weight) noexcept {
+  return glm::unpackHalf1x16(glm::packHalf1x16(tone_weight));
+}
+
 bool MaterialBinding::casts_shadows() const noexcept {
   return resources_->shadows;
 }
@@ -338,17 +344,20 @@ Status MaterialBinding::set_layers(const Material& material, std::span<const std
   if (r.pair_layers)
     return {ErrorCode::invalid_argument, "this binding draws (light, view) pair layers, not subspace layers"};
   const std::size_t pairs = material.lights.size() * material.views.size();
-  if (layers.size() != material.subspaces.size() || r.layer_table + pairs > r.tables.size()) {
+  if (layers.size() != material.subspaces.size() || r.pair_table + pairs > r.tables.size()) {
     return {ErrorCode::invalid_argument,
             "set_layers() got " + std::to_string(layers.size()) + " subspace layers for a material of " +
                 std::to_string(material.subspaces.size()) + " subspace images and " + std::to_string(pairs) +
                 " (light, view) pairs: not the binding's material"};
   }
+  if (!std::all_of(layers.begin(), layers.end(), fits_pair_table)) {
+    return {ErrorCode::invalid_argument, "set_layers() got a layer of 65535 or more"};
+  }
   MaterialTextures textures;
   textures.layers.assign(layers.begin(), layers.end());
-  const std::span<std::uint32_t> table = std::span(r.tables).subspan(r.layer_table, pairs);
-  write_layer_table(material, textures, table);
-  std::memcpy(static_cast<std::uint32_t*>(r.table_buffer.mapped()) + r.layer_table, table.data(), pairs * 4);
+  const std::span<std::uint32_t> table = std::span(r.tables).subspan(r.pair_table, pairs);
+  write_pair_table(material, textures, table);
+  std::memcpy(static_cast<std::uint32_t*>(r.table_buffer.mapped()) + r.pair_table, table.data(), pairs * 4);
   return {};
 }
 

@@ -459,6 +459,12 @@ TEST_CASE("subspace images made resident frame by frame render the pixels of one
 
   // What cannot be right is refused: another material's layer count, an image the synthesis lacks.
   CHECK(binding->set_layers(m, std::vector<std::uint32_t>(3, 0)).code() == ErrorCode::invalid_argument);
+  // A layer the pair table's 16 bits cannot hold (MaterialTablesHeader::pair_table).
+  std::vector<std::uint32_t> too_far = resident->layers();
+  too_far.back() = 65535u;
+  const Status too_far_status = binding->set_layers(m, too_far);
+  CHECK(too_far_status.code() == ErrorCode::invalid_argument);
+  CHECK_THAT(too_far_status.message(), Catch::Contains("65535"));
   const std::uint32_t absent = needs.subspaces.front();
   REQUIRE(synthesizer->prepare(m, render_request({absent == 0 ? 1u : 0u})).ok());
   const std::vector<std::uint32_t> lacking{absent};
@@ -523,6 +529,12 @@ TEST_CASE("mip levels: a distant plane matches its box-filtered render and does 
   REQUIRE(level0->upload_and_wait().ok());
   REQUIRE(mipped->mip_levels() == 9);
   REQUIRE(level0->mip_levels() == 1);
+  {
+    MaterialTextures wrong = textures;
+    wrong.layers.back() = 70000u;
+    std::unique_ptr<MaterialBinding> refused;
+    CHECK(MaterialBinding::create(*context, m, wrong, info, refused).code() == ErrorCode::invalid_argument);
+  }
   for (const std::uint32_t claimed : {0u, 10u}) {
     // A 256^2 texture has 1 to 9 levels: the binding refuses another count instead of sampling garbage.
     MaterialTextures wrong = textures;

@@ -9,6 +9,7 @@
 
 #include "carbtf/engine/material/material_directions.hpp"
 #include "carbtf/engine/render/mip_levels.hpp"
+#include "carbtf/engine/render/material_binding.hpp"
 #include "carbtf/engine/render/relief_horizons.hpp"
 #include "carbtf/engine/render/relief_normals.hpp"
 
@@ -305,7 +306,7 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
           if (w.weight[k] == 0.0f) continue;
           const std::uint32_t subspace = subspace_of(material, w.light[k], w.view[k]);
           if (input.images->images[subspace].empty()) continue;
-          const float tone_weight = material.subspaces[subspace].tone_weight;
+          const float tone_weight = rendered_tone_weight(material.subspaces[subspace].tone_weight);
           btf += (w.weight[k] * glm::max(1.0f + tone_weight * tone_offset, glm::vec3(0.0f))) * sampler.subspace_at(shifted, lod, subspace);
         }
         float relit = std::max(glm::dot(normal, l), 0.0f) / std::max(l.z, light_z_floor);

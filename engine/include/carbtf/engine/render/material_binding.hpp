@@ -112,4 +112,8 @@ class MaterialBinding {
   std::unique_ptr<Resources> resources_;
 };
 
+// A subspace's tone weight (SubspaceModel::tone_weight) as the render pass reads it: rounded to the half
+// float the pair table holds (MaterialTablesHeader::pair_table), for CPU twins of the fragment stage.
+float rendered_tone_weight(float tone_weight) noexcept;
+
 }  // namespace carbtf
