@@ -268,7 +268,7 @@ CARBTF_CONST_FLOAT(CARBTF_LOOKUP_MIN_WEIGHT, 1.0e-5f)
 // layout qualifier takes a literal).
 #define CARBTF_SHADOWS_DEFAULT_CONSTANT_ID 1000
 // The penumbra of the relief's cast shadows, in tangent of elevation (relief_horizons.hpp).
-CARBTF_CONST_FLOAT(CARBTF_RELIEF_SHADOW_SOFTNESS, 0.25f)
+CARBTF_CONST_FLOAT(CARBTF_RELIEF_SHADOW_SOFTNESS, 0.1f)
 // Lights one draw of carbtf's own mesh pipeline shades with.
 CARBTF_CONST_UINT(CARBTF_RENDER_MAX_LIGHTS, 4u)
 

@@ -227,7 +227,8 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
   // Documented tolerance: the GPU interpolates uv across the triangles and finds its direction weights
   // in float through the lookup grids; the reference intersects rays and searches the triangulation in
   // double. Measured: 5.4e-5 (measured directions, coloured tone) and 2.2e-5 (between them) of the peak at worst,
-  // 1e-6 RMS; allowed: 1e-4 of the peak at any pixel, 1e-5 RMS.
+  // 1e-6 RMS; with the cast shadows, whose penumbra steepens the light's direction rounding, up to 6.6e-5
+  // of the peak (between the directions, periodic). Allowed: 1e-4 of the peak at any pixel, 1e-5 RMS.
   CHECK(worst <= 1e-4 * peak);
   CHECK(rms <= 1e-5 * peak);
 

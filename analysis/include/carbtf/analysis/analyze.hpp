@@ -52,7 +52,7 @@ struct AnalysisOptions {
   // With the relief tone: whether the relief casts shadows (RangeTiles::shadow_scale,
   // model/relief_shadows.hpp); automatic: at the scale that best explains the photometric-stereo
   // view's images, where shadows explain them better (coast_sand_rocks at 256^2: mean rel 0.264 ->
-  // 0.226; leather and fabric: none); always: at scale 1.
+  // 0.208; leather and fabric: none); always: at scale 1.
   AutoChoice relief_shadows = AutoChoice::automatic;
   // With the relief tone: the smooth remainder is clamped to its median +- k robust standard
   // deviations before the fit (model/relief_tone.hpp; k = 0: not clamped). Per subspace, the k of

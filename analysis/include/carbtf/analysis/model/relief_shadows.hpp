@@ -12,9 +12,10 @@
 // shallower, and the integration adds slow tilts that shadow at grazing light), so the shadows are cast
 // by the heights times a scale, chosen among kShadowScales by how well relit x shadow x tone explains
 // every image of the view (the same layout, pixel for pixel), and kept only where that error falls by
-// kShadowFitGain. Measured at 256^2, the error of scale 0 / 0.5 / 1: coast_sand_rocks 0.275 / 0.266 /
-// 0.254 (shadows kept, mean rel 0.264 -> 0.226 at fidelity seeds 1-3); leather 0.313 / 0.312 / 0.345
-// and fabric 0.144 / 0.145 / 0.164 (none: with scale 1 leather's mean rel rose from 0.326 to 0.381).
+// kShadowFitGain. Measured at 256^2 (penumbra 0.25), the error of scale 0 / 0.5 / 1: coast_sand_rocks
+// 0.275 / 0.266 / 0.254 (shadows kept: mean rel 0.264 -> 0.208 at fidelity seeds 1-3 with the penumbra of
+// 0.1); leather 0.313 / 0.312 / 0.345 and fabric 0.144 / 0.145 / 0.164 (none: with scale 1 leather's
+// mean rel rose from 0.326 to 0.381).
 #pragma once
 
 #include <array>
