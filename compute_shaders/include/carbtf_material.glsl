@@ -135,11 +135,21 @@ struct CarbtfRelief {
   vec4 horizon_b;
 };
 
+// Layer `layer` of the range texture bilinearly at b of mip level `level`.
+vec4 carbtf_range_texel(CarbtfBilinear b, int layer, int level) {
+  vec4 top = mix(texelFetch(carbtf_range, ivec3(b.i0.x, b.i0.y, layer), level),
+                 texelFetch(carbtf_range, ivec3(b.i1.x, b.i0.y, layer), level), b.f.x);
+  vec4 bottom = mix(texelFetch(carbtf_range, ivec3(b.i0.x, b.i1.y, layer), level),
+                    texelFetch(carbtf_range, ivec3(b.i1.x, b.i1.y, layer), level), b.f.x);
+  return mix(top, bottom, b.f.y);
+}
+
 // The range texture bilinearly at b of mip level `level`: the normal from layer 1, the tone from
-// layer 0's gba, the horizons from layers 2 and 3. The blend of the texels' normals is scaled to the blend of their lengths: at level 0,
-// whose normals are unit, it is normalised (interpolation between facets must not shorten it: at a
-// sharp crease the blend of two unit normals is short, and relit would draw a dark line); above, each
-// texel's normal is the mean of the unit normals under it, as short as they differ, and keeps that length.
+// layer 0's gba, the horizons from layers 2 and 3. The blend of the texels' normals is scaled to the
+// blend of their lengths: at level 0, whose normals are unit, it is normalised (interpolation between
+// facets must not shorten it: at a sharp crease the blend of two unit normals is short, and relit would
+// draw a dark line); above, each texel's normal is the mean of the unit normals under it, as short as
+// they differ, and keeps that length.
 CarbtfRelief carbtf_relief_texel(CarbtfBilinear b, int level) {
   vec3 t00 = texelFetch(carbtf_range, ivec3(b.i0.x, b.i0.y, 1), level).xyz;
   vec3 t10 = texelFetch(carbtf_range, ivec3(b.i1.x, b.i0.y, 1), level).xyz;
@@ -147,20 +157,14 @@ CarbtfRelief carbtf_relief_texel(CarbtfBilinear b, int level) {
   vec3 t11 = texelFetch(carbtf_range, ivec3(b.i1.x, b.i1.y, 1), level).xyz;
   vec3 value = mix(mix(t00, t10, b.f.x), mix(t01, t11, b.f.x), b.f.y);
   float target = mix(mix(length(t00), length(t10), b.f.x), mix(length(t01), length(t11), b.f.x), b.f.y);
-  vec3 top = mix(texelFetch(carbtf_range, ivec3(b.i0.x, b.i0.y, 0), level).yzw,
-                 texelFetch(carbtf_range, ivec3(b.i1.x, b.i0.y, 0), level).yzw, b.f.x);
-  vec3 bottom = mix(texelFetch(carbtf_range, ivec3(b.i0.x, b.i1.y, 0), level).yzw,
-                    texelFetch(carbtf_range, ivec3(b.i1.x, b.i1.y, 0), level).yzw, b.f.x);
   CarbtfRelief relief;
   relief.normal = value * (target / length(value));
-  relief.tone = mix(top, bottom, b.f.y);
+  relief.tone = carbtf_range_texel(b, 0, level).yzw;
   relief.horizon_a = vec4(0.0);
   relief.horizon_b = vec4(0.0);
   if (!carbtf_shadows_compiled) return relief;
-  relief.horizon_a = mix(mix(texelFetch(carbtf_range, ivec3(b.i0.x, b.i0.y, 2), level), texelFetch(carbtf_range, ivec3(b.i1.x, b.i0.y, 2), level), b.f.x),
-                         mix(texelFetch(carbtf_range, ivec3(b.i0.x, b.i1.y, 2), level), texelFetch(carbtf_range, ivec3(b.i1.x, b.i1.y, 2), level), b.f.x), b.f.y);
-  relief.horizon_b = mix(mix(texelFetch(carbtf_range, ivec3(b.i0.x, b.i0.y, 3), level), texelFetch(carbtf_range, ivec3(b.i1.x, b.i0.y, 3), level), b.f.x),
-                         mix(texelFetch(carbtf_range, ivec3(b.i0.x, b.i1.y, 3), level), texelFetch(carbtf_range, ivec3(b.i1.x, b.i1.y, 3), level), b.f.x), b.f.y);
+  relief.horizon_a = carbtf_range_texel(b, 2, level);
+  relief.horizon_b = carbtf_range_texel(b, 3, level);
   return relief;
 }
 
