@@ -101,7 +101,9 @@ Status validate_range(const RangeTiles& r) {
   if (r.feather > kMaxFeather)
     return invalid("range map: feather " + std::to_string(r.feather) + " (at most " + std::to_string(kMaxFeather) + ")");
   if (r.tile_size == 0) {
-    if (!r.patches.empty() || !r.cuts.empty() || !r.tone.empty()) return invalid("range map: tile size 0 but tile data present");
+    if (!r.patches.empty() || !r.cuts.empty() || !r.tone.empty() || r.shadow_scale > 0.0f) {
+      return invalid("range map: tile size 0 but tile data present");
+    }
     return {};
   }
   if (r.tile_size % 2 != 0 || r.tile_size < 4 || r.tile_size > kMaxTileSize) return invalid("range map: tile size " + std::to_string(r.tile_size) + " is not even within 4.." + std::to_string(kMaxTileSize));

@@ -179,7 +179,7 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     r.range_map.assign(std::size_t{textures.width} * textures.height, 0.0f);
     r.tone_map.assign(3 * r.range_map.size(), 1.0f);
     header.wrap = textures.periodic_overlap > 0 ? 1u : 0u;
-    header.shadows = material.range.tile_size > 0 && material.range.shadow_scale > 0.0f ? 1u : 0u;
+    header.shadows = material.range.shadow_scale > 0.0f ? 1u : 0u;
     r.shadows = header.shadows != 0u;
     if (material.range.tile_size > 0) {
       const RangeBlock block{info.seed, info.row0, info.col0, textures.width, textures.height,
@@ -228,12 +228,10 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     CARBTF_TRY(r.range_image->set_layer(
         1, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(texels.data()), texels.size() * 4)));
     // Layers 2 and 3: the horizons of azimuths 0-3 and 4-7 (relief_horizons.hpp), 0 without shadows.
-    std::vector<float> horizons(kReliefHorizonDirections * r.range_map.size(), 0.0f);
+    std::vector<float> horizons;
     if (header.shadows) relief_horizons(r.range_map, textures.width, textures.height, header.wrap != 0u, material.range.shadow_scale, horizons);
     for (std::uint32_t half = 0; half < 2; ++half) {
-      for (std::size_t i = 0; i < r.range_map.size(); ++i) {
-        for (std::size_t k = 0; k < 4; ++k) texels[4 * i + k] = horizons[kReliefHorizonDirections * i + 4 * half + k];
-      }
+      horizon_layer(horizons, r.range_map.size(), half, texels);
       CARBTF_TRY(r.range_image->set_layer(
           2 + half, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(texels.data()), texels.size() * 4)));
     }

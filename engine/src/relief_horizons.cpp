@@ -57,6 +57,14 @@ void relief_horizons(std::span<const float> heights, std::uint32_t width, std::u
   }
 }
 
+void horizon_layer(std::span<const float> horizons, std::size_t texels, std::uint32_t half, std::vector<float>& out) {
+  out.assign(texels * 4, 0.0f);
+  if (horizons.size() != texels * kReliefHorizonDirections) return;
+  for (std::size_t i = 0; i < texels; ++i) {
+    for (std::size_t k = 0; k < 4; ++k) out[4 * i + k] = horizons[kReliefHorizonDirections * i + 4 * half + k];
+  }
+}
+
 float relief_visibility(std::span<const float, kReliefHorizonDirections> horizons, const std::array<float, 3>& light) {
   const float across = std::sqrt(light[0] * light[0] + light[1] * light[1]);
   if (!(across > 0.0f)) return 1.0f;  // overhead: nothing rises above the zenith

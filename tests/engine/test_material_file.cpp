@@ -638,6 +638,11 @@ TEST_CASE("cast shadows read back while a file without SHDW has none and a hosti
     const Status s = decode_material(bytes, "bad.cbtf", back);
     CHECK_THAT(s.message(), Catch::Contains("bad.cbtf") && Catch::Contains("shadow scale") && Catch::Contains("outside 0..4"));
   }
+  // Shadows are cast by range tiles: a material without them cannot have any.
+  Material tileless = sample_material();
+  tileless.range = RangeTiles{};
+  tileless.range.shadow_scale = 0.5f;
+  CHECK_THAT(validate_material(tileless).message(), Catch::Contains("tile size 0 but tile data present"));
 }
 
 TEST_CASE("10,000 random corruptions and truncations are rejected or read without a crash", "[material_file][fuzz]") {

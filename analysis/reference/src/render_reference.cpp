@@ -67,14 +67,10 @@ std::vector<float> relief_texels(std::span<const float> heights, std::uint32_t w
   return out;
 }
 
-// The range texture's layers 2 and 3: the horizons of azimuths 0-3 (half 0) and 4-7 (half 1), 0 where
-// the material casts no shadows.
-std::vector<float> horizon_texels(std::span<const float> horizons, std::size_t texels, int half) {
-  std::vector<float> out(texels * 4, 0.0f);
-  if (horizons.empty()) return out;
-  for (std::size_t i = 0; i < texels; ++i) {
-    for (std::size_t k = 0; k < 4; ++k) out[4 * i + k] = horizons[kReliefHorizonDirections * i + 4 * static_cast<std::size_t>(half) + k];
-  }
+// The range texture's layers 2 and 3 (relief_horizons.hpp's horizon_layer()).
+std::vector<float> horizon_texels(std::span<const float> horizons, std::size_t texels, std::uint32_t half) {
+  std::vector<float> out;
+  horizon_layer(horizons, texels, half, out);
   return out;
 }
 
@@ -196,7 +192,7 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
   // The mean in double, as the binding computes it.
   const double sum = std::accumulate(input.range_map.begin(), input.range_map.end(), 0.0);
   const std::uint32_t levels = std::clamp(input.mip_levels, 1u, mip_level_count(tw, th));
-  const bool shadows = material.range.tile_size > 0 && material.range.shadow_scale > 0.0f;
+  const bool shadows = material.range.shadow_scale > 0.0f;
   std::vector<float> horizons;
   if (shadows) relief_horizons(input.range_map, tw, th, input.wrap, material.range.shadow_scale, horizons);
   Sampler sampler{input,

@@ -44,7 +44,7 @@ SubspaceFidelity subspace_fidelity(const Material& material, const SynthesizedIm
     for (std::size_t k = 0; k < 3; ++k) tone[k](row, col) = tones[k][p];
   }
   // The enlarged heights' own cast shadows, as the render pass draws them (edges repeated as here).
-  const std::vector<float> horizons = range_map_horizons(height_plane, material.range.tile_size > 0 ? material.range.shadow_scale : 0.0);
+  const std::vector<float> horizons = range_map_horizons(height_plane, material.range.shadow_scale);
   SubspaceFidelity result;
   for (std::size_t s = 0; s < measured.size() && s < images.images.size(); ++s) {
     if (images.images[s].empty() || material.subspaces[s].channels != 3) continue;

@@ -107,6 +107,7 @@ struct RangeTiles {
   // The relief casts shadows (relief_horizons.hpp) when this is above 0: the render pass hides a light
   // from a texel whose horizon, of the heights times this scale, rises above it, and the tone was
   // measured with the same shadows divided out. 0 (any file without an SHDW chunk): no cast shadows.
+  // Above 0 only with range tiles (validate_material).
   float shadow_scale = 0.0f;
   bool operator==(const RangeTiles&) const = default;
 };
