@@ -37,6 +37,18 @@ layout(std430, set = CARBTF_MATERIAL_SET, binding = CARBTF_MATERIAL_BINDING_TABL
 #endif
 layout(constant_id = CARBTF_SHADOWS_CONSTANT_ID) const bool carbtf_shadows_compiled = true;
 
+// Specialization constant: true reads the subspace images, and the range texture's heights, tone and
+// horizons, with textureLod() through the binding's sampler (trilinear, clamped or repeating as the
+// textures are): one filtered read where the hand filtering reads eight texels. The fast path, for a
+// binding whose sampler filters (MaterialBinding::hardware_filtering()). Its weights have the device's
+// sub-texel precision, so the picture differs from the CPU twin's by up to that; false, the default,
+// filters by hand with the twin's arithmetic. The normals are always blended by hand (their length
+// is kept: carbtf_relief_texel).
+#ifndef CARBTF_HARDWARE_FILTERING_CONSTANT_ID
+#define CARBTF_HARDWARE_FILTERING_CONSTANT_ID CARBTF_HARDWARE_FILTERING_DEFAULT_CONSTANT_ID
+#endif
+layout(constant_id = CARBTF_HARDWARE_FILTERING_CONSTANT_ID) const bool carbtf_hardware_filtering = false;
+
 const float CARBTF_PI = 3.14159265358979;
 
 // Bilinear filtering by hand (texelFetch), edge texels repeated: the same arithmetic as the CPU
@@ -115,6 +127,7 @@ float carbtf_material_lod(vec2 uv) {
 
 // The range map's height at uv, in texels, its mean removed.
 float carbtf_height(vec2 uv, float lod) {
+  if (carbtf_hardware_filtering) return textureLod(carbtf_range, vec3(uv, 0.0), lod).r - carbtf_header.range_mean;
   CarbtfLod s = carbtf_split_lod(lod);
   float value = carbtf_height_texel(carbtf_bilinear(uv, s.level), s.level);
   if (s.t > 0.0) value = mix(value, carbtf_height_texel(carbtf_bilinear(uv, s.level + 1), s.level + 1), s.t);
@@ -150,15 +163,19 @@ vec4 carbtf_range_texel(CarbtfBilinear b, int layer, int level) {
 // facets must not shorten it: at a sharp crease the blend of two unit normals is short, and relit would
 // draw a dark line); above, each texel's normal is the mean of the unit normals under it, as short as
 // they differ, and keeps that length.
-CarbtfRelief carbtf_relief_texel(CarbtfBilinear b, int level) {
+vec3 carbtf_normal_texel(CarbtfBilinear b, int level) {
   vec3 t00 = texelFetch(carbtf_range, ivec3(b.i0.x, b.i0.y, 1), level).xyz;
   vec3 t10 = texelFetch(carbtf_range, ivec3(b.i1.x, b.i0.y, 1), level).xyz;
   vec3 t01 = texelFetch(carbtf_range, ivec3(b.i0.x, b.i1.y, 1), level).xyz;
   vec3 t11 = texelFetch(carbtf_range, ivec3(b.i1.x, b.i1.y, 1), level).xyz;
   vec3 value = mix(mix(t00, t10, b.f.x), mix(t01, t11, b.f.x), b.f.y);
   float target = mix(mix(length(t00), length(t10), b.f.x), mix(length(t01), length(t11), b.f.x), b.f.y);
+  return value * (target / length(value));
+}
+
+CarbtfRelief carbtf_relief_texel(CarbtfBilinear b, int level) {
   CarbtfRelief relief;
-  relief.normal = value * (target / length(value));
+  relief.normal = carbtf_normal_texel(b, level);
   relief.tone = carbtf_range_texel(b, 0, level).yzw;
   relief.horizon_a = vec4(0.0);
   relief.horizon_b = vec4(0.0);
@@ -171,6 +188,18 @@ CarbtfRelief carbtf_relief_texel(CarbtfBilinear b, int level) {
 // The relief at uv, trilinear between mip levels.
 CarbtfRelief carbtf_relief(vec2 uv, float lod) {
   CarbtfLod s = carbtf_split_lod(lod);
+  if (carbtf_hardware_filtering) {
+    CarbtfRelief relief;
+    relief.normal = carbtf_normal_texel(carbtf_bilinear(uv, s.level), s.level);
+    if (s.t > 0.0) relief.normal = mix(relief.normal, carbtf_normal_texel(carbtf_bilinear(uv, s.level + 1), s.level + 1), s.t);
+    relief.tone = textureLod(carbtf_range, vec3(uv, 0.0), lod).yzw;
+    relief.horizon_a = vec4(0.0);
+    relief.horizon_b = vec4(0.0);
+    if (!carbtf_shadows_compiled) return relief;
+    relief.horizon_a = textureLod(carbtf_range, vec3(uv, 2.0), lod);
+    relief.horizon_b = textureLod(carbtf_range, vec3(uv, 3.0), lod);
+    return relief;
+  }
   CarbtfRelief value = carbtf_relief_texel(carbtf_bilinear(uv, s.level), s.level);
   if (s.t > 0.0) {
     CarbtfRelief up = carbtf_relief_texel(carbtf_bilinear(uv, s.level + 1), s.level + 1);
@@ -305,8 +334,13 @@ vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, vec3 view, vec3 tone, float lo
       uint layer = pair & 0xFFFFu;
       if (layer == CARBTF_PAIR_NO_LAYER) continue;
       float tone_weight = unpackHalf2x16(pair).y;
-      vec3 texel = carbtf_subspace_texel(b, layer, s.level);
-      if (s.t > 0.0) texel = mix(texel, carbtf_subspace_texel(b_up, layer, s.level + 1), s.t);
+      vec3 texel;
+      if (carbtf_hardware_filtering) {
+        texel = textureLod(carbtf_subspaces, vec3(uv, float(layer)), lod).rgb;
+      } else {
+        texel = carbtf_subspace_texel(b, layer, s.level);
+        if (s.t > 0.0) texel = mix(texel, carbtf_subspace_texel(b_up, layer, s.level + 1), s.t);
+      }
       colour += (w * max(1.0 + tone_weight * tone_offset, vec3(0.0))) * texel;
     }
   }

@@ -98,6 +98,7 @@ struct MaterialBinding::Resources {
   std::unique_ptr<TextureArray> range_image;
   std::uint32_t mip_levels = 1;
   bool shadows = false;
+  bool hardware_filtering = false;
   UniqueHandle<VkSampler> sampler;
   UniqueHandle<VkDescriptorSetLayout> set_layout;
   UniqueHandle<VkDescriptorPool> pool;
@@ -238,12 +239,20 @@ Status MaterialBinding::create(Context& context, const Material& material, const
 
     const VulkanFunctions& vk = context.vk();
     const VkDevice device = context.device();
-    // texelFetch ignores filtering; the sampler only has to exist.
+    // texelFetch ignores filtering. With hardware filtering the shader's textureLod() reads the subspace
+    // images through this sampler: trilinear over the levels the binding uses, the edge texels repeated
+    // or, for periodic textures, the addresses wrapped, as the hand filtering does.
+    VkFormatProperties format{};
+    vk.vkGetPhysicalDeviceFormatProperties(context.physical_device(), VK_FORMAT_R32G32B32A32_SFLOAT, &format);
+    r.hardware_filtering =
+        info.hardware_filtering && (format.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) != 0;
     auto sampler_info = vk_struct<VkSamplerCreateInfo>(VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO);
-    sampler_info.magFilter = sampler_info.minFilter = VK_FILTER_NEAREST;
-    sampler_info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    sampler_info.magFilter = sampler_info.minFilter = r.hardware_filtering ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
+    sampler_info.mipmapMode = r.hardware_filtering ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST;
     sampler_info.addressModeU = sampler_info.addressModeV = sampler_info.addressModeW =
-        VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+        header.wrap != 0u ? VK_SAMPLER_ADDRESS_MODE_REPEAT : VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    sampler_info.minLod = 0.0f;
+    sampler_info.maxLod = static_cast<float>(r.mip_levels - 1);
     VkSampler sampler = VK_NULL_HANDLE;
     CARBTF_VK_TRY(vk.vkCreateSampler(device, &sampler_info, nullptr, &sampler));
     r.sampler = UniqueHandle<VkSampler>(&vk, device, sampler);
@@ -319,6 +328,10 @@ float rendered_tone_weight(float tone_weight) noexcept {
 
 bool MaterialBinding::casts_shadows() const noexcept {
   return resources_->shadows;
+}
+
+bool MaterialBinding::hardware_filtering() const noexcept {
+  return resources_->hardware_filtering;
 }
 
 Status MaterialBinding::upload_and_wait() noexcept {

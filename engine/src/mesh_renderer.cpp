@@ -1,6 +1,7 @@
 #include "carbtf/engine/render/mesh_renderer.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -120,8 +121,8 @@ Status create_render_pass(const Context& context, VkFormat colour_format, Unique
   return {};
 }
 
-Status create_pipeline(const Context& context, VkRenderPass render_pass, VkPipelineLayout layout, bool shadows,
-                       UniqueHandle<VkPipeline>& out) {
+Status create_pipeline(const Context& context, VkRenderPass render_pass, VkPipelineLayout layout,
+                       const MaterialBinding& binding, UniqueHandle<VkPipeline>& out) {
   UniqueHandle<VkShaderModule> vertex, fragment;
   CARBTF_TRY(detail::create_shader_module(context, carbtf_spirv_material_vertex,
                                           sizeof(carbtf_spirv_material_vertex), "carbtf material vertex",
@@ -138,10 +139,14 @@ Status create_pipeline(const Context& context, VkRenderPass render_pass, VkPipel
   stages[0].module = vertex.get();
   stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
   stages[1].module = fragment.get();
-  // carbtf_material.glsl's shadows constant: compiled out for a material without cast shadows.
-  const VkBool32 shadows_compiled = shadows ? VK_TRUE : VK_FALSE;
-  const VkSpecializationMapEntry shadows_entry{CARBTF_SHADOWS_DEFAULT_CONSTANT_ID, 0, sizeof(VkBool32)};
-  const VkSpecializationInfo specialization{1, &shadows_entry, sizeof shadows_compiled, &shadows_compiled};
+  // carbtf_material.glsl's constants: the shadows compiled out for a material without cast shadows, and
+  // the subspace images read through the sampler where the binding's filters.
+  const std::array<VkBool32, 2> constants{binding.casts_shadows() ? VK_TRUE : VK_FALSE,
+                                          binding.hardware_filtering() ? VK_TRUE : VK_FALSE};
+  const std::array<VkSpecializationMapEntry, 2> entries{
+      VkSpecializationMapEntry{CARBTF_SHADOWS_DEFAULT_CONSTANT_ID, 0, sizeof(VkBool32)},
+      VkSpecializationMapEntry{CARBTF_HARDWARE_FILTERING_DEFAULT_CONSTANT_ID, sizeof(VkBool32), sizeof(VkBool32)}};
+  const VkSpecializationInfo specialization{2, entries.data(), sizeof constants, constants.data()};
   stages[1].pSpecializationInfo = &specialization;
 
   const VkVertexInputBindingDescription vertex_binding{0, sizeof(MeshVertex), VK_VERTEX_INPUT_RATE_VERTEX};
@@ -291,7 +296,7 @@ Status MeshRenderer::create(Context& context, const MaterialBinding& binding, co
     CARBTF_VK_TRY(vk.vkCreatePipelineLayout(device, &layout_info, nullptr, &layout));
     r.layout = UniqueHandle<VkPipelineLayout>(&vk, device, layout);
     context.set_debug_name(r.layout, "carbtf mesh pipeline layout");
-    CARBTF_TRY(create_pipeline(context, r.render_pass.get(), layout, binding.casts_shadows(), r.pipeline));
+    CARBTF_TRY(create_pipeline(context, r.render_pass.get(), layout, binding, r.pipeline));
     out = std::move(renderer);
     return {};
   } catch (const std::bad_alloc&) {

@@ -40,6 +40,7 @@ struct FrameBenchOptions {
   std::uint32_t height = 1080;
   std::uint32_t texture_size = 0;  // 0: what the first frame needs, up to 1024
   std::uint32_t mip_levels = 0;    // MaterialBindingInfo::max_mip_levels
+  bool hand_filtering = false;     // !MaterialBindingInfo::hardware_filtering
   std::string out = "bench_frame";
 };
 
@@ -107,6 +108,7 @@ void run_bench_frame(const FrameBenchOptions& options) {
             "cannot hold the images");
       MaterialBindingInfo binding_info{1};
       binding_info.max_mip_levels = options.mip_levels;
+      binding_info.hardware_filtering = !options.hand_filtering;
       check(MaterialBinding::create(*context, material, resident->textures(), binding_info, binding), "cannot bind");
       check(context->submit_and_wait([&](VkCommandBuffer cb) {
         resident->record_transition(cb);
@@ -154,10 +156,11 @@ void run_bench_frame(const FrameBenchOptions& options) {
 
   char line[256];
   std::snprintf(line, sizeof line,
-                "bench frame: %u frames of %ux%u, %s on %s, texture %u^2 with %u mip levels, %zu of %zu "
-                "subspace images resident at the end\n\n",
+                "bench frame: %u frames of %ux%u, %s on %s, texture %u^2 with %u mip levels, filtered %s, %zu of "
+                "%zu subspace images resident at the end\n\n",
                 options.frames, options.width, options.height, options.mesh.c_str(),
-                context->device_info().name.c_str(), texture_size, binding->mip_levels(), resident->resident_count(),
+                context->device_info().name.c_str(), texture_size, binding->mip_levels(),
+                binding->hardware_filtering() ? "by the sampler" : "by hand", resident->resident_count(),
                 material.subspaces.size());
   std::printf("%s%s", line, write_frame_bench_report(out, records, line).c_str());
   std::printf("wrote %s/bench_frame.csv and bench_frame.md\n", out.string().c_str());
@@ -192,6 +195,9 @@ void register_bench_frame_command(CLI::App& bench) {
       ->check(CLI::Range(16u, 8192u));
   command->add_option("--mip-levels", options->mip_levels, "At most this many mip levels (0: all; 1: level 0 only)")
       ->check(CLI::Range(0u, 16u))->capture_default_str();
+  command->add_flag("--hand-filtering", options->hand_filtering,
+                    "Filter the subspace images by hand, as the CPU reference does, instead of through the "
+                    "sampler's trilinear filtering (the default where the device filters RGBA32F)");
   command->add_option("--out", options->out, "Output folder")->capture_default_str();
   add_device_options(*command, options->device);
   command->callback([options] { run_bench_frame(*options); });

@@ -137,7 +137,7 @@ void run_demo(const DemoOptions& options) {
   // 5. The material on a sphere, from the front and from behind, where u wraps (the images are periodic).
   step(5, "render on a sphere, 960x640, front and back");
   const MaterialRender sphere_render =
-      prepare_material_render(*context, material, *synthesizer, options.seed, 1.0f, 960, 640, make_sphere());
+      prepare_material_render(*context, material, *synthesizer, options.seed, 1.0f, 960, 640, make_sphere(), true);
   for (const float side : {0.0f, 180.0f}) {
     RenderScene scene;
     const std::array<float, 3> eye = unit_vector_degrees(60, 35 + side);

@@ -38,6 +38,7 @@ struct RenderOptions {
   bool measure_savings = false;
   std::uint64_t seed = 1;
   float parallax = 1.0f;
+  bool hand_filtering = false;
   std::string out = "frame.png";
   std::string compare;  // a measured BTF to render beside the model
 };
@@ -103,7 +104,7 @@ void run_render(const RenderOptions& options) {
   std::printf("[2/3] range map, lookup tables and render pipeline\n");
   std::fflush(stdout);
   const MaterialRender model = prepare_material_render(*context, material, *synthesizer, options.seed,
-                                                       options.parallax, width, height, mesh);
+                                                       options.parallax, width, height, mesh, !options.hand_filtering);
 
   std::printf("[3/3] rendering %ux%u, %zu triangles, %zu light(s)\n", width, height, mesh.indices.size() / 3,
               scene.lights.size());
@@ -185,6 +186,9 @@ void register_render_command(CLI::App& app) {
                    "Parallax scale (1: the range map's own heights; 0: none)")
       ->check(CLI::Range(0.0f, 16.0f))
       ->capture_default_str();
+  command->add_flag("--hand-filtering", options->hand_filtering,
+                    "Filter the subspace images by hand, as the CPU reference does, instead of through the "
+                    "sampler's trilinear filtering (slower; the default where the device filters RGBA32F)");
   command->add_option("--out", options->out, "Output image: .png (sRGB) or .exr (linear)")
       ->capture_default_str();
   command->add_option(

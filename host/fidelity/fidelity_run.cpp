@@ -128,7 +128,8 @@ std::vector<PairFidelity> run_fidelity(Context& context, const Material& materia
   check(synthesizer->prepare(material, request), "cannot plan the synthesis");
   check(context.submit_and_wait([&](VkCommandBuffer cb) { return synthesizer->record(cb); }), "synthesis failed");
   const Mesh plane = make_plane();
-  const MaterialRender model = prepare_material_render(context, material, *synthesizer, options.seed, options.parallax_scale, width, height, plane);
+  const MaterialRender model = prepare_material_render(context, material, *synthesizer, options.seed, options.parallax_scale, width, height, plane,
+                                                       false);
   RenderTargetInfo target;  // the measurement's render, alike
   target.width = width;
   target.height = height;

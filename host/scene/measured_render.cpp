@@ -64,6 +64,7 @@ RenderedImage render_measured(Context& context, const Material& material, const 
   flat.range = {};
   MaterialBindingInfo info;
   info.parallax_scale = 0.0f;
+  info.hardware_filtering = false;  // filtered by hand, as the model beside it where it is scored
   std::unique_ptr<MaterialBinding> binding;
   check(MaterialBinding::create(context, flat, textures, info, binding), "cannot bind the measured images");
   check(binding->upload_and_wait(), "cannot upload the flat range map");
