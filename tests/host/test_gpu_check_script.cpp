@@ -43,12 +43,14 @@ TEST_CASE("scripts/gpu_check.sh runs every check at lavapipe sizes and writes on
   INFO(markdown);
   for (const char* section : {"## devices", "## analysis", "## conform, every extreme case",
                               "## bench synth, serial scheme", "## bench synth, wavefront scheme",
-                              "## bench frame, 160x90", "## bench frame, 320x180", "## summary"}) {
+                              "## bench frame, 160x90", "## bench frame, 320x180",
+                              "## bench frame, 160x90, filtered by hand", "## summary"}) {
     CHECK_THAT(markdown, Catch::Contains(section));
   }
   CHECK_THAT(markdown, Catch::Contains("all stages within"));            // conform's verdict
   CHECK_THAT(markdown, Catch::Contains("wavefront"));                    // bench synth's rows
   CHECK_THAT(markdown, Catch::Contains("render pass, GPU timestamps"));  // bench frame's table
+  CHECK_THAT(markdown, Catch::Contains("filtered by hand") && Catch::Contains("filtered by the sampler"));
   CHECK_THAT(markdown, Catch::Contains("0 failed steps"));
   CHECK_FALSE(markdown.find("FAILED") != std::string::npos);
   fs::remove_all(folder);
