@@ -137,10 +137,14 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
   // by the texture-similarity measure wins.
   const TextureStatistics measured = texture_statistics(rgb, width, height);
   const std::vector<double> weights = options.tone_weights.empty() ? std::vector<double>{1.0} : options.tone_weights;
+  std::vector<std::uint32_t> level_counts{options.pyramid_levels};
+  for (const std::uint32_t levels : options.other_level_counts) {
+    if (std::find(level_counts.begin(), level_counts.end(), levels) == level_counts.end()) level_counts.push_back(levels);
+  }
   std::optional<SubspaceModel> best;
-  double best_distance = 0.0, best_clamp = 0.0;
+  double best_score = 0.0, best_distance = 0.0, best_clamp = 0.0;
   std::vector<std::string> best_notes;
-  const std::size_t candidates = weights.size() * options.remainder_clamps.size();
+  const std::size_t candidates = weights.size() * options.remainder_clamps.size() * level_counts.size();
   const std::uint32_t draws = candidates > 1 ? options.selection_draws : 1;  // one candidate needs no choosing
   for (const double weight : weights) {
     const std::vector<Plane> smooth = prepared(weight);
@@ -149,36 +153,44 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
       std::vector<Plane> clamped = smooth;
       if (clamp > 0.0) clamp_remainder(clamped, clamp);
       match_render_mean(clamped, channels, share, relit);
-      std::vector<std::string> candidate_notes;
-      Material single;
-      single.subspaces.push_back(fit_channels(clamped, pair, options, candidate_notes));
-      single.subspaces[0].tone_weight = static_cast<float>(weight);
-      // One draw's distance varies by about as much as the candidates differ (on fabric the choice
-      // followed the noise stream), so a candidate scores the mean over several draws; draw d of every
-      // candidate uses the same noise, so only the model differs between candidates.
-      double distance = 0.0;
-      std::vector<float> image(rgb.size());
-      for (std::uint32_t draw = 0; draw < draws; ++draw) {
-        reference::SubspaceBlock block;  // the default burn-in, as synthesis uses
-        block.seed = options.segmentation.seed + draw;
-        block.width = width;
-        block.height = height;
-        reference::synthesize_subspace(single, 0, block, image);
-        apply_relief(image, share, relit);
-        distance += texture_distance(texture_statistics(image, width, height), measured).total / draws;
-      }
-      if (!best || distance < best_distance) {
-        best = std::move(single.subspaces[0]);
-        best_distance = distance;
-        best_clamp = clamp;
-        best_notes = std::move(candidate_notes);
+      for (const std::uint32_t levels : level_counts) {
+        std::vector<std::string> candidate_notes;
+        Material single;
+        AnalysisOptions with_levels = options;
+        with_levels.pyramid_levels = levels;
+        single.subspaces.push_back(fit_channels(clamped, pair, with_levels, candidate_notes));
+        single.subspaces[0].tone_weight = static_cast<float>(weight);
+        // One draw's distance varies by about as much as the candidates differ (on fabric the choice
+        // followed the noise stream), so a candidate scores the mean over several draws; draw d of every
+        // candidate uses the same noise, so only the model differs between candidates.
+        double distance = 0.0;
+        std::vector<float> image(rgb.size());
+        for (std::uint32_t draw = 0; draw < draws; ++draw) {
+          reference::SubspaceBlock block;  // the default burn-in, as synthesis uses
+          block.seed = options.segmentation.seed + draw;
+          block.width = width;
+          block.height = height;
+          reference::synthesize_subspace(single, 0, block, image);
+          apply_relief(image, share, relit);
+          distance += texture_distance(texture_statistics(image, width, height), measured).total / draws;
+        }
+        // Another level count has to be clearly nearer: within one draw's noise the default stays.
+        const double score = levels == options.pyramid_levels ? distance : distance * (1.0 + kLevelChoiceMargin);
+        if (!best || score < best_score) {
+          best = std::move(single.subspaces[0]);
+          best_score = score;
+          best_distance = distance;
+          best_clamp = clamp;
+          best_notes = std::move(candidate_notes);
+        }
       }
     }
   }
   notes = std::move(best_notes);
-  char line[160];
-  std::snprintf(line, sizeof line, "tone weight %.2g, remainder clamp %.2g chosen of %zu candidates (texture distance %.3f, mean of %u draws)",
-                static_cast<double>(best->tone_weight), best_clamp, candidates, best_distance, draws);
+  char line[200];
+  std::snprintf(line, sizeof line,
+                "tone weight %.2g, remainder clamp %.2g, %u pyramid levels chosen of %zu candidates (texture distance %.3f, mean of %u draws)",
+                static_cast<double>(best->tone_weight), best_clamp, best->levels, candidates, best_distance, draws);
   notes.emplace_back(line);
   return *best;
 }
@@ -187,6 +199,9 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
 
 AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& options, const std::function<void(const std::string&)>& log) {
   if (options.pyramid_levels < 1 || options.pyramid_levels > 6) throw std::invalid_argument("pyramid levels must be within 1..6");
+  for (const std::uint32_t levels : options.other_level_counts) {
+    if (levels < 1 || levels > 6) throw std::invalid_argument("other pyramid level counts must be within 1..6");
+  }
   if (options.selection_draws < 1 || options.selection_draws > 16) throw std::invalid_argument("selection draws must be within 1..16");
   if (dataset.present_pairs().empty()) throw std::invalid_argument("the dataset holds no images");
   AnalysisResult result;

@@ -79,6 +79,14 @@ void register_analyze_command(CLI::App& app) {
       ->check(CLI::Range(2, 1024))->capture_default_str();
   command->add_option("--seed", a.segmentation.seed, "Seed of k-means++ and of the range tiles")->check(non_negative())->capture_default_str();
   command->add_option("--levels", a.pyramid_levels, "Gaussian-Laplacian pyramid levels (the paper uses up to 3)")->check(CLI::Range(1, 6))->capture_default_str();
+  command->add_option("--other-levels", a.other_level_counts,
+                      "With the relief tone, pyramid level counts a subspace image may take instead of --levels: per "
+                      "subspace, one wins where its model looks at least 2% nearer the measurement (texture-similarity "
+                      "measure). 2 beside 3 lowers fabric's mean rel at 256^2 from 0.48 to 0.45 and leaves leather's model "
+                      "as it was; 0: none, every subspace takes --levels")
+      ->check(CLI::Range(0u, 6u))
+      ->delimiter(',')
+      ->capture_default_str();
   command->add_option("--stereo-view", a.stereo_view, "View index for photometric stereo (-1: the view nearest the normal)")
       ->check(CLI::Range(-1, 4095))->capture_default_str();
   command->add_option("--tile-size", a.tiles.tile_size, "Range-map tile size in texels (even)")->check(CLI::Range(4, 1024))->capture_default_str();
@@ -137,6 +145,7 @@ void register_analyze_command(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--threads", a.threads, "Worker threads (0: all cores; at most 256)")->check(CLI::Range(0u, 256u))->capture_default_str();
   command->callback([options] {
+    std::erase(options->analysis.other_level_counts, 0u);  // 0: none
     run_analyze(*options);
   });
 }

@@ -56,7 +56,12 @@ const std::vector<ModelVariant>& model_variants() {
       {"tone_weights", "the default with each subspace's share of the relief tone (0 or 1) chosen with its clamp",
        [](AnalysisOptions& o) { o.tone_weights = {0.0, 1.0}; }},
       {"fixed_clamp", "the default with the remainder clamp fixed at 1.5", [](AnalysisOptions& o) { o.remainder_clamps = {1.5}; }},
-      {"levels4", "the default with 4 pyramid levels", [](AnalysisOptions& o) { o.pyramid_levels = 4; }},
+      {"levels4", "the default with 4 pyramid levels (3 where the measure does not prefer them by 2%)",
+       [](AnalysisOptions& o) {
+         o.pyramid_levels = 4;
+         o.other_level_counts = {3};
+       }},
+      {"fixed_levels", "the default with 3 pyramid levels in every subspace", [](AnalysisOptions& o) { o.other_level_counts = {}; }},
       {"collapse", "the default with the collapse calibration", [](AnalysisOptions& o) { o.calibrate_collapse = true; }},
       {"deshade", "the default with the relit range map divided out (floor 0.3)", [](AnalysisOptions& o) { o.deshade_floor = 0.3; }},
       {"feather", "the default with range-tile cuts cross-faded over 3 texels", [](AnalysisOptions& o) { o.tiles.feather = 1; }},

@@ -59,9 +59,10 @@ void run_material_info(const std::string& path) {
   check(list_material_chunks(bytes, chunks), "cannot list the material's chunks");
 
   std::size_t bands = 0, repaired = 0, constant = 0, white = 0, neighbours = 0;
-  std::uint32_t levels = 0;
+  std::uint32_t levels = 0, fewest_levels = material.subspaces.empty() ? 0 : material.subspaces[0].levels;
   for (const SubspaceModel& s : material.subspaces) {
     levels = std::max(levels, s.levels);
+    fewest_levels = std::min(fewest_levels, s.levels);
     for (const CarBandModel& b : s.bands) {
       ++bands;
       neighbours += b.neighbourhood.size();
@@ -76,9 +77,11 @@ void run_material_info(const std::string& path) {
   std::printf("source:       %s\n", setting(material, "source").c_str());
   std::printf("image size:   %s\n", setting(material, "image_size").c_str());
   std::printf("directions:   %zu lights x %zu views\n", material.lights.size(), material.views.size());
-  std::printf("subspaces:    %zu, up to %u pyramid levels, %zu CAR bands (%.1f neighbours on average; %zu repaired, %zu constant, "
+  const std::string level_range =
+      fewest_levels == levels ? std::to_string(levels) : std::to_string(fewest_levels) + " to " + std::to_string(levels);
+  std::printf("subspaces:    %zu, %s pyramid levels, %zu CAR bands (%.1f neighbours on average; %zu repaired, %zu constant, "
               "%zu white noise)\n",
-              material.subspaces.size(), levels, bands, bands ? static_cast<double>(neighbours) / static_cast<double>(bands) : 0.0, repaired,
+              material.subspaces.size(), level_range.c_str(), bands, bands ? static_cast<double>(neighbours) / static_cast<double>(bands) : 0.0, repaired,
               constant, white);
   if (material.range.tile_size > 0) {
     const JoinSteps joins = measure_join_steps(material.range);

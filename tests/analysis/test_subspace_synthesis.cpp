@@ -2,6 +2,7 @@
 // against float64, fidelity to the analysed image's colour statistics, and interpolation.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -308,6 +309,53 @@ TEST_CASE("a synthesized subspace image keeps the measured contrast through the 
   } else {
     CHECK(mean_ratio < 0.9);  // the loss the calibration repairs: without it the test above could not fail
   }
+}
+
+}  // namespace carbtf
+
+namespace carbtf {
+
+TEST_CASE("each subspace image takes the pyramid level count whose model looks nearest the measurement",
+          "[analysis][levels]") {
+  // Issue 13 item 3a: fabric's weave period falls in the coarse level's band; the measure prefers two
+  // levels for most of its subspace images at 256^2. Fixed, every subspace takes pyramid_levels.
+  constexpr std::uint32_t size = 128;
+  const Surface surface = make_sample_surface("fabric", size, 4);
+  BtfDataset dataset(ubo2003_directions(), ubo2003_directions(), size, size, ColorEncoding::linear_half);
+  RenderOptions render;
+  render.progress = false;
+  render_btf(surface, dataset.lights(), dataset.views(), render,
+             [&](std::uint32_t l, std::uint32_t v, std::span<const float> image) { dataset.set_linear({l, v}, image); });
+  AnalysisOptions options;
+  options.progress = false;
+  options.segmentation.clusters = 4;
+  options.tiles.tile_size = 16;
+  REQUIRE(options.pyramid_levels == 3);
+  REQUIRE(options.other_level_counts == std::vector<std::uint32_t>{2});
+  const auto level_counts = [](const AnalysisResult& result) {
+    std::vector<std::uint32_t> levels;
+    for (const SubspaceModel& s : result.material.subspaces) levels.push_back(s.levels);
+    return levels;
+  };
+  const auto log_has = [](const AnalysisResult& result, const std::string& text) {
+    return std::any_of(result.log.begin(), result.log.end(), [&](const std::string& line) { return line.find(text) != std::string::npos; });
+  };
+
+  const AnalysisResult chosen = analyze_btf(dataset, options);
+  const std::vector<std::uint32_t> chosen_levels = level_counts(chosen);
+  INFO("levels per subspace: " << Catch::Detail::stringify(chosen_levels));
+  CHECK(std::count(chosen_levels.begin(), chosen_levels.end(), 2u) >= 1);
+  CHECK(std::all_of(chosen_levels.begin(), chosen_levels.end(), [](std::uint32_t l) { return l == 2u || l == 3u; }));
+  CHECK(log_has(chosen, "2 pyramid levels chosen of 12 candidates"));  // 6 clamps x 2 level counts
+
+  options.other_level_counts = {};
+  const AnalysisResult fixed = analyze_btf(dataset, options);
+  CHECK(level_counts(fixed) == std::vector<std::uint32_t>(fixed.material.subspaces.size(), 3u));
+  CHECK(log_has(fixed, "3 pyramid levels chosen of 6 candidates"));
+  CHECK_FALSE(log_has(fixed, "2 pyramid levels"));
+
+  options.other_level_counts = {7};
+  CHECK_THROWS_WITH(analyze_btf(dataset, options), Catch::Contains("within 1..6"));
 }
 
 }  // namespace carbtf
