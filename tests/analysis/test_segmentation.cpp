@@ -12,17 +12,13 @@
 #include "carbtf/analysis/segmentation/kmeans.hpp"
 #include "carbtf/analysis/segmentation/lab_histogram.hpp"
 
+#include "test_top_view.hpp"
+
 namespace carbtf {
 namespace {
 
 BtfDataset rendered_dataset(const std::string& name, std::uint32_t size) {
-  const Surface surface = make_sample_surface(name, size, 2);
-  BtfDataset dataset(ubo2003_directions(), ubo2003_directions(), size, size, ColorEncoding::linear_half);
-  RenderOptions options;
-  options.progress = false;
-  render_btf(surface, dataset.lights(), dataset.views(), options,
-             [&](std::uint32_t light, std::uint32_t view, std::span<const float> image) { dataset.set_linear({light, view}, image); });
-  return dataset;
+  return test::rendered_dataset(make_sample_surface(name, size, 2), ubo2003_directions());
 }
 
 }  // namespace

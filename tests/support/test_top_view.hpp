@@ -1,5 +1,5 @@
-// A rendered sample's photometric-stereo view, and its true heights, for the analysis tests of the
-// relief tone and shadows.
+// Rendered samples for the analysis tests: a BTF under every UBO2003 light from given views (all of
+// them, or the photometric-stereo view), and a surface's true heights.
 #pragma once
 
 #include <span>
@@ -12,15 +12,19 @@
 
 namespace carbtf::test {
 
-// The top view of `surface` under every UBO2003 light.
-inline BtfDataset top_view_dataset(const Surface& surface) {
-  const std::vector<Direction> views{Direction{}};
+// `surface` under every UBO2003 light from `views`, held in memory.
+inline BtfDataset rendered_dataset(const Surface& surface, const std::vector<Direction>& views) {
   BtfDataset dataset(ubo2003_directions(), views, surface.size, surface.size, ColorEncoding::linear_half);
   RenderOptions render;
   render.progress = false;
   render_btf(surface, dataset.lights(), views, render,
              [&](std::uint32_t l, std::uint32_t v, std::span<const float> image) { dataset.set_linear({l, v}, image); });
   return dataset;
+}
+
+// The top view of `surface` under every UBO2003 light.
+inline BtfDataset top_view_dataset(const Surface& surface) {
+  return rendered_dataset(surface, {Direction{}});
 }
 
 // The surface's heights in texels, mean zero.
