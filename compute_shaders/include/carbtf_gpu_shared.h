@@ -267,9 +267,9 @@ CARBTF_CONST_FLOAT(CARBTF_LOOKUP_MIN_WEIGHT, 1.0e-5f)
 // (its default) or out, unless the including shader defines CARBTF_SHADOWS_CONSTANT_ID (a macro: a
 // layout qualifier takes a literal).
 #define CARBTF_SHADOWS_DEFAULT_CONSTANT_ID 1000
-// The constant id of carbtf_material.glsl's specialization constant that reads the subspace images
-// through the sampler's trilinear filtering instead of by hand, unless the including shader defines
-// CARBTF_HARDWARE_FILTERING_CONSTANT_ID.
+// The constant id of carbtf_material.glsl's specialization constant that reads the subspace images and
+// the range texture's heights, tone and horizons through the sampler's trilinear filtering instead of
+// by hand, unless the including shader defines CARBTF_HARDWARE_FILTERING_CONSTANT_ID.
 #define CARBTF_HARDWARE_FILTERING_DEFAULT_CONSTANT_ID 1001
 // The penumbra of the relief's cast shadows, in tangent of elevation (relief_horizons.hpp).
 CARBTF_CONST_FLOAT(CARBTF_RELIEF_SHADOW_SOFTNESS, 0.1f)

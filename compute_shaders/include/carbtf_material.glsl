@@ -43,7 +43,7 @@ layout(constant_id = CARBTF_SHADOWS_CONSTANT_ID) const bool carbtf_shadows_compi
 // binding whose sampler filters (MaterialBinding::hardware_filtering()). Its weights have the device's
 // sub-texel precision, so the picture differs from the CPU twin's by up to that; false, the default,
 // filters by hand with the twin's arithmetic. The normals are always blended by hand (their length
-// is kept: carbtf_relief_texel).
+// is kept: carbtf_normal_texel).
 #ifndef CARBTF_HARDWARE_FILTERING_CONSTANT_ID
 #define CARBTF_HARDWARE_FILTERING_CONSTANT_ID CARBTF_HARDWARE_FILTERING_DEFAULT_CONSTANT_ID
 #endif

@@ -240,8 +240,9 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     const VulkanFunctions& vk = context.vk();
     const VkDevice device = context.device();
     // texelFetch ignores filtering. With hardware filtering the shader's textureLod() reads the subspace
-    // images through this sampler: trilinear over the levels the binding uses, the edge texels repeated
-    // or, for periodic textures, the addresses wrapped, as the hand filtering does.
+    // images and the range texture (but its normals) through this sampler: trilinear over the levels the
+    // binding uses, the edge texels repeated or, for periodic textures, the addresses wrapped, as the
+    // hand filtering does.
     VkFormatProperties format{};
     vk.vkGetPhysicalDeviceFormatProperties(context.physical_device(), VK_FORMAT_R32G32B32A32_SFLOAT, &format);
     r.hardware_filtering =

@@ -64,9 +64,9 @@ struct MaterialBindingInfo {
   // At most this many mip levels, level 0 included (0: as many as the textures allow, mip_levels.hpp;
   // 1: level 0 alone, the cheapest render pass, which aliases where a texel is smaller than a pixel).
   std::uint32_t max_mip_levels = 0;
-  // Read the subspace images through a trilinear sampler (carbtf_material.glsl's hardware filtering)
-  // where the device filters RGBA32F linearly: the fast path, within the device's sub-texel precision of
-  // the hand filtering. false: a sampler that does not filter, for hosts that compare the render with
+  // Read the subspace images and the range texture's heights, tone and horizons through a trilinear
+  // sampler (carbtf_material.glsl's hardware filtering) where the device filters RGBA32F linearly: the
+  // fast path, within the device's sub-texel precision of the hand filtering. false: a sampler that does not filter, for hosts that compare the render with
   // the CPU twin (render_reference.hpp) bit for bit or nearly.
   bool hardware_filtering = true;
 };
@@ -96,8 +96,9 @@ class MaterialBinding {
   bool casts_shadows() const noexcept;
   // Whether the binding's sampler filters (MaterialBindingInfo::hardware_filtering, where the device
   // can): a pipeline may then set carbtf_material.glsl's specialization constant
-  // CARBTF_HARDWARE_FILTERING_CONSTANT_ID (1001 by default) to true, which reads each of the 9 taps once
-  // instead of 8 texels by hand (on lavapipe about a seventh of a sphere frame's render pass).
+  // CARBTF_HARDWARE_FILTERING_CONSTANT_ID (1001 by default) to true, which reads each of the 9 taps, the
+  // height, the tone and the horizons once instead of 8 texels by hand (on lavapipe a fifth to a quarter
+  // of a sphere frame's render pass).
   bool hardware_filtering() const noexcept;
   // Convenience: record_upload() through the context's submit-and-wait.
   Status upload_and_wait() noexcept;
