@@ -335,6 +335,13 @@ bool MaterialBinding::hardware_filtering() const noexcept {
   return resources_->hardware_filtering;
 }
 
+void MaterialBinding::shader_constants(MaterialShaderConstants& out) const noexcept {
+  out.values = {casts_shadows() ? VK_TRUE : VK_FALSE, hardware_filtering() ? VK_TRUE : VK_FALSE};
+  out.entries = {VkSpecializationMapEntry{CARBTF_SHADOWS_DEFAULT_CONSTANT_ID, 0, sizeof(VkBool32)},
+                 VkSpecializationMapEntry{CARBTF_HARDWARE_FILTERING_DEFAULT_CONSTANT_ID, sizeof(VkBool32), sizeof(VkBool32)}};
+  out.info = {static_cast<std::uint32_t>(out.entries.size()), out.entries.data(), sizeof out.values, out.values.data()};
+}
+
 Status MaterialBinding::upload_and_wait() noexcept {
   return context_->submit_and_wait([this](VkCommandBuffer cb) { return record_upload(cb); });
 }

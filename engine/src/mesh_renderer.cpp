@@ -140,14 +140,10 @@ Status create_pipeline(const Context& context, VkRenderPass render_pass, VkPipel
   stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
   stages[1].module = fragment.get();
   // carbtf_material.glsl's constants: the shadows compiled out for a material without cast shadows, and
-  // the subspace images read through the sampler where the binding's filters.
-  const std::array<VkBool32, 2> constants{binding.casts_shadows() ? VK_TRUE : VK_FALSE,
-                                          binding.hardware_filtering() ? VK_TRUE : VK_FALSE};
-  const std::array<VkSpecializationMapEntry, 2> entries{
-      VkSpecializationMapEntry{CARBTF_SHADOWS_DEFAULT_CONSTANT_ID, 0, sizeof(VkBool32)},
-      VkSpecializationMapEntry{CARBTF_HARDWARE_FILTERING_DEFAULT_CONSTANT_ID, sizeof(VkBool32), sizeof(VkBool32)}};
-  const VkSpecializationInfo specialization{2, entries.data(), sizeof constants, constants.data()};
-  stages[1].pSpecializationInfo = &specialization;
+  // the textures read through the sampler where the binding's filters.
+  MaterialShaderConstants constants;
+  binding.shader_constants(constants);
+  stages[1].pSpecializationInfo = &constants.info;
 
   const VkVertexInputBindingDescription vertex_binding{0, sizeof(MeshVertex), VK_VERTEX_INPUT_RATE_VERTEX};
   const VkVertexInputAttributeDescription attributes[4] = {

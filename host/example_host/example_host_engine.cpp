@@ -4,7 +4,6 @@
 #include <functional>
 #include <stdexcept>
 
-#include <carbtf_gpu_shared.h>
 #include <carbtf_host_spirv/host_mesh_fragment.h>
 #include <carbtf_host_spirv/host_mesh_vertex.h>
 #include <glm/glm.hpp>
@@ -328,13 +327,9 @@ void ExampleHostEngine::create_pipeline() {
   stages[1].module = fragment;
   // carbtf_material.glsl's specialization constants, as the binding says: the relief's cast shadows
   // compiled out where the material has none, and the sampler's filtering where the binding's filters.
-  const VkBool32 constants[2] = {binding_->casts_shadows() ? VK_TRUE : VK_FALSE,
-                                 binding_->hardware_filtering() ? VK_TRUE : VK_FALSE};
-  const VkSpecializationMapEntry entries[2] = {
-      {CARBTF_SHADOWS_DEFAULT_CONSTANT_ID, 0, sizeof(VkBool32)},
-      {CARBTF_HARDWARE_FILTERING_DEFAULT_CONSTANT_ID, sizeof(VkBool32), sizeof(VkBool32)}};
-  const VkSpecializationInfo specialization{2, entries, sizeof constants, constants};
-  stages[1].pSpecializationInfo = &specialization;
+  MaterialShaderConstants constants;
+  binding_->shader_constants(constants);
+  stages[1].pSpecializationInfo = &constants.info;
   const VkVertexInputBindingDescription vertex_binding{0, sizeof(MeshVertex), VK_VERTEX_INPUT_RATE_VERTEX};
   const VkVertexInputAttributeDescription attributes[4] = {
       {0, 0, VK_FORMAT_R32G32B32_SFLOAT, offsetof(MeshVertex, position)},

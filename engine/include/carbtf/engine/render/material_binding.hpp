@@ -13,6 +13,7 @@
 // Context. Thread safety: externally synchronized; set() may be bound from any thread once uploaded.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -71,6 +72,16 @@ struct MaterialBindingInfo {
   bool hardware_filtering = true;
 };
 
+// The values of carbtf_material.glsl's specialization constants that suit one binding, at their default
+// ids (CARBTF_SHADOWS_DEFAULT_CONSTANT_ID, CARBTF_HARDWARE_FILTERING_DEFAULT_CONSTANT_ID): a fragment
+// stage's pSpecializationInfo = &constants.info. Self-referencing: keep the object where it is (no copy
+// or move) until the pipeline is created.
+struct MaterialShaderConstants {
+  std::array<VkBool32, 2> values{};
+  std::array<VkSpecializationMapEntry, 2> entries{};
+  VkSpecializationInfo info{};
+};
+
 class MaterialBinding {
  public:
   // Builds the lookup tables and the enlarged range map on the host and the GPU objects to hold them.
@@ -100,6 +111,8 @@ class MaterialBinding {
   // height, the tone and the horizons once instead of 8 texels by hand (on lavapipe a fifth to a quarter
   // of a sphere frame's render pass).
   bool hardware_filtering() const noexcept;
+  // Both constants above for a pipeline that draws this material (or materials whose bindings agree).
+  void shader_constants(MaterialShaderConstants& out) const noexcept;
   // Convenience: record_upload() through the context's submit-and-wait.
   Status upload_and_wait() noexcept;
 
