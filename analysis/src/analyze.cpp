@@ -71,9 +71,9 @@ void round_to_stored_precision(SubspaceModel& model) {
   }
 }
 
-// The model of prepared channels (the smooth texture the CAR is to reproduce); notes name the band
-// they concern.
-SubspaceModel fit_channels(const std::vector<Plane>& channels, LightView pair, const AnalysisOptions& options,
+// The model of prepared channels (the smooth texture the CAR is to reproduce) on a pyramid of `levels`
+// levels; notes name the band they concern.
+SubspaceModel fit_channels(const std::vector<Plane>& channels, LightView pair, std::uint32_t levels, const AnalysisOptions& options,
                            std::vector<std::string>& notes) {
   const ColourPca pca = fit_colour_pca(channels);
   const std::vector<Plane> bands = to_bands(pca, channels);
@@ -88,7 +88,7 @@ SubspaceModel fit_channels(const std::vector<Plane>& channels, LightView pair, c
     for (int j = 0; j < 3; ++j) model.colour_transform.push_back(static_cast<float>(pca.basis(i, j)));
   }
   std::vector<std::vector<Plane>> pyramids;
-  for (const Plane& band : bands) pyramids.push_back(build_laplacian_pyramid(band, static_cast<int>(options.pyramid_levels)));
+  for (const Plane& band : bands) pyramids.push_back(build_laplacian_pyramid(band, static_cast<int>(levels)));
   model.levels = static_cast<std::uint32_t>(pyramids[0].size());
   for (std::uint32_t level = 0; level < model.levels; ++level) {
     for (std::uint32_t channel = 0; channel < 3; ++channel) {
@@ -129,7 +129,7 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
     std::vector<Plane> smooth = prepared(1.0);
     const std::vector<Plane> untoned{Plane::Ones(height, width)};
     match_render_mean(smooth, channels, weighted_tone(toned ? tone : untoned, 1.0, chroma), relit);
-    return fit_channels(smooth, pair, options, notes);
+    return fit_channels(smooth, pair, options.pyramid_levels, options, notes);
   }
 
   // Each candidate (tone weight, clamp) gives a model; the one whose image, as the render pass
@@ -156,9 +156,7 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
       for (const std::uint32_t levels : level_counts) {
         std::vector<std::string> candidate_notes;
         Material single;
-        AnalysisOptions with_levels = options;
-        with_levels.pyramid_levels = levels;
-        single.subspaces.push_back(fit_channels(clamped, pair, with_levels, candidate_notes));
+        single.subspaces.push_back(fit_channels(clamped, pair, levels, options, candidate_notes));
         single.subspaces[0].tone_weight = static_cast<float>(weight);
         // One draw's distance varies by about as much as the candidates differ (on fabric the choice
         // followed the noise stream), so a candidate scores the mean over several draws; draw d of every

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 #include <filesystem>
+#include <functional>
 #include <random>
 
 #include "carbtf/reference/noise.hpp"
@@ -154,6 +155,28 @@ std::vector<std::uint8_t> deflated(const Material& m) {
   std::vector<std::uint8_t> bytes;
   REQUIRE(encode_material(m, bytes).ok());
   return bytes;
+}
+
+// An optional chunk `tag`: absent from `m` as given, which reads back with `is_default`; present once
+// `set` fills it, and read back whole, plain and deflated. Returns the plain bytes of the set material
+// and the offset of the chunk's first payload word, for the caller's hostile values.
+std::pair<std::vector<std::uint8_t>, std::size_t> checked_optional_chunk(Material m, const std::string& tag,
+                                                                         const std::function<void(Material&)>& set,
+                                                                         const std::function<bool(const Material&)>& is_default) {
+  const std::vector<std::uint8_t> without = encoded(m);
+  CHECK(std::search(without.begin(), without.end(), tag.begin(), tag.end()) == without.end());
+  Material back;
+  REQUIRE(decode_material(without, "x.cbtf", back).ok());
+  CHECK(is_default(back));
+  set(m);
+  for (const auto& bytes : {encoded(m), deflated(m)}) {
+    REQUIRE(decode_material(bytes, "x.cbtf", back).ok());
+    CHECK(back == m);
+  }
+  std::vector<std::uint8_t> bytes = encoded(m);
+  const auto at = static_cast<std::size_t>(std::search(bytes.begin(), bytes.end(), tag.begin(), tag.end()) - bytes.begin());
+  REQUIRE(at < bytes.size());
+  return {std::move(bytes), at + 8};  // after the tag and the size
 }
 
 TEST_CASE("deflated chunks read back exactly, and a lying one is refused before it costs", "[material_file][deflate]") {
@@ -592,23 +615,11 @@ TEST_CASE("a coloured tone reads back and is left out when grey and refused out 
 
 TEST_CASE("feathered cuts read back while a file without FTHR has hard cuts and a hostile feather is refused",
           "[material_file][range_tiles]") {
-  Material m = sample_material();
-  const std::string fthr = "FTHR";
-  const std::vector<std::uint8_t> hard = encoded(m);
-  CHECK(std::search(hard.begin(), hard.end(), fthr.begin(), fthr.end()) == hard.end());
+  auto [bytes, at] = checked_optional_chunk(
+      sample_material(), "FTHR", [](Material& m) { m.range.feather = 2; }, [](const Material& m) { return m.range.feather == 0; });
   Material back;
-  REQUIRE(decode_material(hard, "x.cbtf", back).ok());
-  CHECK(back.range.feather == 0);
-  m.range.feather = 2;
-  for (const auto& bytes : {encoded(m), deflated(m)}) {
-    REQUIRE(decode_material(bytes, "x.cbtf", back).ok());
-    CHECK(back == m);
-  }
-  std::vector<std::uint8_t> bytes = encoded(m);
-  const auto at = static_cast<std::size_t>(std::search(bytes.begin(), bytes.end(), fthr.begin(), fthr.end()) - bytes.begin());
-  REQUIRE(at < bytes.size());
   for (const std::uint32_t hostile : {5u, 0xFFFFFFFFu}) {
-    std::memcpy(&bytes[at + 8], &hostile, 4);  // after the tag and the size
+    std::memcpy(&bytes[at], &hostile, 4);
     fix_crcs(bytes);
     const Status s = decode_material(bytes, "bad.cbtf", back);
     CHECK_THAT(s.message(), Catch::Contains("bad.cbtf") && Catch::Contains("feather " + std::to_string(hostile)));
@@ -617,23 +628,12 @@ TEST_CASE("feathered cuts read back while a file without FTHR has hard cuts and 
 
 TEST_CASE("cast shadows read back while a file without SHDW has none and a hostile scale is refused",
           "[material_file][shadows]") {
-  Material m = sample_material();
-  const std::string shdw = "SHDW";
-  const std::vector<std::uint8_t> unshadowed = encoded(m);
-  CHECK(std::search(unshadowed.begin(), unshadowed.end(), shdw.begin(), shdw.end()) == unshadowed.end());
+  auto [bytes, at] = checked_optional_chunk(
+      sample_material(), "SHDW", [](Material& m) { m.range.shadow_scale = 0.5f; },
+      [](const Material& m) { return m.range.shadow_scale == 0.0f; });
   Material back;
-  REQUIRE(decode_material(unshadowed, "x.cbtf", back).ok());
-  CHECK(back.range.shadow_scale == 0.0f);
-  m.range.shadow_scale = 0.5f;
-  for (const auto& bytes : {encoded(m), deflated(m)}) {
-    REQUIRE(decode_material(bytes, "x.cbtf", back).ok());
-    CHECK(back == m);
-  }
-  std::vector<std::uint8_t> bytes = encoded(m);
-  const auto at = static_cast<std::size_t>(std::search(bytes.begin(), bytes.end(), shdw.begin(), shdw.end()) - bytes.begin());
-  REQUIRE(at < bytes.size());
   for (const float hostile : {-0.5f, 4.5f, std::nanf(""), std::numeric_limits<float>::infinity()}) {
-    std::memcpy(&bytes[at + 8], &hostile, 4);  // after the tag and the size
+    std::memcpy(&bytes[at], &hostile, 4);
     fix_crcs(bytes);
     const Status s = decode_material(bytes, "bad.cbtf", back);
     CHECK_THAT(s.message(), Catch::Contains("bad.cbtf") && Catch::Contains("shadow scale") && Catch::Contains("outside 0..4"));
