@@ -11,6 +11,7 @@
 #include "carbtf/analysis/model/collapse_calibration.hpp"
 #include "carbtf/analysis/model/colour_pca.hpp"
 #include "carbtf/analysis/model/deshade.hpp"
+#include "carbtf/analysis/model/pair_gains.hpp"
 #include "carbtf/analysis/model/pyramid.hpp"
 #include "carbtf/analysis/model/relief_shadows.hpp"
 #include "carbtf/analysis/model/relief_tone.hpp"
@@ -291,8 +292,14 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
     }
   }
 
+  result.material.subspace_index = result.segmentation.index;
+  if (options.pair_gains) {
+    StageClock clock(result, "pair gains");
+    Progress progress("pair gains", dataset.lights().size(), options.progress);
+    result.material.pair_gains = fit_pair_gains(dataset, result.material, {result.range_map, result.tone_planes, result.horizons},
+                                                options.segmentation.seed, options.threads, [&] { progress.advance(); });
+  }
   Material& material = result.material;
-  material.subspace_index = result.segmentation.index;
   material.settings = {
       {"source", dataset.source},
       {"image_size", std::to_string(dataset.width()) + "x" + std::to_string(dataset.height())},
@@ -313,6 +320,7 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
       {"remainder_clamps", join_numbers(options.remainder_clamps)},
       {"selection_draws", std::to_string(options.selection_draws)},
       {"deshade_floor", std::to_string(options.deshade_floor)},
+      {"pair_gains", options.pair_gains ? "yes" : "no"},
       {"stereo_view", std::to_string(result.stereo_view)},
       {"tile_size", std::to_string(material.range.tile_size)},
       {"edge_colours", std::to_string(material.range.edge_colours)},

@@ -254,6 +254,8 @@ CARBTF_CONST_UINT(CARBTF_MATERIAL_BINDING_TABLES, 2u)
 CARBTF_CONST_UINT(CARBTF_NO_LAYER, 0xFFFFFFFFu)
 // The same in MaterialTablesHeader::pair_table's 16-bit layer field; layers stop below it.
 CARBTF_CONST_UINT(CARBTF_PAIR_NO_LAYER, 0xFFFFu)
+// A pair gain in MaterialTablesHeader::pair_gains is a 10-bit count of these fractions (gains 1/4 to 4).
+CARBTF_CONST_FLOAT(CARBTF_PAIR_GAIN_UNITS, 256.0f)
 // A lookup-cell entry with this bit is a boundary edge, else a triangle.
 CARBTF_CONST_UINT(CARBTF_LOOKUP_EDGE_BIT, 0x80000000u)
 CARBTF_CONST_UINT(CARBTF_LOOKUP_ENTRY_WORDS, 9u)
@@ -302,7 +304,9 @@ struct MaterialTablesHeader {
                     // weight (SubspaceModel::tone_weight) as a half float in the high 16: one read per tap
   uint width;       // texels of the subspace images and of the range map
   uint height;
-  uint reserved7;   // (was the tone weight table, now in pair_table)
+  uint pair_gains;  // 0: the material has none; else lights * views uints, [light * views + view]: the
+                    // pair's gains on R, G and B (Material::pair_gains) in bits 0-9, 10-19 and 20-29, in
+                    // units of 1/CARBTF_PAIR_GAIN_UNITS
   float parallax_scale;  // parallax offset in texels = parallax_scale * (height - range_mean) * view.xy
   float range_mean;
   float light_z_floor;  // cos of the largest measured light elevation: the relit factor's denominator floor

@@ -313,8 +313,8 @@ void carbtf_direction_weights(DirectionLookupGpu set, vec2 p, out uvec3 index, o
 
 // The smooth BTF colour at (already parallax-shifted) uv for tangent-frame light and view directions,
 // with the relief tone `tone` at uv (one per colour channel): sum over the 3 x 3 nearest measured
-// (light, view) pairs of weight * max(1 + tone weight * (tone - 1), 0) * subspace image of the pair,
-// per channel, as render_reference.cpp computes it.
+// (light, view) pairs of weight * max(1 + tone weight * (tone - 1), 0) * (pair gain * subspace image of
+// the pair), per channel, as render_reference.cpp computes it.
 vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, vec3 view, vec3 tone, float lod) {
   uvec3 li, vi;
   vec3 lw, vw;
@@ -341,7 +341,12 @@ vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, vec3 view, vec3 tone, float lo
         texel = carbtf_subspace_texel(b, layer, s.level);
         if (s.t > 0.0) texel = mix(texel, carbtf_subspace_texel(b_up, layer, s.level + 1), s.t);
       }
-      colour += (w * max(1.0 + tone_weight * tone_offset, vec3(0.0))) * texel;
+      vec3 gain = vec3(1.0);
+      if (carbtf_header.pair_gains != 0u) {
+        uint word = carbtf_data[carbtf_header.pair_gains + li[i] * views + vi[j]];
+        gain = vec3(uvec3(word, word >> 10, word >> 20) & 1023u) * (1.0 / CARBTF_PAIR_GAIN_UNITS);
+      }
+      colour += (w * max(1.0 + tone_weight * tone_offset, vec3(0.0))) * (gain * texel);
     }
   }
   return colour;

@@ -144,6 +144,13 @@ Status validate_range(const RangeTiles& r) {
 
 }  // namespace
 
+float pair_gain(const Material& material, std::uint32_t light, std::uint32_t view, std::uint32_t channel) {
+  if (material.pair_gains.empty()) return 1.0f;
+  const std::size_t pairs = material.lights.size() * material.views.size();
+  const int code = material.pair_gains[channel * pairs + std::size_t{light} * material.views.size() + view];
+  return std::exp2(static_cast<float>(code - kPairGainZero) / static_cast<float>(kPairGainStepsPerOctave));
+}
+
 float relight_floor(const Material& material) {
   float largest_theta = 0.0f;
   for (const auto& d : material.lights) largest_theta = std::max(largest_theta, d.theta);
@@ -169,6 +176,15 @@ Status validate_material(const Material& material) {
     if (Status s = validate_subspace(material.subspaces[i], i, material); !s.ok()) return s;
   }
   if (Status s = validate_range(material.range); !s.ok()) return s;
+  if (!material.pair_gains.empty()) {
+    if (material.pair_gains.size() != 3 * material.subspace_index.size()) {
+      return invalid("the pair gains are " + std::to_string(material.pair_gains.size()) + " codes, not 3 x lights x views (" +
+                     std::to_string(3 * material.subspace_index.size()) + ")");
+    }
+    for (std::size_t i = 0; i < material.subspaces.size(); ++i) {
+      if (material.subspaces[i].channels != 3) return invalid("pair gains are RGB, but subspace " + std::to_string(i) + " has " + std::to_string(material.subspaces[i].channels) + " channels");
+    }
+  }
   if (material.settings.size() > kMaxSettings) return invalid("more than " + std::to_string(kMaxSettings) + " settings");
   for (const auto& [key, value] : material.settings) {
     if (key.empty() || key.size() > kMaxSettingLength || value.size() > kMaxSettingLength) return invalid("a setting key or value is empty or too long");

@@ -76,6 +76,17 @@ void write_pair_table(const Material& material, const MaterialTextures& textures
   }
 }
 
+// The pair gain table (MaterialTablesHeader::pair_gains), for a material with gains.
+void write_pair_gains(const Material& material, std::span<std::uint32_t> out) {
+  for (std::uint32_t l = 0; l < material.lights.size(); ++l) {
+    for (std::uint32_t v = 0; v < material.views.size(); ++v) {
+      std::uint32_t word = 0;
+      for (std::uint32_t c = 0; c < 3; ++c) word |= pair_gain_units(pair_gain(material, l, v, c)) << (10 * c);
+      out[std::size_t{l} * material.views.size() + v] = word;
+    }
+  }
+}
+
 // A layer the pair table can hold: below CARBTF_PAIR_NO_LAYER, or none.
 bool fits_pair_table(std::uint32_t layer) {
   return layer < gpu::CARBTF_PAIR_NO_LAYER || layer == std::numeric_limits<std::uint32_t>::max();
@@ -167,6 +178,11 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     write_pair_table(material, textures, std::span(r.tables).subspan(kHeaderWords + header.pair_table));
     r.pair_table = kHeaderWords + header.pair_table;
     r.pair_layers = !textures.pair_layers.empty();
+    if (!material.pair_gains.empty()) {
+      header.pair_gains = static_cast<std::uint32_t>(r.tables.size() - kHeaderWords);
+      r.tables.resize(r.tables.size() + material.lights.size() * material.views.size());
+      write_pair_gains(material, std::span(r.tables).subspan(kHeaderWords + header.pair_gains));
+    }
     header.width = textures.width;
     header.height = textures.height;
     header.parallax_scale = info.parallax_scale;
@@ -325,6 +341,16 @@ std::uint32_t MaterialBinding::mip_levels() const noexcept {
 
 float rendered_tone_weight(float tone_weight) noexcept {
   return glm::unpackHalf1x16(glm::packHalf1x16(tone_weight));
+}
+
+std::uint32_t pair_gain_units(float gain) noexcept {
+  return static_cast<std::uint32_t>(std::clamp(std::lround(gain * gpu::CARBTF_PAIR_GAIN_UNITS), 0l, 1023l));
+}
+
+std::array<float, 3> rendered_pair_gain(const Material& material, std::uint32_t light, std::uint32_t view) noexcept {
+  std::array<float, 3> gain{};
+  for (std::uint32_t c = 0; c < 3; ++c) gain[c] = static_cast<float>(pair_gain_units(pair_gain(material, light, view, c))) / gpu::CARBTF_PAIR_GAIN_UNITS;
+  return gain;
 }
 
 bool MaterialBinding::casts_shadows() const noexcept {

@@ -25,9 +25,9 @@ constexpr std::array<std::uint8_t, 4> kMagic{'C', 'B', 'T', 'F'};
 constexpr std::uint32_t kMaxChunks = 64;
 constexpr std::size_t kChunkOverhead = 12;  // tag, size, CRC
 
-enum class Chunk { settings, directions, index, subspaces, range, tone, tone_weights, tone_chroma, feather, shadows, count };
+enum class Chunk { settings, directions, index, subspaces, range, tone, tone_weights, tone_chroma, feather, shadows, pair_gains, count };
 constexpr std::array<std::string_view, static_cast<std::size_t>(Chunk::count)> kChunkTags{"SETT", "DIRS", "INDX", "SUBS",
-                                                                                         "RNGE", "TONE", "TWGT", "TCHR", "FTHR", "SHDW"};
+                                                                                         "RNGE", "TONE", "TWGT", "TCHR", "FTHR", "SHDW", "PGAN"};
 
 // A deflated chunk (format 1.1): payload = inner tag (4 bytes), u32 inner payload size, u8 filter, the
 // filter's parameters, then one zlib stream of the filtered payload. Filters:
@@ -487,6 +487,10 @@ void encode_tone(const Material& m, ByteWriter& w) {
 
 // Where a chunk's payload holds rasters (the patches of heights or tone), for the raster filter.
 std::optional<RasterLayout> chunk_rasters(Chunk chunk, const Material& m) {
+  // Three planes of lights x views gains, smooth over both: a raster per colour channel.
+  if (chunk == Chunk::pair_gains) {
+    return RasterLayout{8, 1, static_cast<std::uint32_t>(m.views.size()), static_cast<std::uint32_t>(m.lights.size()), 3, 0};
+  }
   const RangeTiles& r = m.range;
   if (r.tile_size == 0) return std::nullopt;
   const std::uint32_t patches = 2 * r.edge_colours;
@@ -649,6 +653,24 @@ bool decode_shadows(ByteReader& r, float& scale) {
   return !r.failed();
 }
 
+// Optional (format 1.9): written only when the material has pair gains.
+void encode_pair_gains(const Material& m, ByteWriter& w) {
+  w.u32(static_cast<std::uint32_t>(m.lights.size()));
+  w.u32(static_cast<std::uint32_t>(m.views.size()));
+  w.bytes(m.pair_gains);
+}
+
+// The counts are checked against the directions once every chunk is read (validate_material).
+bool decode_pair_gains(ByteReader& r, Material& m) {
+  std::uint32_t lights = 0, views = 0;
+  if (!decode_direction_counts(r, lights, views)) return false;
+  const std::size_t count = 3 * std::size_t{lights} * views;
+  if (!r.can_read(count, 1)) return false;
+  const auto bytes = r.bytes(count);
+  m.pair_gains.assign(bytes.begin(), bytes.end());
+  return !r.failed();
+}
+
 // Into `chroma`: the range chunk may come later in the file.
 bool decode_tone_chroma(ByteReader& r, std::array<float, 3>& chroma) {
   for (float& c : chroma) c = r.f32();
@@ -732,12 +754,13 @@ Status encode_material(const Material& material, std::vector<std::uint8_t>& out,
   written[static_cast<std::size_t>(Chunk::tone_chroma)] = has_tone_chroma(material);
   written[static_cast<std::size_t>(Chunk::feather)] = material.range.feather > 0;
   written[static_cast<std::size_t>(Chunk::shadows)] = material.range.shadow_scale > 0.0f;
+  written[static_cast<std::size_t>(Chunk::pair_gains)] = !material.pair_gains.empty();
   w.u32(static_cast<std::uint32_t>(std::count(written.begin(), written.end(), true)));
   Deflater deflater;
   using Encoder = void (*)(const Material&, ByteWriter&);
   constexpr std::array<Encoder, static_cast<std::size_t>(Chunk::count)> encoders{
       encode_settings, encode_directions, encode_index, encode_subspaces, encode_range, encode_tone, encode_tone_weights,
-      encode_tone_chroma, encode_feather, encode_shadows};
+      encode_tone_chroma, encode_feather, encode_shadows, encode_pair_gains};
   for (std::size_t c = 0; c < encoders.size(); ++c) {
     if (!written[c]) continue;
     std::vector<std::uint8_t> payload;
@@ -794,6 +817,7 @@ Status decode_material(std::span<const std::uint8_t> bytes, const std::string& n
       case Chunk::tone_chroma: ok = decode_tone_chroma(r, tone_chroma); break;
       case Chunk::feather: ok = decode_feather(r, feather); break;
       case Chunk::shadows: ok = decode_shadows(r, shadow_scale); break;
+      case Chunk::pair_gains: ok = decode_pair_gains(r, m); break;
       case Chunk::count: break;
     }
     if (!ok) return fail(name, "chunk " + printable_tag(tag) + " is truncated or has out-of-range counts");
@@ -804,7 +828,8 @@ Status decode_material(std::span<const std::uint8_t> bytes, const std::string& n
   for (std::size_t c = 0; c < seen.size(); ++c) {
     const bool optional = static_cast<Chunk>(c) == Chunk::settings || static_cast<Chunk>(c) == Chunk::tone ||
                           static_cast<Chunk>(c) == Chunk::tone_weights || static_cast<Chunk>(c) == Chunk::tone_chroma ||
-                          static_cast<Chunk>(c) == Chunk::feather || static_cast<Chunk>(c) == Chunk::shadows;
+                          static_cast<Chunk>(c) == Chunk::feather || static_cast<Chunk>(c) == Chunk::shadows ||
+                          static_cast<Chunk>(c) == Chunk::pair_gains;
     if (!seen[c] && !optional) return fail(name, "chunk " + std::string(kChunkTags[c]) + " is missing");
   }
   if (index_lights != m.lights.size() || index_views != m.views.size()) {

@@ -138,6 +138,9 @@ void register_analyze_command(CLI::App& app) {
       ->check(CLI::Range(0.0, 1.0))
       ->delimiter(',')
       ->capture_default_str();
+  command->add_flag("!--no-pair-gains", a.pair_gains,
+                    "Leave out the pair gains: per measured light and view, colour gains that give the pair its measured "
+                    "mean colour, which its subspace image (the representative pair's) does not have (on by default)");
   command->add_option("--deshade", a.deshade_floor,
                       "Divide the representative pair's relit range map out of each subspace image before fitting, the factor "
                       "floored at this value (0: off)")

@@ -53,6 +53,7 @@ const std::vector<ModelVariant>& model_variants() {
          o.tiles.tone_bits = 3;
        }},
       {"default", "relief tone, 128-texel tiles, 6-bit heights, 4-bit tone, remainder clamp chosen per subspace", [](AnalysisOptions&) {}},
+      {"no_pair_gains", "the default without the per-pair colour gains", [](AnalysisOptions& o) { o.pair_gains = false; }},
       {"tone_weights", "the default with each subspace's share of the relief tone (0 or 1) chosen with its clamp",
        [](AnalysisOptions& o) { o.tone_weights = {0.0, 1.0}; }},
       {"fixed_clamp", "the default with the remainder clamp fixed at 1.5", [](AnalysisOptions& o) { o.remainder_clamps = {1.5}; }},

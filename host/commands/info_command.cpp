@@ -117,6 +117,15 @@ void run_material_info(const std::string& path) {
       std::printf("shadows:      none\n");
     }
   }
+  if (material.pair_gains.empty()) {
+    std::printf("pair gains:   none (each pair has its subspace image's mean colour)\n");
+  } else {
+    std::vector<std::uint8_t> codes = material.pair_gains;
+    std::sort(codes.begin(), codes.end());
+    const auto gain = [](std::uint8_t code) { return std::exp2(static_cast<double>(code - kPairGainZero) / kPairGainStepsPerOctave); };
+    std::printf("pair gains:   per light, view and colour channel, %.2fx to %.2fx (half of them within %.2fx to %.2fx)\n", gain(codes.front()),
+                gain(codes.back()), gain(codes[codes.size() / 4]), gain(codes[codes.size() * 3 / 4]));
+  }
   std::printf("file size:    %zu bytes (%.1f KiB)\n", bytes.size(), static_cast<double>(bytes.size()) / 1024.0);
   std::printf("  %-6s %10s %7s\n", "chunk", "bytes", "share");
   std::printf("  %-6s %10d %6.1f%%\n", "header", 12, 1200.0 / static_cast<double>(bytes.size()));

@@ -60,8 +60,10 @@ RenderedImage render_measured(Context& context, const Material& material, const 
     textures.pair_layers[std::size_t{light} * material.views.size() + view] = layer++;
   }
   check(array->upload_and_wait(), "cannot upload the measured images");
+  // The measurement as it is: no relief, and none of the model's corrections of its pairs' colours.
   Material flat = material;
   flat.range = {};
+  flat.pair_gains = {};
   MaterialBindingInfo info;
   info.parallax_scale = 0.0f;
   info.hardware_filtering = false;  // filtered by hand, as the model beside it where it is scored

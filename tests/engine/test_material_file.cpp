@@ -645,6 +645,58 @@ TEST_CASE("cast shadows read back while a file without SHDW has none and a hosti
   CHECK_THAT(validate_material(tileless).message(), Catch::Contains("tile size 0 but tile data present"));
 }
 
+TEST_CASE("pair gains read back while a file without PGAN has none and a hostile table is refused", "[material_file][pair_gains]") {
+  const auto with_gains = [](Material& m) {
+    m.pair_gains.resize(3 * m.subspace_index.size());
+    for (std::size_t i = 0; i < m.pair_gains.size(); ++i) m.pair_gains[i] = static_cast<std::uint8_t>(i * 37 % 256);
+  };
+  auto [bytes, at] = checked_optional_chunk(sample_material(), "PGAN", with_gains, [](const Material& m) { return m.pair_gains.empty(); });
+  Material m = sample_material();
+  with_gains(m);
+  REQUIRE(m.lights.size() * m.views.size() > 2);
+  // A code means 2^((q - 128) / 64): 1 at 128, twice at 192, half at 64; no gains, 1.
+  m.pair_gains[0] = 128;
+  m.pair_gains[m.subspace_index.size() + 1] = 192;
+  m.pair_gains[2 * m.subspace_index.size() + 2] = 64;
+  CHECK(pair_gain(m, 0, 0, 0) == 1.0f);
+  CHECK(pair_gain(m, 0, 1, 1) == 2.0f);
+  CHECK(pair_gain(m, 0, 2, 2) == 0.5f);
+  CHECK(pair_gain(sample_material(), 0, 1, 1) == 1.0f);
+  // The table's direction counts must be the material's.
+  Material back;
+  const std::uint32_t lights = static_cast<std::uint32_t>(m.lights.size());
+  for (const std::uint32_t hostile : {lights + 1, 0xFFFFFFFFu}) {
+    std::vector<std::uint8_t> lying = bytes;
+    std::memcpy(&lying[at], &hostile, 4);
+    fix_crcs(lying);
+    const Status s = decode_material(lying, "bad.cbtf", back);
+    INFO(s.message());
+    CHECK_THAT(s.message(), Catch::Contains("bad.cbtf") && (Catch::Contains("PGAN") || Catch::Contains("pair gains")));
+  }
+  Material wrong = sample_material();
+  wrong.pair_gains.assign(3 * wrong.subspace_index.size() - 1, 128);
+  CHECK_THAT(validate_material(wrong).message(), Catch::Contains("pair gains are"));
+  Material spectral = sample_material();
+  with_gains(spectral);
+  {
+    // A valid four-channel (spectral) model: one more band per level, an identity transform.
+    SubspaceModel& sub = spectral.subspaces[0];
+    std::vector<CarBandModel> bands;
+    for (std::uint32_t level = 0; level < sub.levels; ++level) {
+      for (std::uint32_t c = 0; c < 4; ++c) bands.push_back(sub.bands[level * 3 + std::min(c, 2u)]);
+    }
+    sub.bands = bands;
+    sub.channels = 4;
+    sub.colour_mean.push_back(0.5f);
+    sub.colour_transform.assign(16, 0.0f);
+    for (int i = 0; i < 4; ++i) sub.colour_transform[static_cast<std::size_t>(i * 5)] = 1.0f;
+    Material without = spectral;
+    without.pair_gains.clear();
+    REQUIRE(validate_material(without).ok());
+  }
+  CHECK_THAT(validate_material(spectral).message(), Catch::Contains("pair gains are RGB"));
+}
+
 TEST_CASE("10,000 random corruptions and truncations are rejected or read without a crash", "[material_file][fuzz]") {
   const bool deflate = GENERATE(false, true);
   INFO("deflated chunks: " << deflate);

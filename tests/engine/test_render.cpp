@@ -123,6 +123,10 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
       for (std::uint8_t q : grey) coloured.range.tone.push_back(static_cast<std::uint8_t>(top - q));
       for (std::uint8_t q : grey) coloured.range.tone.push_back(static_cast<std::uint8_t>(q / 2));
     }
+    // Pair gains from 0.6 to 1.7, different per pair and channel, which both sides must apply to the
+    // pair named by its light and view.
+    coloured.pair_gains.resize(3 * coloured.subspace_index.size());
+    for (std::size_t i = 0; i < coloured.pair_gains.size(); ++i) coloured.pair_gains[i] = static_cast<std::uint8_t>(80 + i * 29 % 97);
     REQUIRE(validate_material(coloured).ok());
     return coloured;
   }();

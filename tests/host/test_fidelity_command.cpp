@@ -22,8 +22,9 @@ using test::Run;
 
 namespace {
 
-// The mean of the rel column of fidelity.csv.
-double mean_rel(const fs::path& csv) {
+// The mean of column `wanted` of fidelity.csv (6: rel; 11: the model's colour group, its Lab mean's
+// delta E in units of 3).
+double mean_column(const fs::path& csv, int wanted) {
   std::ifstream file(csv);
   std::string line;
   std::getline(file, line);
@@ -32,8 +33,8 @@ double mean_rel(const fs::path& csv) {
   while (std::getline(file, line)) {
     std::stringstream fields(line);
     std::string field;
-    for (int column = 0; column <= 6 && std::getline(fields, field, ','); ++column) {
-      if (column == 6) sum += std::stod(field);
+    for (int column = 0; column <= wanted && std::getline(fields, field, ','); ++column) {
+      if (column == wanted) sum += std::stod(field);
     }
     ++rows;
   }
@@ -48,7 +49,7 @@ double fidelity_of(const fs::path& material, const fs::path& btf, const fs::path
   CHECK_THAT(r.output, Catch::Contains("rel mean") && Catch::Contains("fidelity_grid.png"));
   CHECK(fs::exists(out / "fidelity_grid.png"));
   CHECK(fs::exists(out / "fidelity.md"));
-  return mean_rel(out / "fidelity.csv");
+  return mean_column(out / "fidelity.csv", 6);
 }
 
 // One sample's checks, each sample its own test case so that CTest runs them side by side.
@@ -100,6 +101,16 @@ void check_fidelity_ranking(const std::string& name) {
   const double without_tone_rel = fidelity_of(without_tone, btf, folder / "without_tone");
   INFO(name << ": fitted rel " << fitted_rel << ", without the relief tone " << without_tone_rel);
   CHECK(without_tone_rel > fitted_rel);
+  // The pair gains (on by default) give each pair its measured mean colour: the colour group and rel fall.
+  const fs::path without_gains = folder / "without_gains.cbtf";
+  REQUIRE(run("analyze " + btf.string() + " --no-pair-gains --out " + without_gains.string()).status == 0);
+  const double without_gains_rel = fidelity_of(without_gains, btf, folder / "without_gains");
+  const double colour = mean_column(folder / "fitted" / "fidelity.csv", 11);
+  const double without_gains_colour = mean_column(folder / "without_gains" / "fidelity.csv", 11);
+  INFO(name << ": fitted rel " << fitted_rel << " colour " << colour << ", without pair gains rel " << without_gains_rel << " colour "
+            << without_gains_colour);
+  CHECK(without_gains_rel > fitted_rel);
+  CHECK(without_gains_colour > colour);
   if (name == "fabric") {
     // Its threads are blue and white: a tone that follows them in colour looks nearer the measurement,
     // with a slope per channel, and more so with a plane per channel (chosen by its colour).

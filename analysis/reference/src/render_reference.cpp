@@ -303,7 +303,9 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
           const std::uint32_t subspace = subspace_of(material, w.light[k], w.view[k]);
           if (input.images->images[subspace].empty()) continue;
           const float tone_weight = rendered_tone_weight(material.subspaces[subspace].tone_weight);
-          btf += (w.weight[k] * glm::max(1.0f + tone_weight * tone_offset, glm::vec3(0.0f))) * sampler.subspace_at(shifted, lod, subspace);
+          const std::array<float, 3> gain = rendered_pair_gain(material, w.light[k], w.view[k]);
+          btf += (w.weight[k] * glm::max(1.0f + tone_weight * tone_offset, glm::vec3(0.0f))) *
+                 (glm::vec3(gain[0], gain[1], gain[2]) * sampler.subspace_at(shifted, lod, subspace));
         }
         float relit = std::max(glm::dot(normal, l), 0.0f) / std::max(l.z, light_z_floor);
         if (shadows) relit *= relief_visibility(horizon_at, {l.x, l.y, l.z});

@@ -85,6 +85,9 @@ struct AnalysisOptions {
   // subspaces take 2 levels and mean rel falls from 0.479 to 0.453 (fidelity seeds 1-3);
   // coast_sand_rocks 0.208 -> 0.201; leather keeps 3 everywhere, the same model. Empty: fixed.
   std::vector<std::uint32_t> other_level_counts = {2};
+  // Per measured pair, colour gains that give its render its measurement's mean Lab colour
+  // (model/pair_gains.hpp, Material::pair_gains).
+  bool pair_gains = true;
   double deshade_floor = 0.0;        // > 0: divide the relit range map out before fitting, floored here (model/deshade.hpp)
   RangeTileOptions tiles;            // its seed is ignored: the tiles follow segmentation.seed
   unsigned threads = 0;              // 0: all hardware threads

@@ -14,6 +14,8 @@ namespace carbtf {
 
 // CIE L*a*b* of a linear sRGB colour (D65).
 std::array<float, 3> linear_srgb_to_lab(float r, float g, float b);
+// Its inverse: the linear sRGB colour of CIE L*a*b* (D65); out-of-gamut colours come out as they are.
+std::array<double, 3> lab_to_linear_srgb(double l, double a, double b);
 
 // Feature of a width x height linear RGB image, from every `stride`-th pixel in each direction;
 // 3 * bins values: L*, then a*, then b*.

@@ -118,6 +118,13 @@ struct Material {
   std::vector<std::uint8_t> subspace_index;  // lights.size() * views.size(), [light * views + view]
   std::vector<SubspaceModel> subspaces;
   RangeTiles range;
+  // Per (light, view) pair and linear colour channel, a gain the render pass applies to the pair's
+  // colour (pair_gain()), so that the mean colour of every measured pair is its measurement's although
+  // its subspace image is the representative pair's: a subspace groups pairs of like texture whose means
+  // still differ (an elevation's shading, a view's colour shift). Empty (any file without a PGAN chunk),
+  // every gain is 1; else three planes (R, G, B) of lights * views codes, [c * pairs + light * views +
+  // view], code q meaning 2^((q - kPairGainZero) / kPairGainStepsPerOctave).
+  std::vector<std::uint8_t> pair_gains;
   // The analysis settings and provenance, as ordered (key, value) text pairs.
   std::vector<std::pair<std::string, std::string>> settings;
   bool operator==(const Material&) const = default;
@@ -150,6 +157,11 @@ inline constexpr float kMaxRangeTone = 16.0f;
 // below 1 + 4 * 15 and the colour bounded.
 inline constexpr float kMaxToneChroma = 4.0f;
 
+// Pair gain codes (Material::pair_gains): a gain of 2^((q - kPairGainZero) / kPairGainStepsPerOctave),
+// from 1/4 to just under 4 in steps of 1.1%.
+inline constexpr int kPairGainZero = 128;
+inline constexpr int kPairGainStepsPerOctave = 64;
+
 // How many planes the relief tone has: 0 (none), 1 (grey) or 3 (per colour channel).
 inline std::size_t tone_planes(const RangeTiles& range) {
   return range.patches.empty() ? 0 : range.tone.size() / range.patches.size();
@@ -159,6 +171,9 @@ inline std::size_t tone_planes(const RangeTiles& range) {
 inline std::uint32_t subspace_of(const Material& material, std::uint32_t light, std::uint32_t view) {
   return material.subspace_index[std::size_t{light} * material.views.size() + view];
 }
+
+// The gain of (light, view) on colour channel c (0-2) as the material stores it: 1 without gains.
+float pair_gain(const Material& material, std::uint32_t light, std::uint32_t view, std::uint32_t channel);
 
 // The floor of the render pass's relit factor's denominator (carbtf_material_shade): the cosine of the
 // material's largest measured light elevation, at least 1e-3. The analysis divides the same factor out

@@ -31,6 +31,9 @@
 //         (hard cuts, as earlier files mean); an earlier reader skips it and draws hard cuts.
 //   SHDW  (1.8, optional) f32 shadow scale: the relief's cast shadows (RangeTiles::shadow_scale). Absent,
 //         0 (no shadows, as earlier files mean); an earlier reader skips it and draws no shadows.
+//   PGAN  (1.9, optional) u32 lights, u32 views, u8 gain code per colour channel (R, G, B planes) and
+//         (light, view) pair, light-major (Material::pair_gains). Absent, every gain is 1 (as earlier
+//         files mean); an earlier reader skips it and renders each pair at its subspace's mean colour.
 // A reader of major version 1 rejects any other major version. Every count is bounded (material.hpp)
 // before anything is allocated, every read is bounds-checked, and the decoded material is validated,
 // so a truncated, corrupted or hostile file gives an error, never a crash or an unbounded allocation.
@@ -47,7 +50,7 @@
 namespace carbtf {
 
 inline constexpr std::uint16_t kMaterialFormatMajor = 1;
-inline constexpr std::uint16_t kMaterialFormatMinor = 8;
+inline constexpr std::uint16_t kMaterialFormatMinor = 9;
 
 struct MaterialEncoding {
   // Deflate every chunk but SETT where that is smaller (format 1.1). Off, every chunk is stored plain:

@@ -140,4 +140,9 @@ class MaterialBinding {
 // float the pair table holds (MaterialTablesHeader::pair_table), for CPU twins of the fragment stage.
 float rendered_tone_weight(float tone_weight) noexcept;
 
+// A pair gain (pair_gain()) in the pair gain table's fixed point (MaterialTablesHeader::pair_gains), and
+// a pair's three gains as the render pass reads them, for CPU twins of the fragment stage.
+std::uint32_t pair_gain_units(float gain) noexcept;
+std::array<float, 3> rendered_pair_gain(const Material& material, std::uint32_t light, std::uint32_t view) noexcept;
+
 }  // namespace carbtf
