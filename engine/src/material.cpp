@@ -147,8 +147,11 @@ Status validate_range(const RangeTiles& r) {
 float pair_gain(const Material& material, std::uint32_t light, std::uint32_t view, std::uint32_t channel) {
   if (material.pair_gains.empty()) return 1.0f;
   const std::size_t pairs = material.lights.size() * material.views.size();
-  const int code = material.pair_gains[channel * pairs + std::size_t{light} * material.views.size() + view];
-  return std::exp2(static_cast<float>(code - kPairGainZero) / static_cast<float>(kPairGainStepsPerOctave));
+  return pair_gain_of_code(material.pair_gains[channel * pairs + std::size_t{light} * material.views.size() + view]);
+}
+
+float pair_gain_of_code(std::uint8_t code) {
+  return std::exp2(static_cast<float>(int{code} - kPairGainZero) / static_cast<float>(kPairGainStepsPerOctave));
 }
 
 float relight_floor(const Material& material) {

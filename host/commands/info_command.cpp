@@ -122,7 +122,7 @@ void run_material_info(const std::string& path) {
   } else {
     std::vector<std::uint8_t> codes = material.pair_gains;
     std::sort(codes.begin(), codes.end());
-    const auto gain = [](std::uint8_t code) { return std::exp2(static_cast<double>(code - kPairGainZero) / kPairGainStepsPerOctave); };
+    const auto gain = [](std::uint8_t code) { return static_cast<double>(pair_gain_of_code(code)); };
     std::printf("pair gains:   per light, view and colour channel, %.2fx to %.2fx (half of them within %.2fx to %.2fx)\n", gain(codes.front()),
                 gain(codes.back()), gain(codes[codes.size() / 4]), gain(codes[codes.size() * 3 / 4]));
   }

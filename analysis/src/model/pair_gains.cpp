@@ -33,9 +33,7 @@ Rgb lab_mean(std::span<const float> pixels, const Rgb& gain) {
 
 // Gains within what a code holds.
 double clamp_gain(double gain) {
-  const double low = std::exp2(static_cast<double>(-kPairGainZero) / kPairGainStepsPerOctave);
-  const double high = std::exp2(static_cast<double>(255 - kPairGainZero) / kPairGainStepsPerOctave);
-  return std::clamp(gain, low, high);
+  return std::clamp(gain, double{pair_gain_of_code(0)}, double{pair_gain_of_code(255)});
 }
 
 std::uint8_t gain_code(double gain) {

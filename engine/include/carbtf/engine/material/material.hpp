@@ -172,6 +172,8 @@ inline std::uint32_t subspace_of(const Material& material, std::uint32_t light, 
   return material.subspace_index[std::size_t{light} * material.views.size() + view];
 }
 
+// The gain a pair gain code means.
+float pair_gain_of_code(std::uint8_t code);
 // The gain of (light, view) on colour channel c (0-2) as the material stores it: 1 without gains.
 float pair_gain(const Material& material, std::uint32_t light, std::uint32_t view, std::uint32_t channel);
 
