@@ -245,20 +245,22 @@ CARBTF_FUNCTION float carbtf_polar_angle(float r, float z) {
 // synthesized subspace image), binding 1 the enlarged range map (sampler2DArray: layer 0 r the heights
 // in texels and gba each colour channel's relief tone, layer 1 rgb the relief normal, layers 2 and 3 the
 // horizons of azimuths 0-3 and 4-7 for cast shadows), binding 2 the lookup tables (readonly
-// storage buffer: MaterialTablesHeader, then uints). Both textures have MaterialTablesHeader::mip_levels
-// levels.
+// storage buffer: MaterialTablesHeader, then the tables), binding 3 the same buffer as RGBA32UI texels
+// (usamplerBuffer: 16-byte "quads"), through which the fragment stage reads the tables after the header.
+// Both textures have MaterialTablesHeader::mip_levels levels.
 CARBTF_CONST_UINT(CARBTF_MATERIAL_BINDING_SUBSPACES, 0u)
 CARBTF_CONST_UINT(CARBTF_MATERIAL_BINDING_RANGE, 1u)
 CARBTF_CONST_UINT(CARBTF_MATERIAL_BINDING_TABLES, 2u)
+CARBTF_CONST_UINT(CARBTF_MATERIAL_BINDING_TABLE_QUADS, 3u)
 // A (light, view) pair whose subspace image was not synthesized.
 CARBTF_CONST_UINT(CARBTF_NO_LAYER, 0xFFFFFFFFu)
 // The same in MaterialTablesHeader::pair_table's 16-bit layer field; layers stop below it.
 CARBTF_CONST_UINT(CARBTF_PAIR_NO_LAYER, 0xFFFFu)
-// A pair gain in MaterialTablesHeader::pair_gains is a 10-bit count of these fractions (gains 1/4 to 4).
+// A pair gain in the pair table (MaterialTablesHeader::pair_table) is a 10-bit count of these fractions (gains 1/4 to 4).
 CARBTF_CONST_FLOAT(CARBTF_PAIR_GAIN_UNITS, 256.0f)
 // A lookup-cell entry with this bit is a boundary edge, else a triangle.
 CARBTF_CONST_UINT(CARBTF_LOOKUP_EDGE_BIT, 0x80000000u)
-CARBTF_CONST_UINT(CARBTF_LOOKUP_ENTRY_WORDS, 9u)
+CARBTF_CONST_UINT(CARBTF_LOOKUP_ENTRY_QUADS, 3u)
 // A fragment inside a triangle up to this barycentric slack uses it; further out, the nearest edge.
 CARBTF_CONST_FLOAT(CARBTF_LOOKUP_INSIDE_SLACK, 1.0e-5f)
 // Direction weights below this are dropped (and the rest renormalised), so that a fragment at or next
@@ -279,17 +281,19 @@ CARBTF_CONST_FLOAT(CARBTF_RELIEF_SHADOW_SOFTNESS, 0.1f)
 CARBTF_CONST_UINT(CARBTF_RENDER_MAX_LIGHTS, 4u)
 
 // One direction set's lookup (engine/internal/carbtf/engine/internal/direction_lookup.hpp): a grid of
-// grid_size^2 cells over the projected disk [-1, 1]^2, row y, column x; cell c lists entries
-// [cells[c], cells[c + 1]). Offsets count uints from the start of the data after the header. Each entry
-// is CARBTF_LOOKUP_ENTRY_WORDS uints holding all a fragment needs, so that it reads them after one
-// indirection, not three (entry, then triangle, then points: gathers that wait on each other):
-//   a triangle: i0, i1, i2 (direction indices), then the projections of i0, i1, i2 (x, y as uint bits);
-//   a boundary edge: CARBTF_LOOKUP_EDGE_BIT | i0, i1, i1, then the projections of i0, i1, i1.
+// grid_size^2 cells over the projected disk [-1, 1]^2, row y, column x. Offsets count quads (16 bytes)
+// from the start of the buffer. Cell c lists entries [begin, end): the words 2c and 2c + 1 from quad
+// `cells` on. Each entry is CARBTF_LOOKUP_ENTRY_QUADS quads holding all a fragment needs, so that it
+// reads them after one indirection, not three (entry, then triangle, then points: fetches that wait on
+// each other):
+//   a triangle: i0, i1, i2 (direction indices), 0, then the projections of i0, i1, i2 (x, y as uint
+//   bits), 0, 0;
+//   a boundary edge: CARBTF_LOOKUP_EDGE_BIT | i0, i1, i1, 0, then the projections of i0, i1, i1, 0, 0.
 struct DirectionLookupGpu {
   uint count;      // directions
   uint grid_size;  // cells per side
-  uint cells;      // grid_size^2 + 1 entry starts
-  uint entries;    // CARBTF_LOOKUP_ENTRY_WORDS uints per entry
+  uint cells;      // quad of the grid_size^2 (begin, end) word pairs
+  uint entries;    // quad of the first entry, CARBTF_LOOKUP_ENTRY_QUADS quads each
   uint reserved0;
   uint reserved1;
   uint reserved2;
@@ -299,14 +303,14 @@ struct DirectionLookupGpu {
 struct MaterialTablesHeader {
   DirectionLookupGpu lights;
   DirectionLookupGpu views;
-  uint pair_table;  // lights * views uints, [light * views + view]: the pair's texture layer in the low
-                    // 16 bits (CARBTF_PAIR_NO_LAYER where it was not synthesized) and its subspace's tone
-                    // weight (SubspaceModel::tone_weight) as a half float in the high 16: one read per tap
+  uint pair_table;  // quad of lights * views word pairs, [light * views + view]: first the pair's texture
+                    // layer in the low 16 bits (CARBTF_PAIR_NO_LAYER where it was not synthesized) and
+                    // its subspace's tone weight (SubspaceModel::tone_weight) as a half float in the
+                    // high 16; then its gains on R, G and B (Material::pair_gains; 1 without) in bits
+                    // 0-9, 10-19 and 20-29, in units of 1/CARBTF_PAIR_GAIN_UNITS: one fetch per tap
   uint width;       // texels of the subspace images and of the range map
   uint height;
-  uint pair_gains;  // 0: the material has none; else lights * views uints, [light * views + view]: the
-                    // pair's gains on R, G and B (Material::pair_gains) in bits 0-9, 10-19 and 20-29, in
-                    // units of 1/CARBTF_PAIR_GAIN_UNITS
+  uint pair_gains;  // 1: the material has pair gains (the pair table holds them); 0: it has none
   float parallax_scale;  // parallax offset in texels = parallax_scale * (height - range_mean) * view.xy
   float range_mean;
   float light_z_floor;  // cos of the largest measured light elevation: the relit factor's denominator floor

@@ -25,8 +25,15 @@ layout(set = CARBTF_MATERIAL_SET, binding = CARBTF_MATERIAL_BINDING_SUBSPACES) u
 layout(set = CARBTF_MATERIAL_SET, binding = CARBTF_MATERIAL_BINDING_RANGE) uniform sampler2DArray carbtf_range;
 layout(std430, set = CARBTF_MATERIAL_SET, binding = CARBTF_MATERIAL_BINDING_TABLES) readonly buffer CarbtfTables {
   MaterialTablesHeader carbtf_header;
-  uint carbtf_data[];
 };
+// The same buffer as 16-byte texels. The header's fields are read at one address by every fragment;
+// the tables after it at addresses that vary per fragment, through texel fetches, which lavapipe
+// gathers at a fraction of the cost of storage buffer reads.
+layout(set = CARBTF_MATERIAL_SET, binding = CARBTF_MATERIAL_BINDING_TABLE_QUADS) uniform usamplerBuffer carbtf_table_quads;
+
+uvec4 carbtf_table_quad(uint quad) {
+  return texelFetch(carbtf_table_quads, int(quad));
+}
 
 // Specialization constant: false compiles the relief's cast shadows out (no horizon reads), for a
 // pipeline that only draws materials without them (MaterialBinding::casts_shadows()); true, the default,
@@ -249,11 +256,6 @@ vec2 carbtf_project_direction(vec3 d) {
   return (theta / (0.5 * CARBTF_PI)) * azimuth;
 }
 
-// Projection k (0 to 2) of the entry at word `base`.
-vec2 carbtf_lookup_point(uint base, uint k) {
-  return vec2(uintBitsToFloat(carbtf_data[base + 3u + 2u * k]), uintBitsToFloat(carbtf_data[base + 4u + 2u * k]));
-}
-
 // Barycentric weights of the measured directions around projected point p: the triangle of p's grid
 // cell that holds p, or (outside every triangle) the nearest point of the cell's boundary edges;
 // weights under CARBTF_LOOKUP_MIN_WEIGHT dropped.
@@ -263,19 +265,19 @@ void carbtf_direction_weights(DirectionLookupGpu set, vec2 p, out uvec3 index, o
   int g = int(set.grid_size);
   ivec2 cell = clamp(ivec2(floor((p * 0.5 + 0.5) * float(g))), ivec2(0), ivec2(g - 1));
   uint c = uint(cell.y * g + cell.x);
-  uint begin = carbtf_data[set.cells + c];
-  uint end = carbtf_data[set.cells + c + 1u];
+  uvec4 cells = carbtf_table_quad(set.cells + (c >> 1));
+  uvec2 range = (c & 1u) == 0u ? cells.xy : cells.zw;
   float best_inside = -1.0e30;
   float best_distance = 1.0e30;
   uvec3 edge_index = uvec3(0u);
   vec3 edge_weight = vec3(1.0, 0.0, 0.0);
-  for (uint e = begin; e < end; ++e) {
-    uint base = set.entries + CARBTF_LOOKUP_ENTRY_WORDS * e;
-    uint first = carbtf_data[base];
-    vec2 a = carbtf_lookup_point(base, 0u), b = carbtf_lookup_point(base, 1u);
-    if ((first & CARBTF_LOOKUP_EDGE_BIT) == 0u) {
-      uvec3 t = uvec3(first, carbtf_data[base + 1u], carbtf_data[base + 2u]);
-      vec2 q = carbtf_lookup_point(base, 2u);
+  for (uint e = range.x; e < range.y; ++e) {
+    uint base = set.entries + CARBTF_LOOKUP_ENTRY_QUADS * e;
+    uvec4 head = carbtf_table_quad(base);
+    vec4 points = uintBitsToFloat(carbtf_table_quad(base + 1u));
+    vec2 a = points.xy, b = points.zw;
+    if ((head.x & CARBTF_LOOKUP_EDGE_BIT) == 0u) {
+      vec2 q = uintBitsToFloat(carbtf_table_quad(base + 2u).xy);
       vec2 ab = b - a, aq = q - a;
       float area = ab.x * aq.y - ab.y * aq.x;
       vec2 pb = b - p, pq = q - p;
@@ -286,12 +288,12 @@ void carbtf_direction_weights(DirectionLookupGpu set, vec2 p, out uvec3 index, o
       float inside = min(l.x, min(l.y, l.z));
       if (inside > best_inside) {
         best_inside = inside;
-        index = t;
+        index = head.xyz;
         l = max(l, vec3(0.0));
         weight = l / (l.x + l.y + l.z);
       }
     } else {
-      uint i0 = first & ~CARBTF_LOOKUP_EDGE_BIT, i1 = carbtf_data[base + 1u];
+      uint i0 = head.x & ~CARBTF_LOOKUP_EDGE_BIT, i1 = head.y;
       vec2 ab = b - a;
       float s = clamp(dot(p - a, ab) / dot(ab, ab), 0.0, 1.0);
       vec2 d = a + s * ab - p;
@@ -330,10 +332,12 @@ vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, vec3 view, vec3 tone, float lo
     for (int j = 0; j < 3; ++j) {
       float w = lw[i] * vw[j];
       if (w == 0.0) continue;
-      uint pair = carbtf_data[carbtf_header.pair_table + li[i] * views + vi[j]];
-      uint layer = pair & 0xFFFFu;
+      uint p = li[i] * views + vi[j];
+      uvec4 quad = carbtf_table_quad(carbtf_header.pair_table + (p >> 1));
+      uvec2 entry = (p & 1u) == 0u ? quad.xy : quad.zw;
+      uint layer = entry.x & 0xFFFFu;
       if (layer == CARBTF_PAIR_NO_LAYER) continue;
-      float tone_weight = unpackHalf2x16(pair).y;
+      float tone_weight = unpackHalf2x16(entry.x).y;
       vec3 texel;
       if (carbtf_hardware_filtering) {
         texel = textureLod(carbtf_subspaces, vec3(uv, float(layer)), lod).rgb;
@@ -341,11 +345,7 @@ vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, vec3 view, vec3 tone, float lo
         texel = carbtf_subspace_texel(b, layer, s.level);
         if (s.t > 0.0) texel = mix(texel, carbtf_subspace_texel(b_up, layer, s.level + 1), s.t);
       }
-      vec3 gain = vec3(1.0);
-      if (carbtf_header.pair_gains != 0u) {
-        uint word = carbtf_data[carbtf_header.pair_gains + li[i] * views + vi[j]];
-        gain = vec3(uvec3(word, word >> 10, word >> 20) & 1023u) * (1.0 / CARBTF_PAIR_GAIN_UNITS);
-      }
+      vec3 gain = vec3(uvec3(entry.y, entry.y >> 10, entry.y >> 20) & 1023u) * (1.0 / CARBTF_PAIR_GAIN_UNITS);
       colour += (w * max(1.0 + tone_weight * tone_offset, vec3(0.0))) * (gain * texel);
     }
   }

@@ -27,6 +27,7 @@ namespace carbtf {
 namespace {
 
 constexpr std::uint32_t kHeaderWords = sizeof(gpu::MaterialTablesHeader) / 4;
+static_assert(kHeaderWords % 4 == 0, "the tables after the header start on a quad");
 
 std::uint32_t float_bits(float value) {
   std::uint32_t bits;
@@ -34,16 +35,24 @@ std::uint32_t float_bits(float value) {
   return bits;
 }
 
-// Appends one direction set's lookup after the header (DirectionLookupGpu: each entry inline with its
-// directions' projections); offsets count from the data start.
+// The quad (16 bytes, one texel of the tables' RGBA32UI view) at which `data` ends, padded to one.
+std::uint32_t next_quad(std::vector<std::uint32_t>& data) {
+  while (data.size() % 4 != 0) data.push_back(0u);
+  return static_cast<std::uint32_t>(data.size() / 4);
+}
+
+// Appends one direction set's lookup (DirectionLookupGpu): each cell's entry range, then each entry
+// inline with its directions' projections.
 void append_lookup(const DirectionTriangulation& triangulation, const DirectionLookupGrid& grid,
                    std::vector<std::uint32_t>& data, gpu::DirectionLookupGpu& out) {
-  auto offset = [&] { return static_cast<std::uint32_t>(data.size() - kHeaderWords); };
   out.count = static_cast<std::uint32_t>(triangulation.points.size());
   out.grid_size = grid.grid_size;
-  out.cells = offset();
-  data.insert(data.end(), grid.cell_starts.begin(), grid.cell_starts.end());
-  out.entries = offset();
+  out.cells = next_quad(data);
+  for (std::size_t c = 0; c + 1 < grid.cell_starts.size(); ++c) {
+    data.push_back(grid.cell_starts[c]);
+    data.push_back(grid.cell_starts[c + 1]);
+  }
+  out.entries = next_quad(data);
   for (const std::uint32_t entry : grid.entries) {
     std::array<std::uint32_t, 3> index;
     if ((entry & gpu::CARBTF_LOOKUP_EDGE_BIT) == 0) {
@@ -52,18 +61,21 @@ void append_lookup(const DirectionTriangulation& triangulation, const DirectionL
       const auto& edge = triangulation.boundary[entry & ~gpu::CARBTF_LOOKUP_EDGE_BIT];
       index = {edge[0], edge[1], edge[1]};
     }
-    data.push_back(index[0] | (entry & gpu::CARBTF_LOOKUP_EDGE_BIT));
-    data.push_back(index[1]);
-    data.push_back(index[2]);
-    for (const std::uint32_t i : index) {
-      data.push_back(float_bits(static_cast<float>(triangulation.points[i][0])));
-      data.push_back(float_bits(static_cast<float>(triangulation.points[i][1])));
+    const std::size_t start = data.size();
+    data.resize(start + 4 * gpu::CARBTF_LOOKUP_ENTRY_QUADS, 0u);
+    data[start] = index[0] | (entry & gpu::CARBTF_LOOKUP_EDGE_BIT);
+    data[start + 1] = index[1];
+    data[start + 2] = index[2];
+    for (std::size_t k = 0; k < 3; ++k) {
+      data[start + 4 + 2 * k] = float_bits(static_cast<float>(triangulation.points[index[k]][0]));
+      data[start + 5 + 2 * k] = float_bits(static_cast<float>(triangulation.points[index[k]][1]));
     }
   }
 }
 
-// The pair table (MaterialTablesHeader::pair_table): per (light, view) pair, [light * views + view], its
-// layer in the low 16 bits and its subspace's tone weight as a half float in the high 16.
+// The pair table (MaterialTablesHeader::pair_table), two words per (light, view) pair at
+// [2 * (light * views + view)]: its layer in the low 16 bits and its subspace's tone weight as a half
+// float in the high 16, then its gains (write_pair_gains()).
 void write_pair_table(const Material& material, const MaterialTextures& textures, std::span<std::uint32_t> out) {
   for (std::size_t l = 0; l < material.lights.size(); ++l) {
     for (std::size_t v = 0; v < material.views.size(); ++v) {
@@ -71,18 +83,22 @@ void write_pair_table(const Material& material, const MaterialTextures& textures
       const std::uint32_t layer =
           textures.pair_layers.empty() ? textures.layers[s] : textures.pair_layers[l * material.views.size() + v];
       const std::uint32_t field = layer == std::numeric_limits<std::uint32_t>::max() ? gpu::CARBTF_PAIR_NO_LAYER : layer;
-      out[l * material.views.size() + v] = field | std::uint32_t{glm::packHalf1x16(material.subspaces[s].tone_weight)} << 16;
+      out[2 * (l * material.views.size() + v)] = field | std::uint32_t{glm::packHalf1x16(material.subspaces[s].tone_weight)} << 16;
     }
   }
 }
 
-// The pair gain table (MaterialTablesHeader::pair_gains), for a material with gains.
+// The pair table's second words: the pair's gains on R, G and B in 10-bit fixed point (1 each for a
+// material without gains, which multiplies by exactly 1).
 void write_pair_gains(const Material& material, std::span<std::uint32_t> out) {
   for (std::uint32_t l = 0; l < material.lights.size(); ++l) {
     for (std::uint32_t v = 0; v < material.views.size(); ++v) {
       std::uint32_t word = 0;
-      for (std::uint32_t c = 0; c < 3; ++c) word |= pair_gain_units(pair_gain(material, l, v, c)) << (10 * c);
-      out[std::size_t{l} * material.views.size() + v] = word;
+      for (std::uint32_t c = 0; c < 3; ++c) {
+        const float gain = material.pair_gains.empty() ? 1.0f : pair_gain(material, l, v, c);
+        word |= pair_gain_units(gain) << (10 * c);
+      }
+      out[2 * (std::size_t{l} * material.views.size() + v) + 1] = word;
     }
   }
 }
@@ -96,13 +112,14 @@ bool fits_pair_table(std::uint32_t layer) {
 
 struct MaterialBinding::Resources {
   std::vector<std::uint32_t> tables;
-  std::size_t pair_table = 0;  // word offset of the pair table in `tables`
+  std::size_t pair_table = 0;  // word offset of the pair table in `tables`, two words per pair
   bool pair_layers = false;     // drawn by (light, view) pair (MaterialTextures::pair_layers)
   std::vector<float> range_map;
   std::vector<float> tone_map;
   std::uint32_t width = 0;
   std::uint32_t height = 0;
   Buffer table_buffer;
+  UniqueHandle<VkBufferView> table_quads;  // the tables as RGBA32UI texels, for the fragment stage
   // RGBA32F, mip_levels levels: layer 0 the height (r) and the relief tone of each colour channel (gba),
   // layer 1 the relief normal (rgb, relief_normals.hpp), layers 2 and 3 the horizons of azimuths 0-3
   // and 4-7 (relief_horizons.hpp; 0 where the material casts no shadows).
@@ -173,16 +190,14 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     CARBTF_TRY(MaterialDirections::build(material, directions, info.lookup_grid_size));
     append_lookup(directions.light_triangulation(), directions.light_grid(), r.tables, header.lights);
     append_lookup(directions.view_triangulation(), directions.view_grid(), r.tables, header.views);
-    header.pair_table = static_cast<std::uint32_t>(r.tables.size() - kHeaderWords);
-    r.tables.resize(r.tables.size() + material.lights.size() * material.views.size());
-    write_pair_table(material, textures, std::span(r.tables).subspan(kHeaderWords + header.pair_table));
-    r.pair_table = kHeaderWords + header.pair_table;
+    header.pair_table = next_quad(r.tables);
+    r.pair_table = r.tables.size();
+    r.tables.resize(r.tables.size() + 2 * material.lights.size() * material.views.size());
+    write_pair_table(material, textures, std::span(r.tables).subspan(r.pair_table));
+    write_pair_gains(material, std::span(r.tables).subspan(r.pair_table));
+    next_quad(r.tables);
     r.pair_layers = !textures.pair_layers.empty();
-    if (!material.pair_gains.empty()) {
-      header.pair_gains = static_cast<std::uint32_t>(r.tables.size() - kHeaderWords);
-      r.tables.resize(r.tables.size() + material.lights.size() * material.views.size());
-      write_pair_gains(material, std::span(r.tables).subspan(kHeaderWords + header.pair_gains));
-    }
+    header.pair_gains = material.pair_gains.empty() ? 0u : 1u;
     header.width = textures.width;
     header.height = textures.height;
     header.parallax_scale = info.parallax_scale;
@@ -220,7 +235,7 @@ Status MaterialBinding::create(Context& context, const Material& material, const
 
     // GPU side.
     CARBTF_TRY(Buffer::create(context,
-                              {r.tables.size() * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                              {r.tables.size() * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
                                MemoryUsage::host_upload, "carbtf material tables"},
                               r.table_buffer));
     std::memcpy(r.table_buffer.mapped(), r.tables.data(), r.tables.size() * 4);
@@ -275,26 +290,49 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     r.sampler = UniqueHandle<VkSampler>(&vk, device, sampler);
     context.set_debug_name(r.sampler, "carbtf material sampler");
 
+    // The fragment stage reads the tables per pixel through a texel buffer view: on lavapipe a texel
+    // fetch costs a fraction of a storage buffer read at a varying address (docs/design.md 4.5).
+    // R32G32B32A32_UINT uniform texel buffers are mandatory; their length is not.
+    VkPhysicalDeviceProperties properties{};
+    vk.vkGetPhysicalDeviceProperties(context.physical_device(), &properties);
+    const std::size_t quads = r.tables.size() / 4;
+    if (quads > properties.limits.maxTexelBufferElements) {
+      return {ErrorCode::device_unsuitable,
+              "the material's lookup tables take " + std::to_string(quads) + " texels, more than the device's " +
+                  std::to_string(properties.limits.maxTexelBufferElements) +
+                  " texel buffer elements (fewer directions or a smaller lookup_grid_size fit)"};
+    }
+    auto view_info = vk_struct<VkBufferViewCreateInfo>(VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO);
+    view_info.buffer = r.table_buffer.handle();
+    view_info.format = VK_FORMAT_R32G32B32A32_UINT;
+    view_info.range = VK_WHOLE_SIZE;
+    VkBufferView quads_view = VK_NULL_HANDLE;
+    CARBTF_VK_TRY(vk.vkCreateBufferView(device, &view_info, nullptr, &quads_view));
+    r.table_quads = UniqueHandle<VkBufferView>(&vk, device, quads_view);
+    context.set_debug_name(r.table_quads, "carbtf material table quads");
+
     const VkShaderStageFlags stages = VK_SHADER_STAGE_FRAGMENT_BIT | VK_SHADER_STAGE_COMPUTE_BIT;
-    const VkDescriptorSetLayoutBinding bindings[3] = {
+    const VkDescriptorSetLayoutBinding bindings[4] = {
         {gpu::CARBTF_MATERIAL_BINDING_SUBSPACES, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stages,
          nullptr},
         {gpu::CARBTF_MATERIAL_BINDING_RANGE, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stages, nullptr},
-        {gpu::CARBTF_MATERIAL_BINDING_TABLES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stages, nullptr}};
+        {gpu::CARBTF_MATERIAL_BINDING_TABLES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stages, nullptr},
+        {gpu::CARBTF_MATERIAL_BINDING_TABLE_QUADS, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1, stages, nullptr}};
     auto layout_info =
         vk_struct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
-    layout_info.bindingCount = 3;
+    layout_info.bindingCount = 4;
     layout_info.pBindings = bindings;
     VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;
     CARBTF_VK_TRY(vk.vkCreateDescriptorSetLayout(device, &layout_info, nullptr, &set_layout));
     r.set_layout = UniqueHandle<VkDescriptorSetLayout>(&vk, device, set_layout);
     context.set_debug_name(r.set_layout, "carbtf material set layout");
 
-    const VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2},
-                                           {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1}};
+    const VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2},
+                                           {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1},
+                                           {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1}};
     auto pool_info = vk_struct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
     pool_info.maxSets = 1;
-    pool_info.poolSizeCount = 2;
+    pool_info.poolSizeCount = 3;
     pool_info.pPoolSizes = sizes;
     VkDescriptorPool pool = VK_NULL_HANDLE;
     CARBTF_VK_TRY(vk.vkCreateDescriptorPool(device, &pool_info, nullptr, &pool));
@@ -310,8 +348,8 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     const VkDescriptorImageInfo range{sampler, r.range_image->view(),
                                       VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     const VkDescriptorBufferInfo tables{r.table_buffer.handle(), 0, VK_WHOLE_SIZE};
-    VkWriteDescriptorSet writes[3];
-    for (int i = 0; i < 3; ++i) {
+    VkWriteDescriptorSet writes[4];
+    for (int i = 0; i < 4; ++i) {
       writes[i] = vk_struct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
       writes[i].dstSet = r.set;
       writes[i].dstBinding = bindings[i].binding;
@@ -321,7 +359,8 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     writes[0].pImageInfo = &subspaces;
     writes[1].pImageInfo = &range;
     writes[2].pBufferInfo = &tables;
-    vk.vkUpdateDescriptorSets(device, 3, writes, 0, nullptr);
+    writes[3].pTexelBufferView = &quads_view;
+    vk.vkUpdateDescriptorSets(device, 4, writes, 0, nullptr);
     out = std::move(binding);
     return {};
   } catch (const std::bad_alloc&) {
@@ -389,7 +428,7 @@ Status MaterialBinding::set_layers(const Material& material, std::span<const std
   if (r.pair_layers)
     return {ErrorCode::invalid_argument, "this binding draws (light, view) pair layers, not subspace layers"};
   const std::size_t pairs = material.lights.size() * material.views.size();
-  if (layers.size() != material.subspaces.size() || r.pair_table + pairs > r.tables.size()) {
+  if (layers.size() != material.subspaces.size() || r.pair_table + 2 * pairs > r.tables.size()) {
     return {ErrorCode::invalid_argument,
             "set_layers() got " + std::to_string(layers.size()) + " subspace layers for a material of " +
                 std::to_string(material.subspaces.size()) + " subspace images and " + std::to_string(pairs) +
@@ -400,9 +439,9 @@ Status MaterialBinding::set_layers(const Material& material, std::span<const std
   }
   MaterialTextures textures;
   textures.layers.assign(layers.begin(), layers.end());
-  const std::span<std::uint32_t> table = std::span(r.tables).subspan(r.pair_table, pairs);
+  const std::span<std::uint32_t> table = std::span(r.tables).subspan(r.pair_table, 2 * pairs);
   write_pair_table(material, textures, table);
-  std::memcpy(static_cast<std::uint32_t*>(r.table_buffer.mapped()) + r.pair_table, table.data(), pairs * 4);
+  std::memcpy(static_cast<std::uint32_t*>(r.table_buffer.mapped()) + r.pair_table, table.data(), table.size_bytes());
   return {};
 }
 

@@ -46,6 +46,8 @@ namespace carbtf {
   X(vkDestroyImage)                    \
   X(vkCreateImageView)                 \
   X(vkDestroyImageView)                \
+  X(vkCreateBufferView)                \
+  X(vkDestroyBufferView)               \
   X(vkGetImageMemoryRequirements)      \
   X(vkAllocateMemory)                  \
   X(vkFreeMemory)                      \
