@@ -275,6 +275,15 @@ CARBTF_CONST_FLOAT(CARBTF_LOOKUP_MIN_WEIGHT, 1.0e-5f)
 // the range texture's heights, tone and horizons through the sampler's trilinear filtering instead of
 // by hand, unless the including shader defines CARBTF_HARDWARE_FILTERING_CONSTANT_ID.
 #define CARBTF_HARDWARE_FILTERING_DEFAULT_CONSTANT_ID 1001
+// The constant id of carbtf_material.glsl's cost probe (`carbtf bench frame --parts`): 0, the default,
+// draws the material; each bit below replaces one part of the fragment stage by a constant, so that a
+// benchmark measures the render pass without it. The picture is then wrong: for timing only.
+#define CARBTF_COST_PROBE_DEFAULT_CONSTANT_ID 1002
+CARBTF_CONST_UINT(CARBTF_COST_PROBE_LOOKUPS, 1u)         // the two direction lookups: fixed weights
+CARBTF_CONST_UINT(CARBTF_COST_PROBE_PAIR_READS, 2u)      // the pair table: layers from the indices
+CARBTF_CONST_UINT(CARBTF_COST_PROBE_SUBSPACE_READS, 4u)  // the 9 subspace image reads: the layer's grey
+CARBTF_CONST_UINT(CARBTF_COST_PROBE_RELIEF, 8u)          // the normal, tone and horizons: flat, 1, none
+CARBTF_CONST_UINT(CARBTF_COST_PROBE_PARALLAX, 16u)       // the parallax height read: no shift
 // The penumbra of the relief's cast shadows, in tangent of elevation (relief_horizons.hpp).
 CARBTF_CONST_FLOAT(CARBTF_RELIEF_SHADOW_SOFTNESS, 0.1f)
 // Lights one draw of carbtf's own mesh pipeline shades with.

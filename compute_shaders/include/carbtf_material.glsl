@@ -56,6 +56,17 @@ layout(constant_id = CARBTF_SHADOWS_CONSTANT_ID) const bool carbtf_shadows_compi
 #endif
 layout(constant_id = CARBTF_HARDWARE_FILTERING_CONSTANT_ID) const bool carbtf_hardware_filtering = false;
 
+// Specialization constant: carbtf_gpu_shared.h's CARBTF_COST_PROBE_* bits, for benchmarks only; 0 draws
+// the material, and compiles every probe out.
+#ifndef CARBTF_COST_PROBE_CONSTANT_ID
+#define CARBTF_COST_PROBE_CONSTANT_ID CARBTF_COST_PROBE_DEFAULT_CONSTANT_ID
+#endif
+layout(constant_id = CARBTF_COST_PROBE_CONSTANT_ID) const uint carbtf_cost_probe = 0u;
+
+bool carbtf_probed(uint part) {
+  return (carbtf_cost_probe & part) != 0u;
+}
+
 const float CARBTF_PI = 3.14159265358979;
 
 // Bilinear filtering by hand (texelFetch), edge texels repeated: the same arithmetic as the CPU
@@ -237,6 +248,7 @@ float carbtf_relief_visibility(CarbtfRelief relief, vec3 light) {
 // towards the eye) is shifted by height * view.xy texels, never divided by view.z, so grazing views
 // stay bounded.
 vec2 carbtf_parallax_uv(vec2 uv, vec3 view, float lod) {
+  if (carbtf_probed(CARBTF_COST_PROBE_PARALLAX)) return uv;
   float shift = carbtf_header.parallax_scale * carbtf_height(uv, lod);
   vec2 texels = shift * vec2(view.x, -view.y);  // texture up is -v
   return uv + texels / vec2(float(carbtf_header.width), float(carbtf_header.height));
@@ -320,8 +332,15 @@ void carbtf_direction_weights(DirectionLookupGpu set, vec2 p, out uvec3 index, o
 vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, vec3 view, vec3 tone, float lod) {
   uvec3 li, vi;
   vec3 lw, vw;
-  carbtf_direction_weights(carbtf_header.lights, carbtf_project_direction(light), li, lw);
-  carbtf_direction_weights(carbtf_header.views, carbtf_project_direction(view), vi, vw);
+  if (carbtf_probed(CARBTF_COST_PROBE_LOOKUPS)) {
+    li = uvec3(0u, 1u, 2u) % max(carbtf_header.lights.count, 1u);
+    vi = uvec3(0u, 1u, 2u) % max(carbtf_header.views.count, 1u);
+    lw = vec3(0.5, 0.3, 0.2);
+    vw = lw;
+  } else {
+    carbtf_direction_weights(carbtf_header.lights, carbtf_project_direction(light), li, lw);
+    carbtf_direction_weights(carbtf_header.views, carbtf_project_direction(view), vi, vw);
+  }
   CarbtfLod s = carbtf_split_lod(lod);
   CarbtfBilinear b = carbtf_bilinear(uv, s.level);
   CarbtfBilinear b_up = carbtf_bilinear(uv, s.level + (s.t > 0.0 ? 1 : 0));
@@ -333,13 +352,16 @@ vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, vec3 view, vec3 tone, float lo
       float w = lw[i] * vw[j];
       if (w == 0.0) continue;
       uint p = li[i] * views + vi[j];
-      uvec4 quad = carbtf_table_quad(carbtf_header.pair_table + (p >> 1));
+      uvec4 quad = carbtf_probed(CARBTF_COST_PROBE_PAIR_READS) ? uvec4(p % 16u, 0x10040100u, p % 16u, 0x10040100u)
+                                                             : carbtf_table_quad(carbtf_header.pair_table + (p >> 1));
       uvec2 entry = (p & 1u) == 0u ? quad.xy : quad.zw;
       uint layer = entry.x & 0xFFFFu;
       if (layer == CARBTF_PAIR_NO_LAYER) continue;
       float tone_weight = unpackHalf2x16(entry.x).y;
       vec3 texel;
-      if (carbtf_hardware_filtering) {
+      if (carbtf_probed(CARBTF_COST_PROBE_SUBSPACE_READS)) {
+        texel = vec3(float(layer) / 16.0);
+      } else if (carbtf_hardware_filtering) {
         texel = textureLod(carbtf_subspaces, vec3(uv, float(layer)), lod).rgb;
       } else {
         texel = carbtf_subspace_texel(b, layer, s.level);
@@ -362,7 +384,12 @@ vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, vec3 view, vec3 tone, float lo
 // `lod`: carbtf_material_lod() of the fragment (0, level 0 only, where the host has none).
 vec3 carbtf_material_shade(vec2 uv, vec3 light, vec3 view, float lod) {
   if (light.z <= 0.0 || view.z <= 0.0) return vec3(0.0);
-  CarbtfRelief relief = carbtf_relief(uv, lod);
+  CarbtfRelief relief;
+  if (carbtf_probed(CARBTF_COST_PROBE_RELIEF)) {
+    relief = CarbtfRelief(vec3(0.0, 0.0, 1.0), vec3(1.0), vec4(0.0), vec4(0.0));
+  } else {
+    relief = carbtf_relief(uv, lod);
+  }
   float relit = max(dot(relief.normal, light), 0.0) / max(light.z, carbtf_header.light_z_floor);
   if (carbtf_shadows_compiled && carbtf_header.shadows != 0u) relit *= carbtf_relief_visibility(relief, light);
   return relit * carbtf_interpolated_btf(uv, light, view, relief.tone, lod);

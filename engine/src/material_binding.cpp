@@ -26,6 +26,11 @@ namespace carbtf {
 
 namespace {
 
+static_assert(cost_probe::lookups == gpu::CARBTF_COST_PROBE_LOOKUPS && cost_probe::pair_reads == gpu::CARBTF_COST_PROBE_PAIR_READS &&
+                  cost_probe::subspace_reads == gpu::CARBTF_COST_PROBE_SUBSPACE_READS &&
+                  cost_probe::relief == gpu::CARBTF_COST_PROBE_RELIEF && cost_probe::parallax == gpu::CARBTF_COST_PROBE_PARALLAX,
+              "the engine's cost probe bits are the shader's");
+
 constexpr std::uint32_t kHeaderWords = sizeof(gpu::MaterialTablesHeader) / 4;
 static_assert(kHeaderWords % 4 == 0, "the tables after the header start on a quad");
 
@@ -127,6 +132,7 @@ struct MaterialBinding::Resources {
   std::uint32_t mip_levels = 1;
   bool shadows = false;
   bool hardware_filtering = false;
+  std::uint32_t cost_probe = 0;  // MaterialBindingInfo::cost_probe
   UniqueHandle<VkSampler> sampler;
   UniqueHandle<VkDescriptorSetLayout> set_layout;
   UniqueHandle<VkDescriptorPool> pool;
@@ -182,6 +188,7 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     Resources& r = *binding->resources_;
     r.width = textures.width;
     r.height = textures.height;
+    r.cost_probe = info.cost_probe;
 
     // Host side: the tables and the range map.
     r.tables.assign(kHeaderWords, 0u);
@@ -401,9 +408,10 @@ bool MaterialBinding::hardware_filtering() const noexcept {
 }
 
 void MaterialBinding::shader_constants(MaterialShaderConstants& out) const noexcept {
-  out.values = {casts_shadows() ? VK_TRUE : VK_FALSE, hardware_filtering() ? VK_TRUE : VK_FALSE};
+  out.values = {casts_shadows() ? VK_TRUE : VK_FALSE, hardware_filtering() ? VK_TRUE : VK_FALSE, resources_->cost_probe};
   out.entries = {VkSpecializationMapEntry{CARBTF_SHADOWS_DEFAULT_CONSTANT_ID, 0, sizeof(VkBool32)},
-                 VkSpecializationMapEntry{CARBTF_HARDWARE_FILTERING_DEFAULT_CONSTANT_ID, sizeof(VkBool32), sizeof(VkBool32)}};
+                 VkSpecializationMapEntry{CARBTF_HARDWARE_FILTERING_DEFAULT_CONSTANT_ID, 4, sizeof(VkBool32)},
+                 VkSpecializationMapEntry{CARBTF_COST_PROBE_DEFAULT_CONSTANT_ID, 8, sizeof(std::uint32_t)}};
   out.info = {static_cast<std::uint32_t>(out.entries.size()), out.entries.data(), sizeof out.values, out.values.data()};
 }
 

@@ -41,6 +41,7 @@ struct FrameBenchOptions {
   std::uint32_t texture_size = 0;  // 0: what the first frame needs, up to 1024
   std::uint32_t mip_levels = 0;    // MaterialBindingInfo::max_mip_levels
   bool hand_filtering = false;     // !MaterialBindingInfo::hardware_filtering
+  bool parts = false;              // also time the render pass without each part (cost probes)
   std::string out = "bench_frame";
 };
 
@@ -152,6 +153,54 @@ void run_bench_frame(const FrameBenchOptions& options) {
     if (added.empty()) record.synthesis_gpu_ms = 0.0;
     records.push_back(record);
   }
+  if (options.parts) {
+    std::printf("bench frame: the render pass again with each part of the fragment stage replaced by a constant\n");
+    std::fflush(stdout);
+    const std::vector<std::pair<const char*, std::uint32_t>> probes = {
+        {"none (the full pass)", 0u},
+        {"direction lookups", cost_probe::lookups},
+        {"pair table reads", cost_probe::pair_reads},
+        {"subspace image reads", cost_probe::subspace_reads},
+        {"relief (normal, tone, horizons)", cost_probe::relief},
+        {"parallax height read", cost_probe::parallax}};
+    std::vector<FramePartTimes> parts;
+    std::vector<std::unique_ptr<MaterialBinding>> bindings(probes.size());
+    std::vector<std::unique_ptr<MeshRenderer>> renderers(probes.size());
+    for (std::size_t p = 0; p < probes.size(); ++p) {
+      MaterialBindingInfo info{1};
+      info.max_mip_levels = options.mip_levels;
+      info.hardware_filtering = !options.hand_filtering;
+      info.cost_probe = probes[p].second;
+      check(MaterialBinding::create(*context, material, resident->textures(), info, bindings[p]), "cannot bind");
+      check(bindings[p]->upload_and_wait(), "cannot upload the material");
+      check(MeshRenderer::create(*context, *bindings[p], target, renderers[p]), "cannot build the render pass");
+      check(renderers[p]->set_mesh(mesh), "cannot upload the mesh");
+      parts.push_back({probes[p].first, {}});
+    }
+    // Frame by frame, every variant in turn, so that the machine's drift falls on all of them alike.
+    for (std::uint32_t i = 0; i < options.frames; ++i) {
+      const RenderScene scene = orbiting_scene(i, options.frames);
+      for (std::size_t p = 0; p < probes.size(); ++p) {
+        check(context->submit_and_wait([&](VkCommandBuffer cb) {
+          timer.record_reset(cb);
+          timer.record_timestamp(cb, 0, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT);
+          if (Status s = renderers[p]->record(cb, scene); !s.ok()) return s;
+          timer.record_timestamp(cb, 1);
+          return Status{};
+        }),
+              "frame " + std::to_string(i) + " without the " + parts[p].part + " failed");
+        double ms = 0.0;
+        check(timer.elapsed_ms(0, 1, ms), "cannot read the GPU timestamps");
+        parts[p].render_gpu_ms.push_back(ms);
+      }
+    }
+    check_validation(*context);
+    const std::string heading = "bench frame --parts: render pass GPU time, " + std::to_string(options.frames) +
+                                " frames per variant, " + context->device_info().name +
+                                " (timing only: a replaced part makes the picture wrong)\n\n";
+    std::printf("\n%s%s", heading.c_str(), write_frame_parts_report(out, parts, heading).c_str());
+    std::printf("wrote %s/bench_frame_parts.csv and bench_frame_parts.md\n\n", out.string().c_str());
+  }
   check_validation(*context);
 
   char line[256];
@@ -195,6 +244,10 @@ void register_bench_frame_command(CLI::App& bench) {
       ->check(CLI::Range(16u, 8192u));
   command->add_option("--mip-levels", options->mip_levels, "At most this many mip levels (0: all; 1: level 0 only)")
       ->check(CLI::Range(0u, 16u))->capture_default_str();
+  command->add_flag("--parts", options->parts,
+                    "Also render the frames with each part of the fragment stage (direction lookups, pair table, "
+                    "subspace image reads, relief, parallax) replaced by a constant, in turn with the full pass, "
+                    "and report what each part costs (timing only; writes bench_frame_parts.md and .csv)");
   command->add_flag("--hand-filtering", options->hand_filtering,
                     "Filter the subspace images by hand, as the CPU reference does, instead of through the "
                     "sampler's trilinear filtering (the default where the device filters RGBA32F)");

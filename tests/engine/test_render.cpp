@@ -284,6 +284,28 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
     if (fast_binding->hardware_filtering()) CHECK(path_difference > 0.0);
   }
 
+  // The cost probes of `bench frame --parts` (MaterialBindingInfo::cost_probe): each replaces its part,
+  // so the picture changes; the binding's default draws the material (the picture above).
+  for (const std::uint32_t probe : {cost_probe::lookups, cost_probe::pair_reads, cost_probe::subspace_reads,
+                                    cost_probe::relief, cost_probe::parallax}) {
+    MaterialBindingInfo probe_info = binding_info;
+    probe_info.cost_probe = probe;
+    std::unique_ptr<MaterialBinding> probe_binding;
+    REQUIRE(MaterialBinding::create(*context, m, material_textures(*synthesizer, m), probe_info, probe_binding).ok());
+    REQUIRE(probe_binding->upload_and_wait().ok());
+    std::unique_ptr<MeshRenderer> probe_renderer;
+    REQUIRE(MeshRenderer::create(*context, *probe_binding, target, probe_renderer).ok());
+    REQUIRE(probe_renderer->set_mesh(make_plane()).ok());
+    RenderedImage probe_frame;
+    REQUIRE(probe_renderer->render(scene, probe_frame).ok());
+    const std::vector<float> probed = as_floats(probe_frame);
+    REQUIRE(probed.size() == gpu.size());
+    std::size_t changed = 0;
+    for (std::size_t i = 0; i < probed.size(); ++i) changed += probed[i] != gpu[i] ? 1 : 0;
+    INFO("cost probe " << probe << ": " << changed << " of " << probed.size() << " values changed");
+    CHECK(changed > probed.size() / 8);
+  }
+
   // Stored normals (relief_normals.hpp) against the central differences of the bilinear heights the
   // render pass used before, at level 0: equal at texel centres, they differ between texels by
   // blending unit normals instead of gradients. This material's relief is steep (slopes of several

@@ -318,11 +318,19 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
   SECTION("carbtf bench frame reports synthesis and render times per frame") {
     const fs::path out = folder / "frames";
     const Run bench = run("bench frame --material " + material.string() + " --frames 4 --width 64 --height 48 "
-                          "--texture-size 32 --validation --out " + out.string());
+                          "--texture-size 32 --parts --validation --out " + out.string());
     INFO(bench.output);
     REQUIRE(bench.status == 0);
     CHECK_THAT(bench.output, Catch::Contains("render pass, GPU timestamps | 4 |") &&
                                  Catch::Contains("synthesis, GPU timestamps (frames that synthesize)"));
+    // --parts: the full pass and each part replaced, every one timed on the 4 frames.
+    for (const char* part : {"none (the full pass)", "direction lookups", "pair table reads", "subspace image reads",
+                             "relief (normal, tone, horizons)", "parallax height read"}) {
+      CHECK_THAT(bench.output, Catch::Contains(std::string("| ") + part + " | 4 |"));
+    }
+    const auto parts_bytes = read_file_bytes(out / "bench_frame_parts.csv");
+    CHECK(line_count(std::string(reinterpret_cast<const char*>(parts_bytes.data()), parts_bytes.size())) == 1 + 6 * 4);
+    CHECK(fs::exists(out / "bench_frame_parts.md"));
     const auto csv_bytes = read_file_bytes(out / "bench_frame.csv");
     std::string csv;
     for (const std::byte b : csv_bytes) csv.push_back(static_cast<char>(b));

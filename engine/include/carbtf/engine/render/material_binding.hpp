@@ -52,6 +52,16 @@ struct MaterialTextures {
 // The textures of a prepared synthesizer.
 MaterialTextures material_textures(const SubspaceSynthesizer& synthesizer, const Material& material);
 
+// MaterialBindingInfo::cost_probe's bits (carbtf_gpu_shared.h's CARBTF_COST_PROBE_*): each replaces one
+// part of carbtf_material.glsl's fragment stage by a constant.
+namespace cost_probe {
+constexpr std::uint32_t lookups = 1;         // the two direction lookups: fixed weights
+constexpr std::uint32_t pair_reads = 2;      // the pair table: layers from the indices, gains 1
+constexpr std::uint32_t subspace_reads = 4;  // the 9 subspace image reads: a grey per layer
+constexpr std::uint32_t relief = 8;          // the normal, tone and horizons: flat, 1, none
+constexpr std::uint32_t parallax = 16;       // the parallax height read: no shift
+}  // namespace cost_probe
+
 struct MaterialBindingInfo {
   // The range map's block of its enlarged map: the synthesized block's seed and position, so that the
   // range map and the subspace images describe the same surface.
@@ -70,15 +80,19 @@ struct MaterialBindingInfo {
   // fast path, within the device's sub-texel precision of the hand filtering. false: a sampler that does not filter, for hosts that compare the render with
   // the CPU twin (render_reference.hpp) bit for bit or nearly.
   bool hardware_filtering = true;
+  // For benchmarks only (`carbtf bench frame --parts`): cost_probe bits, each part of the fragment stage
+  // they name replaced by a constant, the picture wrong. 0: the material.
+  std::uint32_t cost_probe = 0;
 };
 
 // The values of carbtf_material.glsl's specialization constants that suit one binding, at their default
-// ids (CARBTF_SHADOWS_DEFAULT_CONSTANT_ID, CARBTF_HARDWARE_FILTERING_DEFAULT_CONSTANT_ID): a fragment
+// ids (CARBTF_SHADOWS_DEFAULT_CONSTANT_ID, CARBTF_HARDWARE_FILTERING_DEFAULT_CONSTANT_ID,
+// CARBTF_COST_PROBE_DEFAULT_CONSTANT_ID): a fragment
 // stage's pSpecializationInfo = &constants.info. Self-referencing: keep the object where it is (no copy
 // or move) until the pipeline is created.
 struct MaterialShaderConstants {
-  std::array<VkBool32, 2> values{};
-  std::array<VkSpecializationMapEntry, 2> entries{};
+  std::array<std::uint32_t, 3> values{};  // two VkBool32, then the cost probe's bits
+  std::array<VkSpecializationMapEntry, 3> entries{};
   VkSpecializationInfo info{};
 };
 
