@@ -243,7 +243,7 @@ CARBTF_FUNCTION float carbtf_polar_angle(float r, float z) {
 // ---- Material render pass (carbtf_material.glsl, engine/include/carbtf/engine/render/material_binding.hpp) --
 // The material descriptor set: binding 0 the subspace images (sampler2DArray, one layer per
 // synthesized subspace image), binding 1 the enlarged range map (sampler2DArray: layer 0 r the heights
-// in texels and gba each colour channel's relief tone, layer 1 rgb the relief normal, layers 2 and 3 the
+// in texels and gba each colour channel's relief tone, layer 1 rgb the relief normal and a its length, layers 2 and 3 the
 // horizons of azimuths 0-3 and 4-7 for cast shadows), binding 2 the lookup tables (readonly
 // storage buffer: MaterialTablesHeader, then the tables), binding 3 the same buffer as RGBA32UI texels
 // (usamplerBuffer: 16-byte "quads"), through which the fragment stage reads the tables after the header.

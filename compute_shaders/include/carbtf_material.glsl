@@ -44,13 +44,13 @@ uvec4 carbtf_table_quad(uint quad) {
 #endif
 layout(constant_id = CARBTF_SHADOWS_CONSTANT_ID) const bool carbtf_shadows_compiled = true;
 
-// Specialization constant: true reads the subspace images, and the range texture's heights, tone and
-// horizons, with textureLod() through the binding's sampler (trilinear, clamped or repeating as the
-// textures are): one filtered read where the hand filtering reads eight texels. The fast path, for a
+// Specialization constant: true reads the subspace images, and the range texture's heights, normals,
+// tone and horizons, with textureLod() through the binding's sampler (trilinear, clamped or repeating as
+// the textures are): one filtered read where the hand filtering reads eight texels. The fast path, for a
 // binding whose sampler filters (MaterialBinding::hardware_filtering()). Its weights have the device's
 // sub-texel precision, so the picture differs from the CPU twin's by up to that; false, the default,
-// filters by hand with the twin's arithmetic. The normals are always blended by hand (their length
-// is kept: carbtf_normal_texel).
+// filters by hand with the twin's arithmetic. The normals keep the blend of their lengths either way
+// (carbtf_relief(): the normal layer's w holds each texel's length).
 #ifndef CARBTF_HARDWARE_FILTERING_CONSTANT_ID
 #define CARBTF_HARDWARE_FILTERING_CONSTANT_ID CARBTF_HARDWARE_FILTERING_DEFAULT_CONSTANT_ID
 #endif
@@ -161,6 +161,7 @@ float carbtf_height(vec2 uv) {
 // texture's colour that follows the relief (the material's tone chroma applied).
 struct CarbtfRelief {
   vec3 normal;
+  float normal_length;  // the normal's length: the blend of the texels' lengths (carbtf_relief())
   vec3 tone;
   vec4 horizon_a;  // horizon tangents of azimuths 0-3 and 4-7 (relief_horizons.hpp)
   vec4 horizon_b;
@@ -175,25 +176,14 @@ vec4 carbtf_range_texel(CarbtfBilinear b, int layer, int level) {
   return mix(top, bottom, b.f.y);
 }
 
-// The range texture bilinearly at b of mip level `level`: the normal from layer 1, the tone from
-// layer 0's gba, the horizons from layers 2 and 3. The blend of the texels' normals is scaled to the
-// blend of their lengths: at level 0, whose normals are unit, it is normalised (interpolation between
-// facets must not shorten it: at a sharp crease the blend of two unit normals is short, and relit would
-// draw a dark line); above, each texel's normal is the mean of the unit normals under it, as short as
-// they differ, and keeps that length.
-vec3 carbtf_normal_texel(CarbtfBilinear b, int level) {
-  vec3 t00 = texelFetch(carbtf_range, ivec3(b.i0.x, b.i0.y, 1), level).xyz;
-  vec3 t10 = texelFetch(carbtf_range, ivec3(b.i1.x, b.i0.y, 1), level).xyz;
-  vec3 t01 = texelFetch(carbtf_range, ivec3(b.i0.x, b.i1.y, 1), level).xyz;
-  vec3 t11 = texelFetch(carbtf_range, ivec3(b.i1.x, b.i1.y, 1), level).xyz;
-  vec3 value = mix(mix(t00, t10, b.f.x), mix(t01, t11, b.f.x), b.f.y);
-  float target = mix(mix(length(t00), length(t10), b.f.x), mix(length(t01), length(t11), b.f.x), b.f.y);
-  return value * (target / length(value));
-}
-
+// The range texture bilinearly at b of mip level `level`: the normal from layer 1 (xyz, and its length
+// in w, unblended: carbtf_relief() scales the blend), the tone from layer 0's gba, the horizons from
+// layers 2 and 3.
 CarbtfRelief carbtf_relief_texel(CarbtfBilinear b, int level) {
   CarbtfRelief relief;
-  relief.normal = carbtf_normal_texel(b, level);
+  vec4 normal = carbtf_range_texel(b, 1, level);
+  relief.normal = normal.xyz;
+  relief.normal_length = normal.w;
   relief.tone = carbtf_range_texel(b, 0, level).yzw;
   relief.horizon_a = vec4(0.0);
   relief.horizon_b = vec4(0.0);
@@ -203,30 +193,38 @@ CarbtfRelief carbtf_relief_texel(CarbtfBilinear b, int level) {
   return relief;
 }
 
-// The relief at uv, trilinear between mip levels.
+// The relief at uv, trilinear between mip levels. The normal is the blend of the texels' normals
+// scaled to the blend of their lengths (layer 1's w, each texel's own): at level 0, whose normals are
+// unit, it is normalised (interpolation between facets must not shorten it: at a sharp crease the blend
+// of two unit normals is short, and relit would draw a dark line); above, each texel's normal is the
+// mean of the unit normals under it, as short as they differ, and keeps that length.
 CarbtfRelief carbtf_relief(vec2 uv, float lod) {
-  CarbtfLod s = carbtf_split_lod(lod);
+  CarbtfRelief relief;
   if (carbtf_hardware_filtering) {
-    CarbtfRelief relief;
-    relief.normal = carbtf_normal_texel(carbtf_bilinear(uv, s.level), s.level);
-    if (s.t > 0.0) relief.normal = mix(relief.normal, carbtf_normal_texel(carbtf_bilinear(uv, s.level + 1), s.level + 1), s.t);
+    vec4 normal = textureLod(carbtf_range, vec3(uv, 1.0), lod);
+    relief.normal = normal.xyz;
+    relief.normal_length = normal.w;
     relief.tone = textureLod(carbtf_range, vec3(uv, 0.0), lod).yzw;
     relief.horizon_a = vec4(0.0);
     relief.horizon_b = vec4(0.0);
-    if (!carbtf_shadows_compiled) return relief;
-    relief.horizon_a = textureLod(carbtf_range, vec3(uv, 2.0), lod);
-    relief.horizon_b = textureLod(carbtf_range, vec3(uv, 3.0), lod);
-    return relief;
+    if (carbtf_shadows_compiled) {
+      relief.horizon_a = textureLod(carbtf_range, vec3(uv, 2.0), lod);
+      relief.horizon_b = textureLod(carbtf_range, vec3(uv, 3.0), lod);
+    }
+  } else {
+    CarbtfLod s = carbtf_split_lod(lod);
+    relief = carbtf_relief_texel(carbtf_bilinear(uv, s.level), s.level);
+    if (s.t > 0.0) {
+      CarbtfRelief up = carbtf_relief_texel(carbtf_bilinear(uv, s.level + 1), s.level + 1);
+      relief.normal = mix(relief.normal, up.normal, s.t);
+      relief.normal_length = mix(relief.normal_length, up.normal_length, s.t);
+      relief.tone = mix(relief.tone, up.tone, s.t);
+      relief.horizon_a = mix(relief.horizon_a, up.horizon_a, s.t);
+      relief.horizon_b = mix(relief.horizon_b, up.horizon_b, s.t);
+    }
   }
-  CarbtfRelief value = carbtf_relief_texel(carbtf_bilinear(uv, s.level), s.level);
-  if (s.t > 0.0) {
-    CarbtfRelief up = carbtf_relief_texel(carbtf_bilinear(uv, s.level + 1), s.level + 1);
-    value.normal = mix(value.normal, up.normal, s.t);
-    value.tone = mix(value.tone, up.tone, s.t);
-    value.horizon_a = mix(value.horizon_a, up.horizon_a, s.t);
-    value.horizon_b = mix(value.horizon_b, up.horizon_b, s.t);
-  }
-  return value;
+  relief.normal *= relief.normal_length / length(relief.normal);
+  return relief;
 }
 
 // The share of a directional light (tangent frame) the relief leaves at a point: relief_visibility()
@@ -386,7 +384,7 @@ vec3 carbtf_material_shade(vec2 uv, vec3 light, vec3 view, float lod) {
   if (light.z <= 0.0 || view.z <= 0.0) return vec3(0.0);
   CarbtfRelief relief;
   if (carbtf_probed(CARBTF_COST_PROBE_RELIEF)) {
-    relief = CarbtfRelief(vec3(0.0, 0.0, 1.0), vec3(1.0), vec4(0.0), vec4(0.0));
+    relief = CarbtfRelief(vec3(0.0, 0.0, 1.0), 1.0, vec3(1.0), vec4(0.0), vec4(0.0));
   } else {
     relief = carbtf_relief(uv, lod);
   }

@@ -108,6 +108,45 @@ void write_pair_gains(const Material& material, std::span<std::uint32_t> out) {
   }
 }
 
+std::span<const std::uint8_t> as_bytes(const std::vector<float>& values) {
+  return {reinterpret_cast<const std::uint8_t*>(values.data()), values.size() * sizeof(float)};
+}
+
+// Stages RGBA32F level 0 of one layer of the range texture and its mip levels, each texel the mean of
+// the 2 x 2 below it (render/mip_levels.hpp), as blits would make them. A normal layer's w is then each
+// texel's own length, so that the fragment stage's one filtered read blends the normals' lengths too
+// (carbtf_normal_texel): 1 at level 0, the length of the mean of the unit normals above.
+Status set_range_layer(TextureArray& image, std::uint32_t layer, std::vector<float> level, bool normals) {
+  std::uint32_t width = image.width(), height = image.height();
+  auto set_lengths = [&] {
+    if (!normals) return;
+    for (std::size_t i = 0; i < level.size(); i += 4)
+      level[i + 3] = std::sqrt(level[i] * level[i] + level[i + 1] * level[i + 1] + level[i + 2] * level[i + 2]);
+  };
+  set_lengths();
+  CARBTF_TRY(image.set_layer(layer, as_bytes(level)));
+  for (std::uint32_t l = 1; l < image.mip_levels(); ++l) {
+    const std::uint32_t w = width / 2, h = height / 2;
+    std::vector<float> next(std::size_t{4} * w * h);
+    for (std::uint32_t y = 0; y < h; ++y) {
+      for (std::uint32_t x = 0; x < w; ++x) {
+        for (std::uint32_t k = 0; k < 4; ++k) {
+          const auto at = [&](std::uint32_t yy, std::uint32_t xx) { return level[4 * (std::size_t{yy} * width + xx) + k]; };
+          // Half-way blends, as a linear blit at half size computes them and the CPU twin does.
+          next[4 * (std::size_t{y} * w + x) + k] = glm::mix(glm::mix(at(2 * y, 2 * x), at(2 * y, 2 * x + 1), 0.5f),
+                                                            glm::mix(at(2 * y + 1, 2 * x), at(2 * y + 1, 2 * x + 1), 0.5f), 0.5f);
+        }
+      }
+    }
+    level = std::move(next);
+    width = w;
+    height = h;
+    set_lengths();
+    CARBTF_TRY(image.set_level(layer, l, as_bytes(level)));
+  }
+  return {};
+}
+
 // A layer the pair table can hold: below CARBTF_PAIR_NO_LAYER, or none.
 bool fits_pair_table(std::uint32_t layer) {
   return layer < gpu::CARBTF_PAIR_NO_LAYER || layer == std::numeric_limits<std::uint32_t>::max();
@@ -126,7 +165,7 @@ struct MaterialBinding::Resources {
   Buffer table_buffer;
   UniqueHandle<VkBufferView> table_quads;  // the tables as RGBA32UI texels, for the fragment stage
   // RGBA32F, mip_levels levels: layer 0 the height (r) and the relief tone of each colour channel (gba),
-  // layer 1 the relief normal (rgb, relief_normals.hpp), layers 2 and 3 the horizons of azimuths 0-3
+  // layer 1 the relief normal (rgb, relief_normals.hpp) and its length (a), layers 2 and 3 the horizons of azimuths 0-3
   // and 4-7 (relief_horizons.hpp; 0 where the material casts no shadows).
   std::unique_ptr<TextureArray> range_image;
   std::uint32_t mip_levels = 1;
@@ -246,8 +285,9 @@ Status MaterialBinding::create(Context& context, const Material& material, const
                                MemoryUsage::host_upload, "carbtf material tables"},
                               r.table_buffer));
     std::memcpy(r.table_buffer.mapped(), r.tables.data(), r.tables.size() * 4);
+    // The levels come from here, not from blits: the normal layer's w holds each texel's own length.
     CARBTF_TRY(TextureArray::create(context, textures.width, textures.height, 4, VK_FORMAT_R32G32B32A32_SFLOAT,
-                                    r.range_image, r.mip_levels));
+                                    r.range_image, r.mip_levels, true));
     if (r.range_image->mip_levels() != r.mip_levels)
       return {ErrorCode::vulkan_error, "the range map did not get the subspace images' mip levels"};
     // Layer 0: the heights (parallax) and the tone; layer 1: the normal (shading).
@@ -258,21 +298,17 @@ Status MaterialBinding::create(Context& context, const Material& material, const
       texels[4 * i] = r.range_map[i];
       for (std::size_t k = 0; k < 3; ++k) texels[4 * i + 1 + k] = r.tone_map[3 * i + k];
     }
-    CARBTF_TRY(r.range_image->set_layer(
-        0, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(texels.data()), texels.size() * 4)));
+    CARBTF_TRY(set_range_layer(*r.range_image, 0, texels, false));
     for (std::size_t i = 0; i < r.range_map.size(); ++i) {
       for (std::size_t k = 0; k < 3; ++k) texels[4 * i + k] = normals[3 * i + k];
-      texels[4 * i + 3] = 0.0f;
     }
-    CARBTF_TRY(r.range_image->set_layer(
-        1, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(texels.data()), texels.size() * 4)));
+    CARBTF_TRY(set_range_layer(*r.range_image, 1, texels, true));
     // Layers 2 and 3: the horizons of azimuths 0-3 and 4-7 (relief_horizons.hpp), 0 without shadows.
     std::vector<float> horizons;
     if (header.shadows) relief_horizons(r.range_map, textures.width, textures.height, header.wrap != 0u, material.range.shadow_scale, horizons);
     for (std::uint32_t half = 0; half < 2; ++half) {
       horizon_layer(horizons, r.range_map.size(), half, texels);
-      CARBTF_TRY(r.range_image->set_layer(
-          2 + half, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(texels.data()), texels.size() * 4)));
+      CARBTF_TRY(set_range_layer(*r.range_image, 2 + half, texels, false));
     }
 
     const VulkanFunctions& vk = context.vk();

@@ -11,8 +11,8 @@
 namespace carbtf {
 
 Status TextureArray::create(Context& context, std::uint32_t width, std::uint32_t height, std::uint32_t layers,
-                            VkFormat format, std::unique_ptr<TextureArray>& out,
-                            std::uint32_t mip_levels) noexcept {
+                            VkFormat format, std::unique_ptr<TextureArray>& out, std::uint32_t mip_levels,
+                            bool host_levels) noexcept {
   try {
     std::uint32_t texel_bytes = 0;
     switch (format) {
@@ -41,6 +41,7 @@ Status TextureArray::create(Context& context, std::uint32_t width, std::uint32_t
     std::unique_ptr<TextureArray> array(new TextureArray());
     array->context_ = &context;
     array->texel_bytes_ = texel_bytes;
+    array->host_levels_ = host_levels;
     ImageCreateInfo info;
     info.width = width;
     info.height = height;
@@ -52,11 +53,12 @@ Status TextureArray::create(Context& context, std::uint32_t width, std::uint32_t
         VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     info.debug_name = "carbtf texture array";
     CARBTF_TRY(Image::create(context, info, array->image_));
-    CARBTF_TRY(
-        Buffer::create(context,
-                       {VkDeviceSize{width} * height * layers * texel_bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                        MemoryUsage::host_upload, "carbtf texture array staging"},
-                       array->staging_));
+    // Past the last staged level: the staging memory's size.
+    const std::uint32_t staged_levels = host_levels ? info.mip_levels : 1;
+    CARBTF_TRY(Buffer::create(context,
+                              {array->staging_offset(0, staged_levels), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                               MemoryUsage::host_upload, "carbtf texture array staging"},
+                              array->staging_));
     out = std::move(array);
     return {};
   } catch (const std::bad_alloc&) {
@@ -66,6 +68,12 @@ Status TextureArray::create(Context& context, std::uint32_t width, std::uint32_t
 
 TextureArray::~TextureArray() = default;
 
+std::size_t TextureArray::staging_offset(std::uint32_t layer, std::uint32_t level) const noexcept {
+  std::size_t offset = 0;
+  for (std::uint32_t l = 0; l < level; ++l) offset += std::size_t{width() >> l} * (height() >> l) * layers() * texel_bytes_;
+  return offset + std::size_t{width() >> level} * (height() >> level) * layer * texel_bytes_;
+}
+
 Status TextureArray::set_layer(std::uint32_t layer, std::span<const std::uint8_t> texels) noexcept {
   const std::size_t layer_bytes = std::size_t{width()} * height() * texel_bytes_;
   if (layer >= layers() || texels.size() != layer_bytes) {
@@ -73,8 +81,23 @@ Status TextureArray::set_layer(std::uint32_t layer, std::span<const std::uint8_t
                                              std::to_string(layer_bytes) + " bytes, got " +
                                              std::to_string(texels.size())};
   }
-  std::memcpy(static_cast<std::uint8_t*>(staging_.mapped()) + layer * layer_bytes, texels.data(),
-              layer_bytes);
+  std::memcpy(static_cast<std::uint8_t*>(staging_.mapped()) + staging_offset(layer, 0), texels.data(), layer_bytes);
+  return {};
+}
+
+Status TextureArray::set_level(std::uint32_t layer, std::uint32_t level, std::span<const std::uint8_t> texels) noexcept {
+  if (!host_levels_ || level == 0 || level >= mip_levels()) {
+    return {ErrorCode::invalid_argument, "texture array level " + std::to_string(level) +
+                                             (host_levels_ ? " is not a level above 0 of this array"
+                                                           : " is made by the upload's blits (the array was not created with host levels)")};
+  }
+  const std::size_t level_bytes = std::size_t{width() >> level} * (height() >> level) * texel_bytes_;
+  if (layer >= layers() || texels.size() != level_bytes) {
+    return {ErrorCode::invalid_argument, "texture array layer " + std::to_string(layer) + " level " +
+                                             std::to_string(level) + " needs " + std::to_string(level_bytes) +
+                                             " bytes, got " + std::to_string(texels.size())};
+  }
+  std::memcpy(static_cast<std::uint8_t*>(staging_.mapped()) + staging_offset(layer, level), texels.data(), level_bytes);
   return {};
 }
 
@@ -88,14 +111,22 @@ Status TextureArray::record_upload(VkCommandBuffer cb) const noexcept {
   // Earlier draws may still read the image: the stages order the upload after them.
   barrier.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
   barrier.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  barrier.subresourceRange.levelCount = host_levels_ ? mip_levels() : 1;
   vk.vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0,
                           nullptr, 0, nullptr, 1, &barrier);
-  VkBufferImageCopy copy{};
-  copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, layers()};
-  copy.imageExtent = {width(), height(), 1};
-  vk.vkCmdCopyBufferToImage(cb, staging_.handle(), image_.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
-                            &copy);
-  if (mip_levels() > 1) {
+  const std::uint32_t copied_levels = host_levels_ ? mip_levels() : 1;
+  for (std::uint32_t level = 0; level < copied_levels; ++level) {
+    VkBufferImageCopy copy{};
+    copy.bufferOffset = staging_offset(0, level);
+    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, layers()};
+    copy.imageExtent = {width() >> level, height() >> level, 1};
+    vk.vkCmdCopyBufferToImage(cb, staging_.handle(), image_.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                              &copy);
+  }
+  if (host_levels_) {
+    barrier.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+    barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  } else if (mip_levels() > 1) {
     // Level 0 is the blits' source, then read by shaders like the rest.
     barrier.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
     barrier.newLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;

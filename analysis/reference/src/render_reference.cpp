@@ -56,6 +56,17 @@ std::vector<float> height_texels(std::span<const float> heights, std::span<const
   return out;
 }
 
+// The range texture's layer 1 with its levels: the relief normal and, in w, its own length at every
+// level (the binding's set_range_layer()).
+MipChain relief_chain(std::span<const float> level0, std::uint32_t width, std::uint32_t height, std::uint32_t count) {
+  MipChain chain(level0, width, height, 4, count);
+  for (std::vector<float>& level : chain.levels) {
+    for (std::size_t i = 0; i < level.size(); i += 4)
+      level[i + 3] = std::sqrt(level[i] * level[i] + level[i + 1] * level[i + 1] + level[i + 2] * level[i + 2]);
+  }
+  return chain;
+}
+
 // The range texture's layer 1: the relief normal, 4 floats per texel.
 std::vector<float> relief_texels(std::span<const float> heights, std::uint32_t width, std::uint32_t height, bool wrap) {
   std::vector<float> normals;
@@ -137,26 +148,10 @@ struct Sampler {
     const glm::vec4 texel = filtered(range, uv, lod);
     return {texel.y, texel.z, texel.w};
   }
-  // The shader's carbtf_relief(): the bilinear blend of the normals scaled to the blend of their lengths.
+  // The shader's carbtf_relief(): the trilinear blend of the normals scaled to the blend of their lengths.
   glm::vec4 relief_at(glm::vec2 uv, float lod) const {
-    auto at_level = [&](int level) {
-      const Bilinear b = bilinear(uv, level);
-      const std::vector<float>& map = relief.levels[static_cast<std::size_t>(level)];
-      const std::size_t w = width >> level;
-      auto at = [&](int x, int y) {
-        const std::size_t base = (static_cast<std::size_t>(y) * w + x) * 4;
-        return glm::vec4(map[base], map[base + 1], map[base + 2], map[base + 3]);
-      };
-      const glm::vec4 t00 = at(b.x0, b.y0), t10 = at(b.x1, b.y0), t01 = at(b.x0, b.y1), t11 = at(b.x1, b.y1);
-      const glm::vec4 value = glm::mix(glm::mix(t00, t10, b.fx), glm::mix(t01, t11, b.fx), b.fy);
-      auto length = [](const glm::vec4& t) { return glm::length(glm::vec3(t)); };
-      const float target = glm::mix(glm::mix(length(t00), length(t10), b.fx), glm::mix(length(t01), length(t11), b.fx), b.fy);
-      return glm::vec4(glm::vec3(value) * (target / glm::length(glm::vec3(value))), value.w);
-    };
-    const Lod s(lod);
-    glm::vec4 value = at_level(s.level);
-    if (s.t > 0.0f) value = glm::mix(value, at_level(s.level + 1), s.t);
-    return value;
+    const glm::vec4 value = filtered(relief, uv, lod);
+    return glm::vec4(glm::vec3(value) * (value.w / glm::length(glm::vec3(value))), value.w);
   }
   glm::vec3 subspace_at(glm::vec2 uv, float lod, std::uint32_t subspace) const {
     return glm::vec3(filtered(images[subspace], uv, lod));
@@ -200,7 +195,7 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
                   th,
                   static_cast<float>(sum / static_cast<double>(input.range_map.size())),
                   MipChain(height_texels(input.range_map, input.tone_map), tw, th, 4, levels),
-                  MipChain(relief_texels(input.range_map, tw, th, input.wrap), tw, th, 4, levels),
+                  relief_chain(relief_texels(input.range_map, tw, th, input.wrap), tw, th, levels),
                   MipChain(horizon_texels(horizons, input.range_map.size(), 0), tw, th, 4, levels),
                   MipChain(horizon_texels(horizons, input.range_map.size(), 1), tw, th, 4, levels),
                   {}};
