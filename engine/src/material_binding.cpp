@@ -115,7 +115,7 @@ std::span<const std::uint8_t> as_bytes(const std::vector<float>& values) {
 // Stages RGBA32F level 0 of one layer of the range texture and its mip levels, each texel the mean of
 // the 2 x 2 below it (render/mip_levels.hpp), as blits would make them. A normal layer's w is then each
 // texel's own length, so that the fragment stage's one filtered read blends the normals' lengths too
-// (carbtf_normal_texel): 1 at level 0, the length of the mean of the unit normals above.
+// (carbtf_relief()): 1 at level 0, the length of the mean of the unit normals above.
 Status set_range_layer(TextureArray& image, std::uint32_t layer, std::vector<float> level, bool normals) {
   std::uint32_t width = image.width(), height = image.height();
   auto set_lengths = [&] {
