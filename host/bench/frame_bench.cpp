@@ -42,7 +42,8 @@ std::string write_frame_parts_report(const std::filesystem::path& out, const std
   std::ofstream csv(out / "bench_frame_parts.csv");
   csv << "part,frame,render_gpu_ms\n";
   for (const FramePartTimes& p : parts) {
-    for (std::size_t i = 0; i < p.render_gpu_ms.size(); ++i) csv << p.part << ',' << i << ',' << p.render_gpu_ms[i] << '\n';
+    // Quoted: a part's name may hold commas.
+    for (std::size_t i = 0; i < p.render_gpu_ms.size(); ++i) csv << '"' << p.part << "\"," << i << ',' << p.render_gpu_ms[i] << '\n';
   }
   const double full = parts.empty() ? 0.0 : median(parts[0].render_gpu_ms);
   std::string table = "| replaced by a constant | frames | render pass median ms | the part costs ms |\n|---|---|---|---|\n";

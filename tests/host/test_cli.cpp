@@ -329,7 +329,9 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
       CHECK_THAT(bench.output, Catch::Contains(std::string("| ") + part + " | 4 |"));
     }
     const auto parts_bytes = read_file_bytes(out / "bench_frame_parts.csv");
-    CHECK(line_count(std::string(reinterpret_cast<const char*>(parts_bytes.data()), parts_bytes.size())) == 1 + 6 * 4);
+    const std::string parts_csv(reinterpret_cast<const char*>(parts_bytes.data()), parts_bytes.size());
+    CHECK(line_count(parts_csv) == 1 + 6 * 4);
+    CHECK_THAT(parts_csv, Catch::Contains("\n\"relief (normal, tone, horizons)\",3,"));  // quoted: it holds commas
     CHECK(fs::exists(out / "bench_frame_parts.md"));
     const auto csv_bytes = read_file_bytes(out / "bench_frame.csv");
     std::string csv;
