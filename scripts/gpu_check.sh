@@ -5,8 +5,9 @@
 #   1. `carbtf devices`: which Vulkan devices there are and which one carbtf picks;
 #   2. `carbtf conform` of a sample material with every built-in stiff and extreme case, on that device;
 #   3. `carbtf bench synth` at 512^2 and 2048^2, with the serial and the wavefront CAR scheme each;
-#   4. `carbtf bench frame` at 1920x1080 and 3840x2160, with GPU timestamps, and at 1920x1080 again with
-#      the subspace images filtered by hand (the CPU twin's arithmetic) instead of by the sampler.
+#   4. `carbtf bench frame` at 1920x1080 and 3840x2160, with GPU timestamps (at 1920x1080 with what each
+#      part of the fragment stage costs, --parts), and at 1920x1080 again with the subspace images
+#      filtered by hand (the CPU twin's arithmetic) instead of by the sampler.
 # Usage: scripts/gpu_check.sh [--small] [--validation] [--carbtf PATH] [--out REPORT.md] [--work DIR]
 #   --small    sizes lavapipe runs in about half a minute (a machine without a GPU, and the test of this script)
 #   --validation  the Vulkan validation layer on in every device step (any message it reports fails it)
@@ -90,8 +91,11 @@ if step "sample material (leather, ${sample_size}^2)" "$carbtf" sample leather -
   done
   for frame in "${frames[@]}"; do
     out="$work/bench_frame_$frame"
+    # The first size also times each part of the fragment stage (--parts).
+    parts=()
+    [[ "$frame" == "${frames[0]}" ]] && parts=(--parts)
     step "bench frame, $frame" "$carbtf" bench frame --material "$material" --width "${frame%x*}" --height "${frame#*x}" \
-      --frames "$frame_count" "${texture_args[@]}" --out "$out" "${validation[@]}"
+      --frames "$frame_count" "${texture_args[@]}" "${parts[@]}" --out "$out" "${validation[@]}"
   done
   frame="${frames[0]}"
   step "bench frame, $frame, filtered by hand" "$carbtf" bench frame --material "$material" --width "${frame%x*}" \

@@ -50,6 +50,7 @@ TEST_CASE("scripts/gpu_check.sh runs every check at lavapipe sizes and writes on
   CHECK_THAT(markdown, Catch::Contains("all stages within"));            // conform's verdict
   CHECK_THAT(markdown, Catch::Contains("wavefront"));                    // bench synth's rows
   CHECK_THAT(markdown, Catch::Contains("render pass, GPU timestamps"));  // bench frame's table
+  CHECK_THAT(markdown, Catch::Contains("| direction lookups | 3 |"));      // its --parts table, first size
   CHECK_THAT(markdown, Catch::Contains("filtered by hand") && Catch::Contains("filtered by the sampler"));
   CHECK_THAT(markdown, Catch::Contains("0 failed steps"));
   CHECK_FALSE(markdown.find("FAILED") != std::string::npos);
