@@ -112,36 +112,19 @@ std::span<const std::uint8_t> as_bytes(const std::vector<float>& values) {
   return {reinterpret_cast<const std::uint8_t*>(values.data()), values.size() * sizeof(float)};
 }
 
-// Stages RGBA32F level 0 of one layer of the range texture and its mip levels, each texel the mean of
-// the 2 x 2 below it (render/mip_levels.hpp), as blits would make them. A normal layer's w is then each
-// texel's own length, so that the fragment stage's one filtered read blends the normals' lengths too
-// (carbtf_relief()): 1 at level 0, the length of the mean of the unit normals above.
+// Stages RGBA32F level 0 of one layer of the range texture and its mip levels (next_mip_level(), as
+// blits would make them). A normal layer's w is then each texel's own length, so that the fragment
+// stage's one filtered read blends the normals' lengths too (carbtf_relief()): 1 at level 0, the length
+// of the mean of the unit normals above.
 Status set_range_layer(TextureArray& image, std::uint32_t layer, std::vector<float> level, bool normals) {
   std::uint32_t width = image.width(), height = image.height();
-  auto set_lengths = [&] {
-    if (!normals) return;
-    for (std::size_t i = 0; i < level.size(); i += 4)
-      level[i + 3] = std::sqrt(level[i] * level[i] + level[i + 1] * level[i + 1] + level[i + 2] * level[i + 2]);
-  };
-  set_lengths();
+  if (normals) store_normal_lengths(level);
   CARBTF_TRY(image.set_layer(layer, as_bytes(level)));
   for (std::uint32_t l = 1; l < image.mip_levels(); ++l) {
-    const std::uint32_t w = width / 2, h = height / 2;
-    std::vector<float> next(std::size_t{4} * w * h);
-    for (std::uint32_t y = 0; y < h; ++y) {
-      for (std::uint32_t x = 0; x < w; ++x) {
-        for (std::uint32_t k = 0; k < 4; ++k) {
-          const auto at = [&](std::uint32_t yy, std::uint32_t xx) { return level[4 * (std::size_t{yy} * width + xx) + k]; };
-          // Half-way blends, as a linear blit at half size computes them and the CPU twin does.
-          next[4 * (std::size_t{y} * w + x) + k] = glm::mix(glm::mix(at(2 * y, 2 * x), at(2 * y, 2 * x + 1), 0.5f),
-                                                            glm::mix(at(2 * y + 1, 2 * x), at(2 * y + 1, 2 * x + 1), 0.5f), 0.5f);
-        }
-      }
-    }
-    level = std::move(next);
-    width = w;
-    height = h;
-    set_lengths();
+    level = next_mip_level(level, width, height, 4);
+    width /= 2;
+    height /= 2;
+    if (normals) store_normal_lengths(level);
     CARBTF_TRY(image.set_level(layer, l, as_bytes(level)));
   }
   return {};

@@ -4,6 +4,11 @@
 
 namespace carbtf {
 
+void store_normal_lengths(std::span<float> rgba) {
+  for (std::size_t i = 0; i + 3 < rgba.size(); i += 4)
+    rgba[i + 3] = std::sqrt(rgba[i] * rgba[i] + rgba[i + 1] * rgba[i + 1] + rgba[i + 2] * rgba[i + 2]);
+}
+
 void relief_normals(std::span<const float> heights, std::uint32_t width, std::uint32_t height, bool wrap,
                     std::vector<float>& out) {
   out.assign(std::size_t{width} * height * 3, 0.0f);

@@ -66,6 +66,15 @@ Material bench_material(const FrameBenchOptions& options, OwnedFolder& out) {
   return material;
 }
 
+// The binding every frame draws through (seed 1, as the synthesis), with cost probe bits for --parts.
+MaterialBindingInfo bench_binding_info(const FrameBenchOptions& options, std::uint32_t cost_probe_bits) {
+  MaterialBindingInfo info{1};
+  info.max_mip_levels = options.mip_levels;
+  info.hardware_filtering = !options.hand_filtering;
+  info.cost_probe = cost_probe_bits;
+  return info;
+}
+
 void run_bench_frame(const FrameBenchOptions& options) {
   OwnedFolder folder(options.out);
   folder.keep();  // the results stay; only the scratch BTF is released
@@ -107,10 +116,8 @@ void run_bench_frame(const FrameBenchOptions& options) {
       const std::uint32_t overlap = needs.periodic ? default_periodic_overlap(texture_size, texture_size) : 0;
       check(ResidentImages::create(*context, material, texture_size, overlap, resident, options.mip_levels),
             "cannot hold the images");
-      MaterialBindingInfo binding_info{1};
-      binding_info.max_mip_levels = options.mip_levels;
-      binding_info.hardware_filtering = !options.hand_filtering;
-      check(MaterialBinding::create(*context, material, resident->textures(), binding_info, binding), "cannot bind");
+      check(MaterialBinding::create(*context, material, resident->textures(), bench_binding_info(options, 0), binding),
+            "cannot bind");
       check(context->submit_and_wait([&](VkCommandBuffer cb) {
         resident->record_transition(cb);
         return binding->record_upload(cb);
@@ -167,11 +174,9 @@ void run_bench_frame(const FrameBenchOptions& options) {
     std::vector<std::unique_ptr<MaterialBinding>> bindings(probes.size());
     std::vector<std::unique_ptr<MeshRenderer>> renderers(probes.size());
     for (std::size_t p = 0; p < probes.size(); ++p) {
-      MaterialBindingInfo info{1};
-      info.max_mip_levels = options.mip_levels;
-      info.hardware_filtering = !options.hand_filtering;
-      info.cost_probe = probes[p].second;
-      check(MaterialBinding::create(*context, material, resident->textures(), info, bindings[p]), "cannot bind");
+      check(MaterialBinding::create(*context, material, resident->textures(), bench_binding_info(options, probes[p].second),
+                                    bindings[p]),
+            "cannot bind");
       check(bindings[p]->upload_and_wait(), "cannot upload the material");
       check(MeshRenderer::create(*context, *bindings[p], target, renderers[p]), "cannot build the render pass");
       check(renderers[p]->set_mesh(mesh), "cannot upload the mesh");

@@ -237,26 +237,31 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
   CHECK(worst <= 1e-4 * peak);
   CHECK(rms <= 1e-5 * peak);
 
+  // The same scene drawn through another binding of the same textures.
+  auto render_through = [&](const MaterialBindingInfo& info, std::unique_ptr<MaterialBinding>& other) {
+    REQUIRE(MaterialBinding::create(*context, m, material_textures(*synthesizer, m), info, other).ok());
+    REQUIRE(other->upload_and_wait().ok());
+    std::unique_ptr<MeshRenderer> other_renderer;
+    REQUIRE(MeshRenderer::create(*context, *other, target, other_renderer).ok());
+    REQUIRE(other_renderer->set_mesh(make_plane()).ok());
+    RenderedImage other_frame;
+    REQUIRE(other_renderer->render(scene, other_frame).ok());
+    return as_floats(other_frame);
+  };
+
   {
     // The fast path: the same scene with the subspace images read through the sampler's trilinear
     // filtering (MaterialBindingInfo::hardware_filtering, on by default), against the same reference.
     MaterialBindingInfo fast_info = binding_info;
     fast_info.hardware_filtering = true;
     std::unique_ptr<MaterialBinding> fast_binding;
-    REQUIRE(MaterialBinding::create(*context, m, material_textures(*synthesizer, m), fast_info, fast_binding).ok());
-    REQUIRE(fast_binding->upload_and_wait().ok());
+    const std::vector<float> fast = render_through(fast_info, fast_binding);
     CHECK_FALSE(binding->hardware_filtering());
     // Where the device filters RGBA32F linearly (lavapipe does), the binding takes the fast path.
     VkFormatProperties format{};
     context->vk().vkGetPhysicalDeviceFormatProperties(context->physical_device(), VK_FORMAT_R32G32B32A32_SFLOAT, &format);
     REQUIRE(fast_binding->hardware_filtering() ==
             ((format.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) != 0));
-    std::unique_ptr<MeshRenderer> fast_renderer;
-    REQUIRE(MeshRenderer::create(*context, *fast_binding, target, fast_renderer).ok());
-    REQUIRE(fast_renderer->set_mesh(make_plane()).ok());
-    RenderedImage fast_frame;
-    REQUIRE(fast_renderer->render(scene, fast_frame).ok());
-    const std::vector<float> fast = as_floats(fast_frame);
     double fast_worst = 0.0, fast_squares = 0.0, path_difference = 0.0;
     std::size_t compared = 0;
     for (std::size_t i = 0; i < fast.size(); i += 4) {
@@ -291,14 +296,7 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
     MaterialBindingInfo probe_info = binding_info;
     probe_info.cost_probe = probe;
     std::unique_ptr<MaterialBinding> probe_binding;
-    REQUIRE(MaterialBinding::create(*context, m, material_textures(*synthesizer, m), probe_info, probe_binding).ok());
-    REQUIRE(probe_binding->upload_and_wait().ok());
-    std::unique_ptr<MeshRenderer> probe_renderer;
-    REQUIRE(MeshRenderer::create(*context, *probe_binding, target, probe_renderer).ok());
-    REQUIRE(probe_renderer->set_mesh(make_plane()).ok());
-    RenderedImage probe_frame;
-    REQUIRE(probe_renderer->render(scene, probe_frame).ok());
-    const std::vector<float> probed = as_floats(probe_frame);
+    const std::vector<float> probed = render_through(probe_info, probe_binding);
     REQUIRE(probed.size() == gpu.size());
     std::size_t changed = 0;
     for (std::size_t i = 0; i < probed.size(); ++i) changed += probed[i] != gpu[i] ? 1 : 0;

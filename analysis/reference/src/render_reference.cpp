@@ -27,22 +27,8 @@ struct MipChain {
            std::uint32_t count)
       : channels(channels_) {
     levels.emplace_back(level0.begin(), level0.end());
-    for (std::uint32_t l = 1; l < count; ++l) {
-      const std::uint32_t w = width >> l, h = height >> l, below = width >> (l - 1);
-      const std::vector<float>& src = levels.back();
-      std::vector<float> out(std::size_t{w} * h * channels);
-      for (std::uint32_t y = 0; y < h; ++y) {
-        for (std::uint32_t x = 0; x < w; ++x) {
-          for (std::uint32_t c = 0; c < channels; ++c) {
-            auto at = [&](std::uint32_t sx, std::uint32_t sy) { return src[(std::size_t{sy} * below + sx) * channels + c]; };
-            const float top = glm::mix(at(2 * x, 2 * y), at(2 * x + 1, 2 * y), 0.5f);
-            const float bottom = glm::mix(at(2 * x, 2 * y + 1), at(2 * x + 1, 2 * y + 1), 0.5f);
-            out[(std::size_t{y} * w + x) * channels + c] = glm::mix(top, bottom, 0.5f);
-          }
-        }
-      }
-      levels.push_back(std::move(out));
-    }
+    for (std::uint32_t l = 1; l < count; ++l)
+      levels.push_back(next_mip_level(levels.back(), width >> (l - 1), height >> (l - 1), channels));
   }
 };
 
@@ -60,10 +46,7 @@ std::vector<float> height_texels(std::span<const float> heights, std::span<const
 // level (the binding's set_range_layer()).
 MipChain relief_chain(std::span<const float> level0, std::uint32_t width, std::uint32_t height, std::uint32_t count) {
   MipChain chain(level0, width, height, 4, count);
-  for (std::vector<float>& level : chain.levels) {
-    for (std::size_t i = 0; i < level.size(); i += 4)
-      level[i + 3] = std::sqrt(level[i] * level[i] + level[i + 1] * level[i + 1] + level[i + 2] * level[i + 2]);
-  }
+  for (std::vector<float>& level : chain.levels) store_normal_lengths(level);
   return chain;
 }
 

@@ -17,4 +17,8 @@ namespace carbtf {
 void relief_normals(std::span<const float> heights, std::uint32_t width, std::uint32_t height, bool wrap,
                     std::vector<float>& out);
 
+// Sets each RGBA texel's a to the length of its rgb: the range texture's normal layer at every mip
+// level, whose w the fragment stage blends as the normal's length (carbtf_relief()).
+void store_normal_lengths(std::span<float> rgba);
+
 }  // namespace carbtf
