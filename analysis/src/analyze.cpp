@@ -14,6 +14,7 @@
 #include "carbtf/analysis/model/pair_gains.hpp"
 #include "carbtf/analysis/model/pyramid.hpp"
 #include "carbtf/analysis/model/relief_shadows.hpp"
+#include "carbtf/analysis/model/relief_specular.hpp"
 #include "carbtf/analysis/model/relief_tone.hpp"
 #include "carbtf/analysis/progress.hpp"
 #include "carbtf/analysis/quality/texture_similarity.hpp"
@@ -105,7 +106,8 @@ SubspaceModel fit_channels(const std::vector<Plane>& channels, LightView pair, s
 
 // The model of one subspace image; notes name the band they concern.
 SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plane& range_map, std::span<const float> horizons,
-                           std::span<const Plane> tone, const std::array<float, 3>& chroma, double light_z_floor, const AnalysisOptions& options, std::vector<std::string>& notes) {
+                           std::span<const Plane> tone, const std::array<float, 3>& chroma, const SpecularLobe& specular, double light_z_floor,
+                           const AnalysisOptions& options, std::vector<std::string>& notes) {
   const std::uint32_t width = dataset.width(), height = dataset.height();
   std::vector<float> rgb(dataset.pixel_count() * 3);
   dataset.linear_rgb(pair, rgb);
@@ -116,6 +118,11 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
   const bool toned = !tone.empty();
   if (toned || options.deshade_floor > 0.0) {
     undo_parallax(channels, range_map, dataset.views()[pair.view].vector(), kAnalysisParallaxScale);
+  }
+  // The highlights the render pass adds on its own are no part of the smooth texture.
+  const Plane highlight = lobe_of(specular, range_map, dataset.lights()[pair.light].vector(), dataset.views()[pair.view].vector(), horizons);
+  if (specular.strength > 0.0) {
+    for (Plane& channel : channels) channel -= highlight;
   }
   const Plane relit = relit_factor(range_map, dataset.lights()[pair.light].vector(), light_z_floor, horizons);
   // The smooth texture a model of tone weight `weight` is fitted to: the tone's share and, with
@@ -171,6 +178,9 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
           block.height = height;
           reference::synthesize_subspace(single, 0, block, image);
           apply_relief(image, share, relit);
+          if (specular.strength > 0.0) {
+            for (std::size_t p = 0; p < image.size(); ++p) image[p] += static_cast<float>(highlight(static_cast<Eigen::Index>(p / 3 / width), static_cast<Eigen::Index>(p / 3 % width)));
+          }
           distance += texture_distance(texture_statistics(image, width, height), measured).total / draws;
         }
         // Another level count has to be clearly nearer: within one draw's noise the default stays.
@@ -233,6 +243,7 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
                 100.0 * static_cast<double>(valid) / static_cast<double>(std::max<std::size_t>(1, result.normals.valid.size())));
   note(line);
 
+  SpecularLobe specular;  // the relief's highlights, fitted with the tone
   {
     StageClock clock(result, "range map and tiles");
     result.range_map = integrate_normals(result.normals.normals, dataset.width(), dataset.height());
@@ -253,9 +264,19 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
       }
       result.horizons = range_map_horizons(result.range_map, shadow_scale);
       result.tone = relief_tone(dataset, result.stereo_view, result.range_map, z_floor, result.horizons);
+      if (options.relief_specular) {
+        const SpecularFit fit = fit_relief_specular(dataset, result.stereo_view, result.range_map, result.tone, z_floor, result.horizons);
+        specular = fit.lobe;
+        std::snprintf(line, sizeof line, "relief specular: %s (the view's images explained with error %.4f, without it %.4f)",
+                      fit.lobe.strength > 0.0 ? ("strength " + std::to_string(fit.lobe.strength) + ", gloss " + std::to_string(int(fit.lobe.gloss))).c_str() : "none",
+                      fit.error, fit.error_without);
+        note(line);
+        // The tone of the images without their highlights, which the render adds apart from it.
+        if (specular.strength > 0.0) result.tone = relief_tone(dataset, result.stereo_view, result.range_map, z_floor, result.horizons, specular);
+      }
       result.tone_planes = {result.tone};
       if (options.tone_planes != TonePlanes::never) {
-        std::vector<Plane> planes = relief_tone_planes(dataset, result.stereo_view, result.range_map, z_floor, result.horizons);
+        std::vector<Plane> planes = relief_tone_planes(dataset, result.stereo_view, result.range_map, z_floor, result.horizons, specular);
         const double deviation = tone_colour_deviation(planes);
         const bool coloured = options.tone_planes == TonePlanes::always || deviation >= kToneColourVisible;
         if (coloured) result.tone_planes = std::move(planes);
@@ -266,9 +287,13 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
     }
     result.material.range = build_range_tiles(result.range_map, tiles, result.tone_planes);
     result.material.range.shadow_scale = static_cast<float>(shadow_scale);
+    result.material.range.specular_strength = static_cast<float>(specular.strength);
+    result.material.range.specular_gloss = static_cast<float>(specular.gloss);
+    // The analysis goes on with the lobe as stored, as the render pass will draw it.
+    specular = {result.material.range.specular_strength, result.material.range.specular_gloss};
     if (options.relief_tone && options.coloured_tone && result.tone_planes.size() == 1) {
       result.material.range.tone_chroma =
-          relief_tone_chroma(dataset, result.stereo_view, result.range_map, relight_floor(result.material), result.tone, result.horizons);
+          relief_tone_chroma(dataset, result.stereo_view, result.range_map, relight_floor(result.material), result.tone, result.horizons, specular);
     }
   }
 
@@ -281,7 +306,7 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
     const double z_floor = relight_floor(result.material);  // the render pass's, from the light set
     detail::parallel_for(representatives.size(), options.threads, [&](std::size_t s) {
       result.material.subspaces[s] = fit_subspace(dataset, representatives[s], result.range_map, result.horizons, result.tone_planes,
-                                                    result.material.range.tone_chroma, z_floor, options, notes[s]);
+                                                    result.material.range.tone_chroma, specular, z_floor, options, notes[s]);
       progress.advance();
     });
     for (std::size_t s = 0; s < notes.size(); ++s) {
@@ -296,7 +321,7 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
   if (options.pair_gains) {
     StageClock clock(result, "pair gains");
     Progress progress("pair gains", dataset.lights().size(), options.progress);
-    result.material.pair_gains = fit_pair_gains(dataset, result.material, {result.range_map, result.tone_planes, result.horizons},
+    result.material.pair_gains = fit_pair_gains(dataset, result.material, {result.range_map, result.tone_planes, result.horizons, specular},
                                                 options.segmentation.seed, options.threads, [&] { progress.advance(); });
   }
   Material& material = result.material;
@@ -321,6 +346,7 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
       {"selection_draws", std::to_string(options.selection_draws)},
       {"deshade_floor", std::to_string(options.deshade_floor)},
       {"pair_gains", options.pair_gains ? "yes" : "no"},
+      {"relief_specular", options.relief_specular ? "fitted" : "no"},
       {"stereo_view", std::to_string(result.stereo_view)},
       {"tile_size", std::to_string(material.range.tile_size)},
       {"edge_colours", std::to_string(material.range.edge_colours)},

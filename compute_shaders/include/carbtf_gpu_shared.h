@@ -325,8 +325,8 @@ struct MaterialTablesHeader {
   float light_z_floor;  // cos of the largest measured light elevation: the relit factor's denominator floor
   uint wrap;            // 1: the textures tile, texel addresses wrap; 0: edge texels repeat
   uint shadows;    // 1: the relief casts shadows (the range texture's layers 2 and 3 hold its horizons)
-  uint reserved5;
-  uint reserved6;
+  float specular_strength;  // the relief's specular lobe (RangeTiles::specular_strength; 0: none)
+  float specular_gloss;
   uint mip_levels;       // levels of the range map and the subspace images, level 0 included (mip_chain.hpp)
 };
 

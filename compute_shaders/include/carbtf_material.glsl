@@ -388,9 +388,17 @@ vec3 carbtf_material_shade(vec2 uv, vec3 light, vec3 view, float lod) {
   } else {
     relief = carbtf_relief(uv, lod);
   }
-  float relit = max(dot(relief.normal, light), 0.0) / max(light.z, carbtf_header.light_z_floor);
-  if (carbtf_shadows_compiled && carbtf_header.shadows != 0u) relit *= carbtf_relief_visibility(relief, light);
-  return relit * carbtf_interpolated_btf(uv, light, view, relief.tone, lod);
+  float n_dot_l = max(dot(relief.normal, light), 0.0);
+  float visibility = 1.0;
+  if (carbtf_shadows_compiled && carbtf_header.shadows != 0u) visibility = carbtf_relief_visibility(relief, light);
+  float relit = n_dot_l / max(light.z, carbtf_header.light_z_floor) * visibility;
+  vec3 colour = relit * carbtf_interpolated_btf(uv, light, view, relief.tone, lod);
+  // The relief's specular lobe (RangeTiles::specular_strength), grey, where the facet turns to the half vector.
+  if (carbtf_header.specular_strength > 0.0) {
+    float n_dot_h = max(dot(relief.normal, normalize(light + view)), 0.0);
+    colour += vec3(carbtf_header.specular_strength * n_dot_l * visibility * pow(n_dot_h, carbtf_header.specular_gloss));
+  }
+  return colour;
 }
 vec3 carbtf_material_shade(vec2 uv, vec3 light, vec3 view) {
   return carbtf_material_shade(uv, light, view, 0.0);

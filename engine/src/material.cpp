@@ -98,10 +98,16 @@ Status validate_range(const RangeTiles& r) {
   if (!(r.shadow_scale >= 0.0f && r.shadow_scale <= kMaxShadowScale)) {
     return invalid("range map: shadow scale " + std::to_string(r.shadow_scale) + " is outside 0.." + std::to_string(int(kMaxShadowScale)));
   }
+  if (!(r.specular_strength >= 0.0f && r.specular_strength <= kMaxSpecularStrength)) {
+    return invalid("range map: specular strength " + std::to_string(r.specular_strength) + " is outside 0.." + std::to_string(int(kMaxSpecularStrength)));
+  }
+  if (r.specular_strength > 0.0f && !(r.specular_gloss >= 1.0f && r.specular_gloss <= kMaxSpecularGloss)) {
+    return invalid("range map: specular gloss " + std::to_string(r.specular_gloss) + " is outside 1.." + std::to_string(int(kMaxSpecularGloss)));
+  }
   if (r.feather > kMaxFeather)
     return invalid("range map: feather " + std::to_string(r.feather) + " (at most " + std::to_string(kMaxFeather) + ")");
   if (r.tile_size == 0) {
-    if (!r.patches.empty() || !r.cuts.empty() || !r.tone.empty() || r.shadow_scale > 0.0f) {
+    if (!r.patches.empty() || !r.cuts.empty() || !r.tone.empty() || r.shadow_scale > 0.0f || r.specular_strength > 0.0f) {
       return invalid("range map: tile size 0 but tile data present");
     }
     return {};

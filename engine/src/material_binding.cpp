@@ -241,6 +241,8 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     r.tone_map.assign(3 * r.range_map.size(), 1.0f);
     header.wrap = textures.periodic_overlap > 0 ? 1u : 0u;
     header.shadows = material.range.shadow_scale > 0.0f ? 1u : 0u;
+    header.specular_strength = material.range.specular_strength;
+    header.specular_gloss = material.range.specular_gloss;
     r.shadows = header.shadows != 0u;
     if (material.range.tile_size > 0) {
       const RangeBlock block{info.seed, info.row0, info.col0, textures.width, textures.height,

@@ -25,9 +25,10 @@ constexpr std::array<std::uint8_t, 4> kMagic{'C', 'B', 'T', 'F'};
 constexpr std::uint32_t kMaxChunks = 64;
 constexpr std::size_t kChunkOverhead = 12;  // tag, size, CRC
 
-enum class Chunk { settings, directions, index, subspaces, range, tone, tone_weights, tone_chroma, feather, shadows, pair_gains, count };
+enum class Chunk { settings, directions, index, subspaces, range, tone, tone_weights, tone_chroma, feather, shadows, pair_gains, specular, count };
 constexpr std::array<std::string_view, static_cast<std::size_t>(Chunk::count)> kChunkTags{"SETT", "DIRS", "INDX", "SUBS",
-                                                                                         "RNGE", "TONE", "TWGT", "TCHR", "FTHR", "SHDW", "PGAN"};
+                                                                                         "RNGE", "TONE", "TWGT", "TCHR", "FTHR", "SHDW", "PGAN",
+                                                                                         "SPEC"};
 
 // A deflated chunk (format 1.1): payload = inner tag (4 bytes), u32 inner payload size, u8 filter, the
 // filter's parameters, then one zlib stream of the filtered payload. Filters:
@@ -653,6 +654,19 @@ bool decode_shadows(ByteReader& r, float& scale) {
   return !r.failed();
 }
 
+// Optional (format 1.10): written only when the relief has a specular lobe.
+void encode_specular(const Material& m, ByteWriter& w) {
+  w.f32(m.range.specular_strength);
+  w.f32(m.range.specular_gloss);
+}
+
+// Into `lobe`: the range chunk may come later in the file.
+bool decode_specular(ByteReader& r, std::array<float, 2>& lobe) {
+  lobe[0] = r.f32();
+  lobe[1] = r.f32();
+  return !r.failed();
+}
+
 // Optional (format 1.9): written only when the material has pair gains.
 void encode_pair_gains(const Material& m, ByteWriter& w) {
   w.u32(static_cast<std::uint32_t>(m.lights.size()));
@@ -755,12 +769,13 @@ Status encode_material(const Material& material, std::vector<std::uint8_t>& out,
   written[static_cast<std::size_t>(Chunk::feather)] = material.range.feather > 0;
   written[static_cast<std::size_t>(Chunk::shadows)] = material.range.shadow_scale > 0.0f;
   written[static_cast<std::size_t>(Chunk::pair_gains)] = !material.pair_gains.empty();
+  written[static_cast<std::size_t>(Chunk::specular)] = material.range.specular_strength > 0.0f;
   w.u32(static_cast<std::uint32_t>(std::count(written.begin(), written.end(), true)));
   Deflater deflater;
   using Encoder = void (*)(const Material&, ByteWriter&);
   constexpr std::array<Encoder, static_cast<std::size_t>(Chunk::count)> encoders{
       encode_settings, encode_directions, encode_index, encode_subspaces, encode_range, encode_tone, encode_tone_weights,
-      encode_tone_chroma, encode_feather, encode_shadows, encode_pair_gains};
+      encode_tone_chroma, encode_feather, encode_shadows, encode_pair_gains, encode_specular};
   for (std::size_t c = 0; c < encoders.size(); ++c) {
     if (!written[c]) continue;
     std::vector<std::uint8_t> payload;
@@ -788,6 +803,7 @@ Status decode_material(std::span<const std::uint8_t> bytes, const std::string& n
   std::array<float, 3> tone_chroma{1.0f, 1.0f, 1.0f};
   std::uint32_t feather = 0;
   float shadow_scale = 0.0f;
+  std::array<float, 2> specular{0.0f, 0.0f};
   Status walked = walk_chunks(bytes, name, [&](std::span<const std::uint8_t> outer_tag, std::span<const std::uint8_t> outer_payload) -> Status {
     std::span<const std::uint8_t> tag = outer_tag;
     std::span<const std::uint8_t> payload = outer_payload;
@@ -818,6 +834,7 @@ Status decode_material(std::span<const std::uint8_t> bytes, const std::string& n
       case Chunk::feather: ok = decode_feather(r, feather); break;
       case Chunk::shadows: ok = decode_shadows(r, shadow_scale); break;
       case Chunk::pair_gains: ok = decode_pair_gains(r, m); break;
+      case Chunk::specular: ok = decode_specular(r, specular); break;
       case Chunk::count: break;
     }
     if (!ok) return fail(name, "chunk " + printable_tag(tag) + " is truncated or has out-of-range counts");
@@ -829,7 +846,7 @@ Status decode_material(std::span<const std::uint8_t> bytes, const std::string& n
     const bool optional = static_cast<Chunk>(c) == Chunk::settings || static_cast<Chunk>(c) == Chunk::tone ||
                           static_cast<Chunk>(c) == Chunk::tone_weights || static_cast<Chunk>(c) == Chunk::tone_chroma ||
                           static_cast<Chunk>(c) == Chunk::feather || static_cast<Chunk>(c) == Chunk::shadows ||
-                          static_cast<Chunk>(c) == Chunk::pair_gains;
+                          static_cast<Chunk>(c) == Chunk::pair_gains || static_cast<Chunk>(c) == Chunk::specular;
     if (!seen[c] && !optional) return fail(name, "chunk " + std::string(kChunkTags[c]) + " is missing");
   }
   if (index_lights != m.lights.size() || index_views != m.views.size()) {
@@ -846,6 +863,8 @@ Status decode_material(std::span<const std::uint8_t> bytes, const std::string& n
   m.range.tone_chroma = tone_chroma;
   m.range.feather = feather;
   m.range.shadow_scale = shadow_scale;
+  m.range.specular_strength = specular[0];
+  m.range.specular_gloss = specular[1];
   if (Status s = validate_material(m); !s.ok()) return fail(name, s.message());
   out = std::move(m);
   return {};

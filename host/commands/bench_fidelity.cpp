@@ -66,6 +66,7 @@ const std::vector<ModelVariant>& model_variants() {
       {"collapse", "the default with the collapse calibration", [](AnalysisOptions& o) { o.calibrate_collapse = true; }},
       {"deshade", "the default with the relit range map divided out (floor 0.3)", [](AnalysisOptions& o) { o.deshade_floor = 0.3; }},
       {"feather", "the default with range-tile cuts cross-faded over 3 texels", [](AnalysisOptions& o) { o.tiles.feather = 1; }},
+      {"specular", "the default with the relief's specular lobe", [](AnalysisOptions& o) { o.relief_specular = true; }},
       {"no_shadows", "the default without the relief's cast shadows", [](AnalysisOptions& o) { o.relief_shadows = AutoChoice::never; }},
       {"shadows", "the default with the relief's cast shadows at full strength", [](AnalysisOptions& o) { o.relief_shadows = AutoChoice::always; }},
       {"tone_planes", "the default with the relief tone as R, G and B planes", [](AnalysisOptions& o) { o.tone_planes = TonePlanes::always; }},

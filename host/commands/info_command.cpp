@@ -116,6 +116,12 @@ void run_material_info(const std::string& path) {
     } else {
       std::printf("shadows:      none\n");
     }
+    if (material.range.specular_strength > 0.0f) {
+      std::printf("highlights:   a specular lobe on the relief, strength %.4g, gloss %.0f\n", material.range.specular_strength,
+                  material.range.specular_gloss);
+    } else {
+      std::printf("highlights:   none\n");
+    }
   }
   if (material.pair_gains.empty()) {
     std::printf("pair gains:   none (each pair has its subspace image's mean colour)\n");

@@ -645,6 +645,34 @@ TEST_CASE("cast shadows read back while a file without SHDW has none and a hosti
   CHECK_THAT(validate_material(tileless).message(), Catch::Contains("tile size 0 but tile data present"));
 }
 
+TEST_CASE("a specular lobe reads back while a file without SPEC has none and hostile values are refused",
+          "[material_file][specular]") {
+  auto [bytes, at] = checked_optional_chunk(
+      sample_material(), "SPEC", [](Material& m) { m.range.specular_strength = 0.08f; m.range.specular_gloss = 32.0f; },
+      [](const Material& m) { return m.range.specular_strength == 0.0f; });
+  Material back;
+  for (const float hostile : {-0.5f, 17.0f, std::nanf(""), std::numeric_limits<float>::infinity()}) {
+    std::memcpy(&bytes[at], &hostile, 4);
+    fix_crcs(bytes);
+    const Status s = decode_material(bytes, "bad.cbtf", back);
+    CHECK_THAT(s.message(), Catch::Contains("bad.cbtf") && Catch::Contains("specular strength") && Catch::Contains("outside 0..16"));
+  }
+  const float strength = 0.08f;
+  std::memcpy(&bytes[at], &strength, 4);
+  for (const float hostile : {0.5f, 2000.0f, std::nanf(""), -std::numeric_limits<float>::infinity()}) {
+    std::memcpy(&bytes[at + 4], &hostile, 4);
+    fix_crcs(bytes);
+    const Status s = decode_material(bytes, "bad.cbtf", back);
+    CHECK_THAT(s.message(), Catch::Contains("bad.cbtf") && Catch::Contains("specular gloss") && Catch::Contains("outside 1..1024"));
+  }
+  // The lobe follows the range tiles' normals: a material without them cannot have one.
+  Material tileless = sample_material();
+  tileless.range = RangeTiles{};
+  tileless.range.specular_strength = 0.08f;
+  tileless.range.specular_gloss = 32.0f;
+  CHECK_THAT(validate_material(tileless).message(), Catch::Contains("tile size 0 but tile data present"));
+}
+
 TEST_CASE("pair gains read back while a file without PGAN has none and a hostile table is refused", "[material_file][pair_gains]") {
   const auto with_gains = [](Material& m) {
     m.pair_gains.resize(3 * m.subspace_index.size());

@@ -111,12 +111,15 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
   // grey one inverted, blue half of it) with the same slopes on top.
   const bool three_planes = GENERATE(false, true);
   // With and without the relief's cast shadows (relief_horizons.hpp): both sides compute the horizons
-  // of the enlarged heights, filter them as textures and hide the light below them.
+  // of the enlarged heights, filter them as textures and hide the light below them. With them, the
+  // relief's specular lobe too (RangeTiles::specular_strength), which both sides add and hide alike.
   const bool shadows = GENERATE(false, true);
   const Material m = [&] {
     Material coloured = test::bumpy_material(true);
     coloured.range.tone_chroma = {2.5f, 1.0f, -0.5f};
     coloured.range.shadow_scale = shadows ? 1.0f : 0.0f;
+    coloured.range.specular_strength = shadows ? 0.4f : 0.0f;
+    coloured.range.specular_gloss = 12.0f;
     if (three_planes) {
       const std::vector<std::uint8_t> grey = coloured.range.tone;
       const std::uint8_t top = *std::max_element(grey.begin(), grey.end());

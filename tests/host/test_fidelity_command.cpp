@@ -1,6 +1,6 @@
 // `carbtf fidelity`: the calibrated measure through the render pass must see a deliberately broken
 // model as worse than the fitted one, on each sample material (issue 13: the measure can fail), and the
-// model without its relief tone as worse too (item 3c).
+// model without its relief tone as worse too (item 3c), and fabric's model without its highlights.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -124,6 +124,15 @@ void check_fidelity_ranking(const std::string& name) {
     INFO(name << ": fitted rel " << fitted_rel << ", with the coloured tone " << coloured_rel << ", with tone planes " << planes_rel);
     CHECK(coloured_rel < fitted_rel);
     CHECK(planes_rel < coloured_rel);
+    // Its threads are glossy: the relief's specular lobe (opt-in) puts their highlights on the thread
+    // tops, where the CAR could only scatter them.
+    const fs::path glossy = folder / "specular.cbtf";
+    REQUIRE(run("analyze " + btf.string() + " --specular --out " + glossy.string()).status == 0);
+    CHECK_THAT(run("info " + glossy.string()).output, Catch::Contains("highlights:   a specular lobe on the relief"));
+    CHECK_THAT(run("info " + fitted_path.string()).output, Catch::Contains("highlights:   none"));
+    const double glossy_rel = fidelity_of(glossy, btf, folder / "specular");
+    INFO(name << ": fitted rel " << fitted_rel << ", with the specular lobe " << glossy_rel);
+    CHECK(glossy_rel < fitted_rel);
   } else {
     // Creases that darken every channel alike: asked to choose, the analysis keeps the tone grey.
     const fs::path planes = folder / "tone_planes.cbtf";

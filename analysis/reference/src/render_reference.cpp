@@ -285,9 +285,15 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
           btf += (w.weight[k] * glm::max(1.0f + tone_weight * tone_offset, glm::vec3(0.0f))) *
                  (glm::vec3(gain[0], gain[1], gain[2]) * sampler.subspace_at(shifted, lod, subspace));
         }
-        float relit = std::max(glm::dot(normal, l), 0.0f) / std::max(l.z, light_z_floor);
-        if (shadows) relit *= relief_visibility(horizon_at, {l.x, l.y, l.z});
-        colour += falloff * glm::vec3(light.colour[0], light.colour[1], light.colour[2]) * relit * btf;
+        const float n_dot_l = std::max(glm::dot(normal, l), 0.0f);
+        const float visibility = shadows ? relief_visibility(horizon_at, {l.x, l.y, l.z}) : 1.0f;
+        const float relit = n_dot_l / std::max(l.z, light_z_floor) * visibility;
+        glm::vec3 shade = relit * btf;
+        if (material.range.specular_strength > 0.0f) {
+          const float n_dot_h = std::max(glm::dot(normal, glm::normalize(l + view)), 0.0f);
+          shade += glm::vec3(material.range.specular_strength * n_dot_l * visibility * std::pow(n_dot_h, material.range.specular_gloss));
+        }
+        colour += falloff * glm::vec3(light.colour[0], light.colour[1], light.colour[2]) * shade;
       }
       pixel[0] = colour.r;
       pixel[1] = colour.g;

@@ -17,14 +17,16 @@ namespace {
 using Rgb = std::array<double, 3>;
 
 // The Lab mean of `pixels` (interleaved linear RGB, negatives clamped as the measure clamps them),
-// each channel times its gain.
-Rgb lab_mean(std::span<const float> pixels, const Rgb& gain) {
+// each channel times its gain, plus `highlight` (one grey value per pixel, which no gain scales) where
+// given.
+Rgb lab_mean(std::span<const float> pixels, const Rgb& gain, std::span<const float> highlight = {}) {
   Rgb sum{};
   const std::size_t count = pixels.size() / 3;
   for (std::size_t p = 0; p < count; ++p) {
-    const auto lab = linear_srgb_to_lab(static_cast<float>(gain[0] * std::max(pixels[3 * p], 0.0f)),
-                                        static_cast<float>(gain[1] * std::max(pixels[3 * p + 1], 0.0f)),
-                                        static_cast<float>(gain[2] * std::max(pixels[3 * p + 2], 0.0f)));
+    const double added = highlight.empty() ? 0.0 : highlight[p];
+    const auto lab = linear_srgb_to_lab(static_cast<float>(gain[0] * std::max(pixels[3 * p], 0.0f) + added),
+                                        static_cast<float>(gain[1] * std::max(pixels[3 * p + 1], 0.0f) + added),
+                                        static_cast<float>(gain[2] * std::max(pixels[3 * p + 2], 0.0f) + added));
     for (int c = 0; c < 3; ++c) sum[c] += lab[c];
   }
   for (double& v : sum) v /= static_cast<double>(std::max<std::size_t>(count, 1));
@@ -44,11 +46,11 @@ std::uint8_t gain_code(double gain) {
 // The gains that move the model's Lab mean onto `target`: each step scales every channel by the ratio of
 // the target's linear colour to the current mean's, which converges in a few steps where the model's
 // contrast is near the measurement's.
-Rgb solve_gains(std::span<const float> model, const Rgb& target) {
+Rgb solve_gains(std::span<const float> model, const Rgb& target, std::span<const float> highlight) {
   const Rgb wanted = lab_to_linear_srgb(target[0], target[1], target[2]);
   Rgb gain{1.0, 1.0, 1.0};
   for (int step = 0; step < 6; ++step) {
-    const Rgb mean = lab_mean(model, gain);
+    const Rgb mean = lab_mean(model, gain, highlight);
     const double error = std::hypot(mean[0] - target[0], mean[1] - target[1], mean[2] - target[2]);
     if (error < 0.02) break;
     const Rgb current = lab_to_linear_srgb(mean[0], mean[1], mean[2]);
@@ -128,15 +130,22 @@ std::vector<std::uint8_t> fit_pair_gains(const BtfDataset& dataset, const Materi
     const Plane relit_plane = relit_factor(relief.range_map, dataset.lights()[l].vector(), z_floor, relief.horizons);
     std::vector<float> relit(dataset.pixel_count());
     for (std::size_t p = 0; p < relit.size(); ++p) relit[p] = static_cast<float>(relit_plane(static_cast<Eigen::Index>(p / width), static_cast<Eigen::Index>(p % width)));
-    std::vector<float> image(dataset.pixel_count() * 3), measured(grid.size() * 3), model(grid.size() * 3);
+    std::vector<float> image(dataset.pixel_count() * 3), measured(grid.size() * 3), model(grid.size() * 3), highlight;
+    std::vector<float> lobe(relief.specular.strength > 0.0 ? dataset.pixel_count() : 0);
     for (std::size_t v = 0; v < views; ++v) {
       const LightView pair{static_cast<std::uint32_t>(l), static_cast<std::uint32_t>(v)};
       if (!dataset.has_image(pair)) continue;
       dataset.linear_rgb(pair, image);
+      if (!lobe.empty()) {
+        const Plane plane = lobe_of(relief.specular, relief.range_map, dataset.lights()[l].vector(), dataset.views()[v].vector(), relief.horizons);
+        for (std::size_t p = 0; p < lobe.size(); ++p) lobe[p] = static_cast<float>(plane(static_cast<Eigen::Index>(p / width), static_cast<Eigen::Index>(p % width)));
+        highlight.resize(grid.size());
+      }
       const float* base = toned[subspace_of(material, pair.light, pair.view)].data();
       for (std::size_t i = 0; i < grid.size(); ++i) {
         const Tap& t = taps[v][i];
         const float factor = bilinear(relit.data(), t, 1, 0);
+        if (!lobe.empty()) highlight[i] = bilinear(lobe.data(), t, 1, 0);
         for (std::size_t k = 0; k < 3; ++k) {
           measured[3 * i + k] = image[3 * grid[i] + k];
           model[3 * i + k] = bilinear(base, t, 3, k) * factor;
@@ -144,7 +153,7 @@ std::vector<std::uint8_t> fit_pair_gains(const BtfDataset& dataset, const Materi
       }
       const Rgb target = lab_mean(measured, {1.0, 1.0, 1.0});
       if (!(target[0] > 0.5) || !(lab_mean(model, {1.0, 1.0, 1.0})[0] > 0.5)) continue;  // black: nothing to match
-      const Rgb gain = solve_gains(model, target);
+      const Rgb gain = solve_gains(model, target, highlight);
       for (std::size_t c = 0; c < 3; ++c) codes[c * pairs + l * views + v] = gain_code(gain[c]);
     }
     if (progress) progress();

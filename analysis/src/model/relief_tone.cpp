@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "carbtf/analysis/model/deshade.hpp"
+#include "carbtf/analysis/model/relief_specular.hpp"
 #include "carbtf/engine/material/material.hpp"
 
 namespace carbtf {
@@ -21,7 +22,7 @@ struct ToneSums {
 };
 
 ToneSums tone_sums(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor, std::span<const float> horizons,
-                   const char* who) {
+                   const SpecularLobe& lobe, const char* who) {
   const auto rows = static_cast<Eigen::Index>(dataset.height()), cols = static_cast<Eigen::Index>(dataset.width());
   if (range_map.rows() != rows || range_map.cols() != cols) throw std::invalid_argument(std::string(who) + ": the range map is not the dataset's size");
   ToneSums sums;
@@ -37,6 +38,10 @@ ToneSums tone_sums(const BtfDataset& dataset, std::uint32_t view, const Plane& r
       const auto p = static_cast<std::size_t>(i);
       for (std::size_t k = 1; k < 4; ++k) image[k](i / cols, i % cols) = rgb[3 * p + k - 1];
       image[0](i / cols, i % cols) = (rgb[3 * p] + rgb[3 * p + 1] + rgb[3 * p + 2]) / 3.0;
+    }
+    if (lobe.strength > 0.0) {
+      const Plane highlight = lobe_of(lobe, range_map, dataset.lights()[l].vector(), dataset.views()[view].vector(), horizons);
+      for (Plane& channel : image) channel -= highlight;
     }
     const Plane relit = relit_factor(range_map, dataset.lights()[l].vector(), light_z_floor, horizons);
     const double relit_mean = relit.mean();
@@ -58,14 +63,15 @@ Plane tone_of(const Plane& measured, const Plane& explained) {
 
 }  // namespace
 
-Plane relief_tone(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor, std::span<const float> horizons) {
-  const ToneSums sums = tone_sums(dataset, view, range_map, light_z_floor, horizons, "relief_tone");
+Plane relief_tone(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor, std::span<const float> horizons,
+                  const SpecularLobe& lobe) {
+  const ToneSums sums = tone_sums(dataset, view, range_map, light_z_floor, horizons, lobe, "relief_tone");
   return tone_of(sums.measured[0], sums.explained[0]);
 }
 
 std::vector<Plane> relief_tone_planes(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor,
-                                      std::span<const float> horizons) {
-  const ToneSums sums = tone_sums(dataset, view, range_map, light_z_floor, horizons, "relief_tone_planes");
+                                      std::span<const float> horizons, const SpecularLobe& lobe) {
+  const ToneSums sums = tone_sums(dataset, view, range_map, light_z_floor, horizons, lobe, "relief_tone_planes");
   std::vector<Plane> planes;
   for (std::size_t k = 1; k < 4; ++k) planes.push_back(tone_of(sums.measured[k], sums.explained[k]));
   return planes;
@@ -99,10 +105,10 @@ void clamp_remainder(std::vector<Plane>& channels, double k) {
 }
 
 std::array<float, 3> relief_tone_chroma(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor,
-                                        const Plane& tone, std::span<const float> horizons) {
+                                        const Plane& tone, std::span<const float> horizons, const SpecularLobe& lobe) {
   if (tone.rows() != range_map.rows() || tone.cols() != range_map.cols()) throw std::invalid_argument("relief_tone_chroma: the tone is not the range map's size");
   const Eigen::Index cols = tone.cols();
-  const ToneSums sums = tone_sums(dataset, view, range_map, light_z_floor, horizons, "relief_tone_chroma");
+  const ToneSums sums = tone_sums(dataset, view, range_map, light_z_floor, horizons, lobe, "relief_tone_chroma");
   const auto& measured = sums.measured;
   const auto& explained = sums.explained;
   // The least-squares slope of each channel's tone on the grey tone, over the texels both are known at,

@@ -8,6 +8,7 @@
 
 #include "carbtf/analysis/model/deshade.hpp"
 #include "carbtf/analysis/model/relief_shadows.hpp"
+#include "carbtf/analysis/model/relief_specular.hpp"
 #include "carbtf/analysis/model/relief_tone.hpp"
 #include "carbtf/engine/material/range_tiles.hpp"
 
@@ -51,10 +52,16 @@ SubspaceFidelity subspace_fidelity(const Material& material, const SynthesizedIm
     const MaterialDirection& l = material.lights[material.subspaces[s].light];
     const std::array<double, 3> light{std::sin(l.theta) * std::cos(l.phi),
                                       std::sin(l.theta) * std::sin(l.phi), std::cos(l.theta)};
+    const MaterialDirection& v = material.views[material.subspaces[s].view];
+    const std::array<double, 3> view{std::sin(v.theta) * std::cos(v.phi), std::sin(v.theta) * std::sin(v.phi), std::cos(v.theta)};
     RgbField model{images.images[s], w, h};
     apply_relief(model.rgb,
                  weighted_tone(tone, material.subspaces[s].tone_weight, material.range.tone_chroma),
                  relit_factor(height_plane, light, relight_floor(material), horizons));
+    if (material.range.specular_strength > 0.0f) {
+      const Plane highlight = lobe_of({material.range.specular_strength, material.range.specular_gloss}, height_plane, light, view, horizons);
+      for (std::size_t p = 0; p < model.rgb.size(); ++p) model.rgb[p] += static_cast<float>(highlight(static_cast<Eigen::Index>(p / 3 / w), static_cast<Eigen::Index>(p / 3 % w)));
+    }
     const CalibratedFidelity f = calibrated_fidelity(model, measured[s]);
     result.mean_rel += f.rel;
     result.mean_gaussian_rel += f.gaussian_rel;

@@ -15,6 +15,7 @@
 
 #include "carbtf/analysis/btf/btf_dataset.hpp"
 #include "carbtf/analysis/model/plane.hpp"
+#include "carbtf/analysis/model/relief_specular.hpp"
 #include "carbtf/engine/material/material.hpp"
 
 namespace carbtf {
@@ -24,6 +25,7 @@ struct PairGainRelief {
   const Plane& range_map;             // texel units
   std::span<const Plane> tone;        // the stored tone's planes: none, one grey or R, G and B
   std::span<const float> horizons;    // the range map's horizons, empty without cast shadows
+  SpecularLobe specular = {};         // the highlights the render adds, which no gain scales
 };
 
 // Gain codes for `material` (its subspace models fitted, lights and views the dataset's), in

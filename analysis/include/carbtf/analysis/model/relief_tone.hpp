@@ -19,6 +19,7 @@
 
 #include "carbtf/analysis/btf/btf_dataset.hpp"
 #include "carbtf/analysis/model/plane.hpp"
+#include "carbtf/analysis/model/relief_specular.hpp"
 
 namespace carbtf {
 
@@ -29,15 +30,17 @@ inline constexpr double kReliefToneCeiling = 4.0;
 
 // The relief tone of `view` of `dataset` over `range_map` (heights in texels, the dataset's size),
 // for the render pass's relit factor floor `light_z_floor`, with the cast shadows of `horizons` (none
-// when empty). Lights without an image are skipped; with none, the tone is 1 everywhere.
+// when empty), each image less the relief's specular `lobe` (model/relief_specular.hpp), which the
+// render adds apart from the tone. Lights without an image are skipped; with none, the tone is 1
+// everywhere.
 Plane relief_tone(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor,
-                  std::span<const float> horizons = {});
+                  std::span<const float> horizons = {}, const SpecularLobe& lobe = {});
 
 // The relief tone of each colour channel (linear R, G, B), the formula above on that channel's image:
 // the tone's full colour, where a woven fabric's blue threads and white threads differ in hue, which
 // one grey plane with a slope per channel (relief_tone_chroma) cannot draw.
 std::vector<Plane> relief_tone_planes(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor,
-                                      std::span<const float> horizons = {});
+                                      std::span<const float> horizons = {}, const SpecularLobe& lobe = {});
 
 // How far the tone's colour departs from grey: the RMS over texels and channels of each channel's
 // log tone minus the mean of the three. Requires three planes of one size.
@@ -65,7 +68,7 @@ void clamp_remainder(std::vector<Plane>& channels, double k);
 // measurement lacks (mean rel 0.334 -> 0.354 and 0.276 -> 0.293 with it).
 inline constexpr double kToneChromaExplained = 0.5;
 std::array<float, 3> relief_tone_chroma(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor,
-                                        const Plane& tone, std::span<const float> horizons = {});
+                                        const Plane& tone, std::span<const float> horizons = {}, const SpecularLobe& lobe = {});
 
 // The tone per colour channel as a subspace image of tone weight `weight` takes it:
 // max(1 + weight * chroma[c] * (tone_c - 1), 0), as the render pass composes it (SubspaceModel::tone_weight,

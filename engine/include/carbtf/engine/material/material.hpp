@@ -109,6 +109,12 @@ struct RangeTiles {
   // measured with the same shadows divided out. 0 (any file without an SHDW chunk): no cast shadows.
   // Above 0 only with range tiles (validate_material).
   float shadow_scale = 0.0f;
+  // The relief's specular lobe (model/relief_specular.hpp): the render pass adds
+  // specular_strength * max(N.L, 0) * max(N.H, 0)^specular_gloss, N the range map's normal, to the
+  // colour, and the analysis takes it out of the images before their fit. 0 (any file without a SPEC
+  // chunk): no lobe. Above 0 only with range tiles (validate_material).
+  float specular_strength = 0.0f;
+  float specular_gloss = 0.0f;
   bool operator==(const RangeTiles&) const = default;
 };
 
@@ -144,6 +150,8 @@ inline constexpr std::uint32_t kMaxEdgeColours = 4;
 inline constexpr std::uint32_t kMaxFeather = 4;
 // The largest RangeTiles::shadow_scale.
 inline constexpr float kMaxShadowScale = 4.0f;
+inline constexpr float kMaxSpecularStrength = 16.0f;  // in the images' linear units; measured 0.03-0.09
+inline constexpr float kMaxSpecularGloss = 1024.0f;
 inline constexpr std::uint32_t kMaxSettings = 256;
 inline constexpr std::uint32_t kMaxSettingLength = 4096;
 // Every model number (colour mean and transform, band mean, std, sigma, gamma, range heights in

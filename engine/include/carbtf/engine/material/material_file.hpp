@@ -34,6 +34,9 @@
 //   PGAN  (1.9, optional) u32 lights, u32 views, u8 gain code per colour channel (R, G, B planes) and
 //         (light, view) pair, light-major (Material::pair_gains). Absent, every gain is 1 (as earlier
 //         files mean); an earlier reader skips it and renders each pair at its subspace's mean colour.
+//   SPEC  (1.10, optional) f32 strength, f32 gloss: the relief's specular lobe (RangeTiles::
+//         specular_strength, specular_gloss). Absent, no lobe (as earlier files mean); an earlier reader
+//         skips it and draws no highlights.
 // A reader of major version 1 rejects any other major version. Every count is bounded (material.hpp)
 // before anything is allocated, every read is bounds-checked, and the decoded material is validated,
 // so a truncated, corrupted or hostile file gives an error, never a crash or an unbounded allocation.
@@ -50,7 +53,7 @@
 namespace carbtf {
 
 inline constexpr std::uint16_t kMaterialFormatMajor = 1;
-inline constexpr std::uint16_t kMaterialFormatMinor = 9;
+inline constexpr std::uint16_t kMaterialFormatMinor = 10;
 
 struct MaterialEncoding {
   // Deflate every chunk but SETT where that is smaller (format 1.1). Off, every chunk is stored plain:

@@ -1,0 +1,71 @@
+// The relief's specular lobe in the analysis (model/relief_specular.hpp): fitted to the images of a
+// rendered sample whose renderer adds a Blinn-Phong lobe over its true heights, it is kept with about
+// the renderer's strength and gloss; the same sample without the lobe gets none.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <numbers>
+
+#include "carbtf/analysis/btf/btf_dataset.hpp"
+#include "carbtf/analysis/model/relief_specular.hpp"
+#include "carbtf/analysis/model/relief_tone.hpp"
+#include "carbtf/analysis/sample/height_field_renderer.hpp"
+#include "carbtf/analysis/sample/sample_materials.hpp"
+#include "test_top_view.hpp"
+
+namespace carbtf {
+
+using test::heights_of;
+using test::top_view_dataset;
+
+TEST_CASE("a relief's specular lobe is fitted with about the renderer's strength and gloss", "[tone][specular]") {
+  constexpr std::uint32_t size = 64;
+  Surface surface = make_sample_surface("fabric", size, 3);
+  surface.specular = 0.06f;
+  surface.gloss = 16.0f;
+  const Plane heights = heights_of(surface);
+  const double z_floor = std::max(std::cos(75.0 * std::numbers::pi / 180.0), 1e-3);
+
+  const BtfDataset dataset = top_view_dataset(surface);
+  const SpecularFit fit = fit_relief_specular(dataset, 0, heights, relief_tone(dataset, 0, heights, z_floor), z_floor);
+  // The renderer's lobe: irradiance * N.L * specular * (gloss + 8) / (8 pi) * (N.H)^gloss.
+  const double truth = RenderOptions{}.irradiance * surface.specular * (surface.gloss + 8.0) / (8.0 * std::numbers::pi);
+  INFO("strength " << fit.lobe.strength << " (renderer " << truth << "), gloss " << fit.lobe.gloss << ": error " << fit.error
+                   << ", without the lobe " << fit.error_without);
+  CHECK(fit.error <= (1.0 - kSpecularFitGain) * fit.error_without);
+  CHECK(fit.lobe.strength > truth / 1.5);
+  CHECK(fit.lobe.strength < truth * 1.5);
+  CHECK(std::abs(std::log2(fit.lobe.gloss / surface.gloss)) <= 1.0);
+}
+
+TEST_CASE("a relief without highlights gets no specular lobe", "[tone][specular]") {
+  constexpr std::uint32_t size = 64;
+  Surface surface = make_sample_surface("fabric", size, 3);
+  surface.specular = 0.0f;
+  const Plane heights = heights_of(surface);
+  const double z_floor = std::max(std::cos(75.0 * std::numbers::pi / 180.0), 1e-3);
+  const BtfDataset dataset = top_view_dataset(surface);
+  const SpecularFit fit = fit_relief_specular(dataset, 0, heights, relief_tone(dataset, 0, heights, z_floor), z_floor);
+  INFO("strength " << fit.lobe.strength << ", gloss " << fit.lobe.gloss << ": error " << fit.error << ", without " << fit.error_without);
+  CHECK(fit.lobe.strength == 0.0);
+  CHECK(fit.error == fit.error_without);
+}
+
+TEST_CASE("the specular lobe peaks where the facet faces the half vector", "[tone][specular]") {
+  // A ramp rising along +x: every facet's normal leans towards -x.
+  Plane ramp(8, 8);
+  for (Eigen::Index r = 0; r < 8; ++r)
+    for (Eigen::Index c = 0; c < 8; ++c) ramp(r, c) = 0.3 * static_cast<double>(c);
+  const double tilt = std::atan(0.3);
+  const std::array<double, 3> top{0.0, 0.0, 1.0};
+  // Mirror of the view about the facet normal: the lobe is N.L there, its peak value.
+  const std::array<double, 3> mirror{-std::sin(2.0 * tilt), 0.0, std::cos(2.0 * tilt)};
+  const Plane peak = specular_lobe(ramp, mirror, top, 32.0);
+  CHECK(peak(4, 4) == Approx(std::cos(tilt)).epsilon(1e-9));
+  const std::array<double, 3> other_side{std::sin(2.0 * tilt), 0.0, std::cos(2.0 * tilt)};
+  CHECK(specular_lobe(ramp, other_side, top, 32.0)(4, 4) < 0.01 * peak(4, 4));
+  CHECK(lobe_of({}, ramp, mirror, top).isZero());
+  CHECK(lobe_of({2.0, 32.0}, ramp, mirror, top)(4, 4) == Approx(2.0 * peak(4, 4)));
+}
+
+}  // namespace carbtf
