@@ -267,9 +267,8 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
       if (options.relief_specular) {
         const SpecularFit fit = fit_relief_specular(dataset, result.stereo_view, result.range_map, result.tone, z_floor, result.horizons);
         specular = fit.lobe;
-        std::snprintf(line, sizeof line, "relief specular: %s (the view's images explained with error %.4f, without it %.4f)",
-                      fit.lobe.strength > 0.0 ? ("strength " + std::to_string(fit.lobe.strength) + ", gloss " + std::to_string(int(fit.lobe.gloss))).c_str() : "none",
-                      fit.error, fit.error_without);
+        std::snprintf(line, sizeof line, "relief specular: strength %.4g, gloss %.0f%s (the view's images explained with error %.4f, without it %.4f)",
+                      fit.lobe.strength, fit.lobe.gloss, fit.lobe.strength > 0.0 ? "" : ", none", fit.error, fit.error_without);
         note(line);
         // The tone of the images without their highlights, which the render adds apart from it.
         if (specular.strength > 0.0) result.tone = relief_tone(dataset, result.stereo_view, result.range_map, z_floor, result.horizons, specular);

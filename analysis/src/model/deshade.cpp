@@ -8,30 +8,35 @@
 
 namespace carbtf {
 
-Plane relit_factor(const Plane& range_map, const std::array<double, 3>& light, double light_z_floor,
-                   std::span<const float> horizons) {
+RangeFacet range_map_facet(const Plane& range_map, Eigen::Index row, Eigen::Index col) {
   const Eigen::Index rows = range_map.rows(), cols = range_map.cols();
-  constexpr std::size_t n = kReliefHorizonDirections;
-  if (!horizons.empty() && horizons.size() != static_cast<std::size_t>(rows * cols) * n) {
-    throw std::invalid_argument("relit_factor: the horizons are not the range map's");
-  }
-  const std::array<float, 3> light_f{static_cast<float>(light[0]), static_cast<float>(light[1]), static_cast<float>(light[2])};
-  Plane factor(rows, cols);
   auto h = [&](Eigen::Index r, Eigen::Index c) {
     return range_map(std::clamp<Eigen::Index>(r, 0, rows - 1), std::clamp<Eigen::Index>(c, 0, cols - 1));
   };
+  const double dx = 0.5 * (h(row, col + 1) - h(row, col - 1));
+  const double dy = 0.5 * (h(row - 1, col) - h(row + 1, col));
+  return {dx, dy, std::sqrt(dx * dx + dy * dy + 1.0)};
+}
+
+double horizon_visibility(std::span<const float> horizons, Eigen::Index texel, const std::array<double, 3>& light) {
+  if (horizons.empty()) return 1.0;
+  constexpr std::size_t n = kReliefHorizonDirections;
+  return relief_visibility(horizons.subspan(static_cast<std::size_t>(texel) * n).first<n>(),
+                           {static_cast<float>(light[0]), static_cast<float>(light[1]), static_cast<float>(light[2])});
+}
+
+Plane relit_factor(const Plane& range_map, const std::array<double, 3>& light, double light_z_floor,
+                   std::span<const float> horizons) {
+  const Eigen::Index rows = range_map.rows(), cols = range_map.cols();
+  if (!horizons.empty() && horizons.size() != static_cast<std::size_t>(rows * cols) * kReliefHorizonDirections) {
+    throw std::invalid_argument("relit_factor: the horizons are not the range map's");
+  }
+  Plane factor(rows, cols);
   const double denominator = std::max(light[2], light_z_floor);
   for (Eigen::Index r = 0; r < rows; ++r) {
     for (Eigen::Index c = 0; c < cols; ++c) {
-      // As the shader: x along columns, y up (towards row - 1).
-      const double dx = 0.5 * (h(r, c + 1) - h(r, c - 1));
-      const double dy = 0.5 * (h(r - 1, c) - h(r + 1, c));
-      const double length = std::sqrt(dx * dx + dy * dy + 1.0);
-      const double dot = (-dx * light[0] - dy * light[1] + light[2]) / length;
-      factor(r, c) = std::max(dot, 0.0) / denominator;
-      if (!horizons.empty()) {
-        factor(r, c) *= relief_visibility(horizons.subspan(static_cast<std::size_t>(r * cols + c) * n).first<n>(), light_f);
-      }
+      factor(r, c) = std::max(range_map_facet(range_map, r, c).cosine(light), 0.0) / denominator;
+      if (!horizons.empty()) factor(r, c) *= horizon_visibility(horizons, r * cols + c, light);
     }
   }
   return factor;

@@ -13,8 +13,7 @@ namespace carbtf {
 Plane specular_lobe(const Plane& range_map, const std::array<double, 3>& light, const std::array<double, 3>& view, double gloss,
                     std::span<const float> horizons) {
   const Eigen::Index rows = range_map.rows(), cols = range_map.cols();
-  constexpr std::size_t n = kReliefHorizonDirections;
-  if (!horizons.empty() && horizons.size() != static_cast<std::size_t>(rows * cols) * n) {
+  if (!horizons.empty() && horizons.size() != static_cast<std::size_t>(rows * cols) * kReliefHorizonDirections) {
     throw std::invalid_argument("specular_lobe: the horizons are not the range map's");
   }
   std::array<double, 3> half{light[0] + view[0], light[1] + view[1], light[2] + view[2]};
@@ -22,21 +21,13 @@ Plane specular_lobe(const Plane& range_map, const std::array<double, 3>& light, 
   Plane lobe = Plane::Zero(rows, cols);
   if (!(half_length > 0.0)) return lobe;
   for (double& h : half) h /= half_length;
-  const std::array<float, 3> light_f{static_cast<float>(light[0]), static_cast<float>(light[1]), static_cast<float>(light[2])};
-  auto h = [&](Eigen::Index r, Eigen::Index c) {
-    return range_map(std::clamp<Eigen::Index>(r, 0, rows - 1), std::clamp<Eigen::Index>(c, 0, cols - 1));
-  };
   for (Eigen::Index r = 0; r < rows; ++r) {
     for (Eigen::Index c = 0; c < cols; ++c) {
-      // As relit_factor() and the shader: x along columns, y up (towards row - 1).
-      const double dx = 0.5 * (h(r, c + 1) - h(r, c - 1));
-      const double dy = 0.5 * (h(r - 1, c) - h(r + 1, c));
-      const double length = std::sqrt(dx * dx + dy * dy + 1.0);
-      const double n_dot_l = (-dx * light[0] - dy * light[1] + light[2]) / length;
-      const double n_dot_h = (-dx * half[0] - dy * half[1] + half[2]) / length;
+      const RangeFacet facet = range_map_facet(range_map, r, c);
+      const double n_dot_l = facet.cosine(light), n_dot_h = facet.cosine(half);
       if (n_dot_l <= 0.0 || n_dot_h <= 0.0) continue;
       lobe(r, c) = n_dot_l * std::pow(n_dot_h, gloss);
-      if (!horizons.empty()) lobe(r, c) *= relief_visibility(horizons.subspan(static_cast<std::size_t>(r * cols + c) * n).first<n>(), light_f);
+      if (!horizons.empty()) lobe(r, c) *= horizon_visibility(horizons, r * cols + c, light);
     }
   }
   return lobe;

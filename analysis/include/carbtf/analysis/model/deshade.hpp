@@ -23,6 +23,20 @@ namespace carbtf {
 Plane relit_factor(const Plane& range_map, const std::array<double, 3>& light, double light_z_floor,
                    std::span<const float> horizons = {});
 
+// The facet of `range_map` at (row, col) as the render pass computes it: central differences, edges
+// repeated, x along columns, y up (towards row - 1); its normal is (-dx, -dy, 1) / length. The relit
+// factor and the specular lobe both light it.
+struct RangeFacet {
+  double dx = 0.0, dy = 0.0, length = 1.0;
+  // The cosine between the facet's normal and the unit direction d.
+  double cosine(const std::array<double, 3>& d) const { return (-dx * d[0] - dy * d[1] + d[2]) / length; }
+};
+RangeFacet range_map_facet(const Plane& range_map, Eigen::Index row, Eigen::Index col);
+
+// The share of `light` the relief's cast shadows leave at texel `texel` (row-major) of the range map
+// whose horizons (range_map_horizons()) these are; 1 without horizons.
+double horizon_visibility(std::span<const float> horizons, Eigen::Index texel, const std::array<double, 3>& light);
+
 // Divides every channel by max(factor, floor); the channels and the factor share one size.
 void divide_shading(std::vector<Plane>& channels, const Plane& factor, double floor);
 // Divides channel c by max(factors[c], floor): one factor per channel (a coloured relief tone).
