@@ -179,6 +179,20 @@ std::pair<std::vector<std::uint8_t>, std::size_t> checked_optional_chunk(Materia
   return {std::move(bytes), at + 8};  // after the tag and the size
 }
 
+// Each of `hostile` written as the float at bytes[at] (CRCs fixed): the file is refused with a message
+// naming it and holding every part of `expected`.
+void check_refused_floats(std::vector<std::uint8_t>& bytes, std::size_t at, std::initializer_list<float> hostile,
+                          std::initializer_list<std::string> expected) {
+  Material back;
+  for (const float value : hostile) {
+    std::memcpy(&bytes[at], &value, 4);
+    fix_crcs(bytes);
+    const std::string message = decode_material(bytes, "bad.cbtf", back).message();
+    CHECK_THAT(message, Catch::Contains("bad.cbtf"));
+    for (const std::string& part : expected) CHECK_THAT(message, Catch::Contains(part));
+  }
+}
+
 TEST_CASE("deflated chunks read back exactly, and a lying one is refused before it costs", "[material_file][deflate]") {
   const Material m = sample_material();
   REQUIRE_FALSE(m.range.tone.empty());
@@ -631,13 +645,8 @@ TEST_CASE("cast shadows read back while a file without SHDW has none and a hosti
   auto [bytes, at] = checked_optional_chunk(
       sample_material(), "SHDW", [](Material& m) { m.range.shadow_scale = 0.5f; },
       [](const Material& m) { return m.range.shadow_scale == 0.0f; });
-  Material back;
-  for (const float hostile : {-0.5f, 4.5f, std::nanf(""), std::numeric_limits<float>::infinity()}) {
-    std::memcpy(&bytes[at], &hostile, 4);
-    fix_crcs(bytes);
-    const Status s = decode_material(bytes, "bad.cbtf", back);
-    CHECK_THAT(s.message(), Catch::Contains("bad.cbtf") && Catch::Contains("shadow scale") && Catch::Contains("outside 0..4"));
-  }
+  check_refused_floats(bytes, at, {-0.5f, 4.5f, std::nanf(""), std::numeric_limits<float>::infinity()},
+                       {"shadow scale", "outside 0..4"});
   // Shadows are cast by range tiles: a material without them cannot have any.
   Material tileless = sample_material();
   tileless.range = RangeTiles{};
@@ -650,21 +659,12 @@ TEST_CASE("a specular lobe reads back while a file without SPEC has none and hos
   auto [bytes, at] = checked_optional_chunk(
       sample_material(), "SPEC", [](Material& m) { m.range.specular_strength = 0.08f; m.range.specular_gloss = 32.0f; },
       [](const Material& m) { return m.range.specular_strength == 0.0f; });
-  Material back;
-  for (const float hostile : {-0.5f, 17.0f, std::nanf(""), std::numeric_limits<float>::infinity()}) {
-    std::memcpy(&bytes[at], &hostile, 4);
-    fix_crcs(bytes);
-    const Status s = decode_material(bytes, "bad.cbtf", back);
-    CHECK_THAT(s.message(), Catch::Contains("bad.cbtf") && Catch::Contains("specular strength") && Catch::Contains("outside 0..16"));
-  }
+  check_refused_floats(bytes, at, {-0.5f, 17.0f, std::nanf(""), std::numeric_limits<float>::infinity()},
+                       {"specular strength", "outside 0..16"});
   const float strength = 0.08f;
   std::memcpy(&bytes[at], &strength, 4);
-  for (const float hostile : {0.5f, 2000.0f, std::nanf(""), -std::numeric_limits<float>::infinity()}) {
-    std::memcpy(&bytes[at + 4], &hostile, 4);
-    fix_crcs(bytes);
-    const Status s = decode_material(bytes, "bad.cbtf", back);
-    CHECK_THAT(s.message(), Catch::Contains("bad.cbtf") && Catch::Contains("specular gloss") && Catch::Contains("outside 1..1024"));
-  }
+  check_refused_floats(bytes, at + 4, {0.5f, 2000.0f, std::nanf(""), -std::numeric_limits<float>::infinity()},
+                       {"specular gloss", "outside 1..1024"});
   // The lobe follows the range tiles' normals: a material without them cannot have one.
   Material tileless = sample_material();
   tileless.range = RangeTiles{};
