@@ -88,6 +88,9 @@ std::vector<float> rgba_floats(const RenderedImage& frame) {
 
 }  // namespace
 
+// The smallest side of the plane's image the measure scores (texture_statistics() wants 16 x 16).
+constexpr std::uint32_t kMinCoveredSide = 16;
+
 std::vector<FidelityPair> default_fidelity_pairs(const Material& material) {
   struct Wanted {
     double light_theta, light_phi, view_theta, view_phi;
@@ -101,6 +104,29 @@ std::vector<FidelityPair> default_fidelity_pairs(const Material& material) {
     p.label = "light " + degrees_text(material.lights[p.light]) + " view " + degrees_text(material.views[p.view]);
     const bool duplicate = std::any_of(pairs.begin(), pairs.end(), [&](const FidelityPair& q) { return q.light == p.light && q.view == p.view; });
     if (!duplicate) pairs.push_back(p);
+  }
+  return pairs;
+}
+
+std::vector<FidelityPair> spread_fidelity_pairs(const Material& material, const BtfDataset& dataset, std::size_t count) {
+  // R2 (Roberts 2018): the plastic number's inverse powers as the two steps.
+  const double plastic = 1.32471795724474602596;
+  const double step_light = 1.0 / plastic, step_view = 1.0 / (plastic * plastic);
+  const std::size_t lights = std::min(material.lights.size(), dataset.lights().size());
+  const std::size_t views = std::min(material.views.size(), dataset.views().size());
+  std::vector<FidelityPair> pairs;
+  std::vector<bool> taken(lights * views, false);
+  for (std::size_t i = 0; pairs.size() < count && i < 4 * lights * views; ++i) {
+    const double x = 0.5 + step_light * static_cast<double>(i), y = 0.5 + step_view * static_cast<double>(i);
+    const auto light = static_cast<std::uint32_t>((x - std::floor(x)) * static_cast<double>(lights));
+    const auto view = static_cast<std::uint32_t>((y - std::floor(y)) * static_cast<double>(views));
+    if (light >= lights || view >= views || taken[light * views + view] || !dataset.has_image({light, view})) continue;
+    // A view so oblique that the plane's image is too thin to score (its side shrinks by cos theta, and
+    // the covered rectangle loses up to two rows at its slanted edges).
+    const double side = std::cos(static_cast<double>(material.views[view].theta)) * std::min(dataset.width(), dataset.height());
+    if (side < kMinCoveredSide + 2) continue;
+    taken[light * views + view] = true;
+    pairs.push_back({light, view, "light " + degrees_text(material.lights[light]) + " view " + degrees_text(material.views[view])});
   }
   return pairs;
 }
@@ -151,7 +177,7 @@ std::vector<PairFidelity> run_fidelity(Context& context, const Material& materia
     const RenderedImage measured_frame = render_measured(context, material, dataset, {{p.light, p.view}}, plane, scene, target, 1);
     const std::vector<float> model_rgba = rgba_floats(model_frame), measured_rgba = rgba_floats(measured_frame);
     const Rectangle rect = covered_rectangle(measured_rgba, width, height);
-    if (std::min(rect.width, rect.height) < 16 || std::max(rect.width, rect.height) < 32) throw CommandError("fidelity: the plane covers too little of the frame at " + p.label);
+    if (std::min(rect.width, rect.height) < kMinCoveredSide || std::max(rect.width, rect.height) < 2 * kMinCoveredSide) throw CommandError("fidelity: the plane covers too little of the frame at " + p.label);
     PairFidelity result;
     result.pair = p;
     result.model = crop_rgba(model_rgba, width, rect);

@@ -27,6 +27,12 @@ struct FidelityPair {
 // measured direction nearest the wanted one.
 std::vector<FidelityPair> default_fidelity_pairs(const Material& material);
 
+// `count` measured pairs spread evenly over all lights x views (the R2 low-discrepancy sequence over
+// their indices), the same for every run: a broader sample than the default five, which one pair can
+// sway (the mirror pair, light (45, 180) view (45, 0), decides whether the specular lobe helps
+// coast_sand_rocks). Fewer where the dataset has fewer images.
+std::vector<FidelityPair> spread_fidelity_pairs(const Material& material, const BtfDataset& dataset, std::size_t count);
+
 struct PairFidelity {
   FidelityPair pair;
   CalibratedFidelity result;

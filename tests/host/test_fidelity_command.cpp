@@ -3,9 +3,11 @@
 // model without its relief tone as worse too (item 3c), and fabric's model without its highlights.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -191,5 +193,67 @@ TEST_CASE("carbtf bench fidelity sets each model option's size beside its fideli
   // A second run into the same folder refuses to overwrite the first's files.
   const Run again = run("bench fidelity " + btf.string() + " --variants paper --out " + out.string());
   CHECK(again.status != 0);
+  fs::remove_all(folder);
+}
+
+namespace {
+
+// The (light, view) index pairs of fidelity.csv's rows, and the largest view elevation among them.
+std::vector<std::pair<int, int>> scored_pairs(const fs::path& csv, double& steepest_view) {
+  std::ifstream file(csv);
+  std::string line;
+  std::getline(file, line);
+  std::vector<std::pair<int, int>> pairs;
+  steepest_view = 0.0;
+  while (std::getline(file, line)) {
+    std::stringstream fields(line);
+    std::string light, view, light_theta, light_phi, view_theta;
+    std::getline(fields, light, ',');
+    std::getline(fields, view, ',');
+    std::getline(fields, light_theta, ',');
+    std::getline(fields, light_phi, ',');
+    std::getline(fields, view_theta, ',');
+    pairs.emplace_back(std::stoi(light), std::stoi(view));
+    steepest_view = std::max(steepest_view, std::stod(view_theta));
+  }
+  return pairs;
+}
+
+}  // namespace
+
+TEST_CASE("carbtf fidelity scores the pairs asked for or a spread over every light and view", "[cli][fidelity]") {
+  const fs::path folder = test::scratch_folder("fidelity_pairs");
+  REQUIRE(run("sample leather --size 64 --out " + (folder / "sample").string()).status == 0);
+  const fs::path btf = folder / "sample" / "btf", material = folder / "leather.cbtf";
+  REQUIRE(run("analyze " + btf.string() + " --out " + material.string()).status == 0);
+  const std::string fidelity = "fidelity " + material.string() + " " + btf.string();
+
+  const Run chosen = run(fidelity + " --pairs 1,0,19,0 --validation --out " + (folder / "chosen").string());
+  INFO(chosen.output);
+  REQUIRE(chosen.status == 0);
+  double steepest = 0.0;
+  CHECK(scored_pairs(folder / "chosen" / "fidelity.csv", steepest) == std::vector<std::pair<int, int>>{{1, 0}, {19, 0}});
+
+  // Six distinct pairs, the same on every run, none so oblique that the 64-pixel plane is too thin to
+  // score (the run fails on such a pair: cos 75 degrees x 64 is 16.6 pixels).
+  const Run spread = run(fidelity + " --spread 6 --validation --out " + (folder / "spread").string());
+  INFO(spread.output);
+  REQUIRE(spread.status == 0);
+  CHECK_THAT(spread.output, Catch::Contains("6 pairs"));
+  const auto pairs = scored_pairs(folder / "spread" / "fidelity.csv", steepest);
+  CHECK(pairs.size() == 6);
+  CHECK(std::set<std::pair<int, int>>(pairs.begin(), pairs.end()).size() == pairs.size());
+  CHECK(steepest < 75.0);
+  CHECK(std::any_of(pairs.begin(), pairs.end(), [](const auto& p) { return p.second != 0; }));  // not the top view alone
+  REQUIRE(run(fidelity + " --spread 6 --out " + (folder / "again").string()).status == 0);
+  double steepest_again = 0.0;
+  CHECK(scored_pairs(folder / "again" / "fidelity.csv", steepest_again) == pairs);
+
+  const Run odd = run(fidelity + " --pairs 1 --out " + (folder / "odd").string());
+  CHECK(odd.status != 0);
+  CHECK_THAT(odd.output, Catch::Contains("an even count"));
+  const Run both = run(fidelity + " --pairs 1,0 --spread 3 --out " + (folder / "both").string());
+  CHECK(both.status != 0);
+  CHECK_THAT(both.output, Catch::Contains("excludes"));
   fs::remove_all(folder);
 }
