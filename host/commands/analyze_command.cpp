@@ -142,8 +142,8 @@ void register_analyze_command(CLI::App& app) {
                     "With the relief tone, add the relief's specular lobe: highlights where the range map's facets turn to "
                     "the half vector of light and view, fitted to the photometric-stereo view's images and kept where they "
                     "explain them better. Off by default: fabric looks nearer its measurement with it (mean rel 0.42 -> 0.39 "
-                    "at 256^2, 0.35 -> 0.32 with --tone-planes auto), coast_sand_rocks further on those five pairs (0.155 -> "
-                    "0.194) but nearer over 16 spread pairs (fidelity --spread 16: 0.298 -> 0.277)");
+                    "at 256^2, 0.35 -> 0.32 with --tone-planes auto), coast_sand_rocks further on fidelity's default five pairs (0.155 "
+                    "-> 0.194) but nearer over 16 spread pairs (fidelity --spread 16: 0.298 -> 0.277)");
   command->add_flag("!--no-pair-gains", a.pair_gains,
                     "Leave out the pair gains: per measured light and view, colour gains that give the pair its measured "
                     "mean colour, which its subspace image (the representative pair's) does not have (on by default)");
