@@ -42,7 +42,10 @@ void run_fidelity_command(const FidelityOptions& options) {
     pairs.push_back({options.pairs[i], options.pairs[i + 1], "light " + std::to_string(options.pairs[i]) + " view " + std::to_string(options.pairs[i + 1])});
   }
   const BtfDataset dataset = load_measurement_of(material, options.dataset, "DATASET");
-  if (options.spread > 0) pairs = spread_fidelity_pairs(material, dataset, options.spread);
+  if (options.spread > 0) {
+    pairs = spread_fidelity_pairs(material, dataset, options.spread);
+    if (pairs.empty()) throw CommandError("--spread: no measured pair of " + options.dataset + " can be scored (its images are too small)");
+  }
   if (pairs.empty()) pairs = default_fidelity_pairs(material);
   const fs::path out = options.out;
   create_folder(out);

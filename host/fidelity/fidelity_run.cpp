@@ -86,10 +86,10 @@ std::vector<float> rgba_floats(const RenderedImage& frame) {
   return values;
 }
 
-}  // namespace
-
 // The smallest side of the plane's image the measure scores (texture_statistics() wants 16 x 16).
 constexpr std::uint32_t kMinCoveredSide = 16;
+
+}  // namespace
 
 std::vector<FidelityPair> default_fidelity_pairs(const Material& material) {
   struct Wanted {

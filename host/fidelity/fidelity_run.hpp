@@ -28,9 +28,10 @@ struct FidelityPair {
 std::vector<FidelityPair> default_fidelity_pairs(const Material& material);
 
 // `count` measured pairs spread evenly over all lights x views (the R2 low-discrepancy sequence over
-// their indices), the same for every run: a broader sample than the default five, which one pair can
-// sway (the mirror pair, light (45, 180) view (45, 0), decides whether the specular lobe helps
-// coast_sand_rocks). Fewer where the dataset has fewer images.
+// their indices), the same for every run: a broader sample than the default five, on which a few pairs
+// can sway a verdict (the specular lobe costs coast_sand_rocks on the five, most at the mirror pair, and
+// helps it over 16 spread pairs). Views too oblique for the image size to score are skipped; fewer
+// where the dataset has fewer images, none where no view can be scored.
 std::vector<FidelityPair> spread_fidelity_pairs(const Material& material, const BtfDataset& dataset, std::size_t count);
 
 struct PairFidelity {

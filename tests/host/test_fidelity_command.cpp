@@ -255,5 +255,12 @@ TEST_CASE("carbtf fidelity scores the pairs asked for or a spread over every lig
   const Run both = run(fidelity + " --pairs 1,0 --spread 3 --out " + (folder / "both").string());
   CHECK(both.status != 0);
   CHECK_THAT(both.output, Catch::Contains("excludes"));
+  // At 16^2 even the top view's image is too thin for the spread's margin: an error, not the default pairs.
+  REQUIRE(run("sample leather --size 16 --out " + (folder / "tiny").string()).status == 0);
+  const fs::path tiny_btf = folder / "tiny" / "btf", tiny = folder / "tiny.cbtf";
+  REQUIRE(run("analyze " + tiny_btf.string() + " --out " + tiny.string()).status == 0);
+  const Run none = run("fidelity " + tiny.string() + " " + tiny_btf.string() + " --spread 4 --out " + (folder / "none").string());
+  CHECK(none.status != 0);
+  CHECK_THAT(none.output, Catch::Contains("--spread: no measured pair") && Catch::Contains("too small"));
   fs::remove_all(folder);
 }
