@@ -54,6 +54,27 @@ double fidelity_of(const fs::path& material, const fs::path& btf, const fs::path
   return mean_column(out / "fidelity.csv", 6);
 }
 
+// The (light, view) index pairs of fidelity.csv's rows, and the largest view elevation among them.
+std::vector<std::pair<int, int>> scored_pairs(const fs::path& csv, double& steepest_view) {
+  std::ifstream file(csv);
+  std::string line;
+  std::getline(file, line);
+  std::vector<std::pair<int, int>> pairs;
+  steepest_view = 0.0;
+  while (std::getline(file, line)) {
+    std::stringstream fields(line);
+    std::string light, view, light_theta, light_phi, view_theta;
+    std::getline(fields, light, ',');
+    std::getline(fields, view, ',');
+    std::getline(fields, light_theta, ',');
+    std::getline(fields, light_phi, ',');
+    std::getline(fields, view_theta, ',');
+    pairs.emplace_back(std::stoi(light), std::stoi(view));
+    steepest_view = std::max(steepest_view, std::stod(view_theta));
+  }
+  return pairs;
+}
+
 // One sample's checks, each sample its own test case so that CTest runs them side by side.
 void check_fidelity_ranking(const std::string& name) {
   const fs::path folder = test::scratch_folder("fidelity_" + name);
@@ -195,31 +216,6 @@ TEST_CASE("carbtf bench fidelity sets each model option's size beside its fideli
   CHECK(again.status != 0);
   fs::remove_all(folder);
 }
-
-namespace {
-
-// The (light, view) index pairs of fidelity.csv's rows, and the largest view elevation among them.
-std::vector<std::pair<int, int>> scored_pairs(const fs::path& csv, double& steepest_view) {
-  std::ifstream file(csv);
-  std::string line;
-  std::getline(file, line);
-  std::vector<std::pair<int, int>> pairs;
-  steepest_view = 0.0;
-  while (std::getline(file, line)) {
-    std::stringstream fields(line);
-    std::string light, view, light_theta, light_phi, view_theta;
-    std::getline(fields, light, ',');
-    std::getline(fields, view, ',');
-    std::getline(fields, light_theta, ',');
-    std::getline(fields, light_phi, ',');
-    std::getline(fields, view_theta, ',');
-    pairs.emplace_back(std::stoi(light), std::stoi(view));
-    steepest_view = std::max(steepest_view, std::stod(view_theta));
-  }
-  return pairs;
-}
-
-}  // namespace
 
 TEST_CASE("carbtf fidelity scores the pairs asked for or a spread over every light and view", "[cli][fidelity]") {
   const fs::path folder = test::scratch_folder("fidelity_pairs");
