@@ -42,7 +42,10 @@ struct DemoOptions {
   // 0.53 and its cells hardly showed in the fidelity grid; at 256 it takes about 100 s and scores 0.35
   // (seed 7, 2 cores, lavapipe): the first picture a user sees should look like the material.
   std::uint32_t size = 256;
-  std::uint32_t texture_size = 256;  // synthesized subspace images
+  // Synthesized subspace images, texels per side: 512 puts four 128-texel range tiles round the
+  // sphere. With 256, two, and for the demo's seed the two were the same tile, so the sphere's back
+  // showed the front's relief.
+  std::uint32_t texture_size = 512;
   std::uint64_t seed = 7;
 };
 
