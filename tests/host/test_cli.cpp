@@ -370,8 +370,18 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
     CHECK(out_of_range.status != 0);
     CHECK_THAT(out_of_range.output, Catch::Contains("--tone-weights"));
   }
+  SECTION("range-tile edge colours: more colours, more tiles from more patches, shown by info") {
+    const fs::path three = folder / "edge_colours_3.cbtf";
+    const Run analyze_three =
+        run("analyze " + (folder / "leather" / "btf").string() + " --subspaces 8 --levels 2 --edge-colours 3 --out " + three.string());
+    INFO(analyze_three.output);
+    REQUIRE(analyze_three.status == 0);
+    CHECK_THAT(run("info " + three.string()).output, Catch::Contains("81 tiles of") && Catch::Contains("from 6 patches"));
+    CHECK_THAT(run("info " + material.string()).output, Catch::Contains("16 tiles of") && Catch::Contains("from 4 patches"));
+  }
   SECTION("bad analysis arguments") {
     for (const auto& [arguments, expected] : std::vector<std::pair<std::string, std::string>>{
+             {"analyze " + (folder / "leather" / "btf").string() + " --out x.cbtf --edge-colours 5", "--edge-colours"},
              {"analyze " + (folder / "leather" / "btf").string() + " --out x.cbtf --subspaces 21", "--subspaces"},
              {"analyze " + (folder / "leather" / "btf").string() + " --out x.cbtf --levels 7", "--levels"},
              {"analyze " + (folder / "leather" / "btf").string() + " --out x.cbtf --selection-draws 0", "--selection-draws"},
