@@ -92,7 +92,7 @@ void register_analyze_command(CLI::App& app) {
   command->add_option("--tile-size", a.tiles.tile_size, "Range-map tile size in texels (even)")->check(CLI::Range(4, 1024))->capture_default_str();
   command->add_option("--edge-colours", a.tiles.edge_colours,
                       "Range-tile edge colours per direction: 2 patches each, tiles = colours^4 (more: less repetition on large surfaces, a larger file)")
-      ->check(CLI::Range(1, 4))
+      ->check(CLI::Range(1u, kMaxEdgeColours))
       ->capture_default_str();
   command->add_option("--height-bits", a.tiles.height_bits, "Range-map height quantization in bits (fewer: a smaller file, coarser slopes)")
       ->check(CLI::Range(1, 16))
