@@ -222,8 +222,7 @@ std::vector<std::byte> encode_rgb_image(const std::string& name, std::span<const
   } else {
     std::vector<std::uint8_t> bytes(linear_rgb.size());
     for (std::size_t i = 0; i < bytes.size(); ++i) {
-      const float value = std::clamp(linear_rgb[i], 0.0f, 1.0f);
-      bytes[i] = static_cast<std::uint8_t>(std::lround((srgb_encode ? linear_to_srgb(value) : value) * 255.0f));
+      bytes[i] = srgb_encode ? linear_to_srgb8(linear_rgb[i]) : static_cast<std::uint8_t>(std::lround(std::clamp(linear_rgb[i], 0.0f, 1.0f) * 255.0f));
     }
     written = output->write_image(OIIO::TypeDesc::UINT8, bytes.data());
   }

@@ -52,8 +52,7 @@ RenderedImage render_measured(Context& context, const Material& material, const 
     dataset.linear_rgb({light, view}, linear);
     for (std::size_t p = 0; p < std::size_t{w} * h; ++p) {
       for (int k = 0; k < 3; ++k) {
-        texels[4 * p + k] = static_cast<std::uint8_t>(
-            std::lround(255.0f * linear_to_srgb(std::clamp(linear[3 * p + k], 0.0f, 1.0f))));
+        texels[4 * p + k] = linear_to_srgb8(linear[3 * p + k]);
       }
     }
     check(array->set_layer(layer, texels), "cannot stage a measured image");

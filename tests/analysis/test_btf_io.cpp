@@ -7,6 +7,9 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <cstring>
 
 #include <cmath>
@@ -373,6 +376,47 @@ TEST_CASE("a manifest lists any capture with its own direction set", "[btf][mani
   dataset.linear_rgb({1, 0}, pixels);
   CHECK(linear_to_srgb(pixels[0]) == Approx(linear_to_srgb(0.4f)).margin(0.5 / 255));
   fs::remove_all(folder);
+}
+
+TEST_CASE("linear_to_srgb8 gives the rounded sRGB code of the power law exactly", "[btf][srgb]") {
+  // The code it replaces, value by value.
+  const auto by_power = [](float v) {
+    return static_cast<int>(std::lround(linear_to_srgb(std::clamp(v, 0.0f, 1.0f)) * 255.0f));
+  };
+  const std::uint32_t zero = std::bit_cast<std::uint32_t>(0.0f), one = std::bit_cast<std::uint32_t>(1.0f);
+  std::size_t checked = 0, mismatches = 0;
+  const auto check_bits = [&](std::uint32_t bits) {
+    const float v = std::bit_cast<float>(bits);
+    mismatches += static_cast<int>(linear_to_srgb8(v)) != by_power(v);
+    ++checked;
+  };
+  // Every float within 2048 ULPs of each value where the power law's code steps, and every 997th float
+  // of [0, 1] between them.
+  int previous = 0;
+  for (std::uint32_t bits = zero; bits <= one; bits += 997) {
+    const int code = by_power(std::bit_cast<float>(bits));
+    if (code != previous) {
+      std::uint32_t low = bits - 997, high = bits;  // the step lies in (low, high]
+      while (high - low > 1) {
+        const std::uint32_t middle = low + (high - low) / 2;
+        (by_power(std::bit_cast<float>(middle)) == code ? high : low) = middle;
+      }
+      for (std::uint32_t b = high - std::min<std::uint32_t>(high - zero, 2048); b <= std::min(high + 2048, one); ++b) check_bits(b);
+      previous = code;
+    }
+    check_bits(bits);
+  }
+  check_bits(one);
+  INFO(checked << " floats checked");
+  CHECK(checked > 1000000);
+  CHECK(mismatches == 0);
+  CHECK(previous == 255);
+  // Outside [0, 1] it clamps, as the encoders did; NaN gives 0.
+  CHECK(linear_to_srgb8(-0.5f) == 0);
+  CHECK(linear_to_srgb8(-0.0f) == 0);
+  CHECK(linear_to_srgb8(7.0f) == 255);
+  CHECK(linear_to_srgb8(std::numeric_limits<float>::infinity()) == 255);
+  CHECK(linear_to_srgb8(std::numeric_limits<float>::quiet_NaN()) == 0);
 }
 
 TEST_CASE("bad input: malformed manifests name the line and the problem", "[btf][manifest][bad-input]") {

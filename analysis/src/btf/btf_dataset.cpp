@@ -2,11 +2,16 @@
 
 #include <Imath/half.h>
 
+#include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <stdexcept>
+#include <limits>
 #include <string>
+#include <vector>
 
 #include "carbtf/analysis/input_error.hpp"
 
@@ -22,6 +27,59 @@ float srgb_to_linear(float encoded) {
 
 float linear_to_srgb(float linear) {
   return linear <= 0.0031308f ? linear * 12.92f : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
+}
+
+namespace {
+
+std::uint8_t srgb8_by_power(float linear) {
+  return static_cast<std::uint8_t>(std::lround(linear_to_srgb(linear) * 255.0f));
+}
+
+// Floats of [0, 1] in buckets of their top 16 bits (sign, exponent, 7 mantissa bits): each bucket is
+// narrower than the distance between two steps of the code (checked when the table is built), so a
+// bucket holds the code at its start and at most one step, the least float whose code is one more.
+// Non-negative floats order as their bit patterns do, so a step is found by bisection over those.
+constexpr std::uint32_t kSrgb8BucketShift = 16;
+
+struct Srgb8CodeTable {
+  std::vector<std::uint8_t> base;
+  std::vector<float> step;  // +infinity where the bucket holds none
+};
+
+const Srgb8CodeTable& srgb8_code_table() {
+  static const Srgb8CodeTable table = [] {
+    const std::uint32_t last = std::bit_cast<std::uint32_t>(1.0f) >> kSrgb8BucketShift;
+    Srgb8CodeTable t;
+    t.base.resize(last + 1);
+    t.step.assign(last + 1, std::numeric_limits<float>::infinity());
+    for (std::uint32_t b = 0; b <= last; ++b) {
+      std::uint32_t low = b << kSrgb8BucketShift;
+      const std::uint32_t end = std::min((b + 1) << kSrgb8BucketShift, std::bit_cast<std::uint32_t>(1.0f) + 1);
+      const int first = srgb8_by_power(std::bit_cast<float>(low));
+      const int final = srgb8_by_power(std::bit_cast<float>(end - 1));
+      t.base[b] = static_cast<std::uint8_t>(first);
+      if (final == first) continue;
+      if (final != first + 1) throw std::logic_error("linear_to_srgb8: a bucket holds two steps of the code");
+      std::uint32_t high = end - 1;  // the step lies in (low, high]
+      while (high - low > 1) {
+        const std::uint32_t middle = low + (high - low) / 2;
+        (srgb8_by_power(std::bit_cast<float>(middle)) > first ? high : low) = middle;
+      }
+      t.step[b] = std::bit_cast<float>(high);
+    }
+    return t;
+  }();
+  return table;
+}
+
+}  // namespace
+
+std::uint8_t linear_to_srgb8(float linear) {
+  if (!(linear > 0.0f)) return 0;  // NaN too
+  const float v = std::min(linear, 1.0f);
+  const Srgb8CodeTable& table = srgb8_code_table();
+  const std::uint32_t bucket = std::bit_cast<std::uint32_t>(v) >> kSrgb8BucketShift;
+  return static_cast<std::uint8_t>(table.base[bucket] + (v >= table.step[bucket] ? 1 : 0));
 }
 
 namespace {

@@ -85,5 +85,9 @@ void require_directions_of(const BtfDataset& dataset, const Material& material, 
 // The sRGB transfer function and its inverse (IEC 61966-2-1), on [0, 1].
 float srgb_to_linear(float encoded);
 float linear_to_srgb(float linear);
+// The 8-bit sRGB code of a linear value: exactly lround(255 * linear_to_srgb(clamp(linear, 0, 1))), NaN
+// giving 0, read from a table of where that expression's code steps (found once, by bisection on the
+// expression itself) instead of computed by a power per value.
+std::uint8_t linear_to_srgb8(float linear);
 
 }  // namespace carbtf
