@@ -284,6 +284,21 @@ CARBTF_CONST_UINT(CARBTF_COST_PROBE_PAIR_READS, 2u)      // the pair table: laye
 CARBTF_CONST_UINT(CARBTF_COST_PROBE_SUBSPACE_READS, 4u)  // the 9 subspace image reads: the layer's grey
 CARBTF_CONST_UINT(CARBTF_COST_PROBE_RELIEF, 8u)          // the normal, tone and horizons: flat, 1, none
 CARBTF_CONST_UINT(CARBTF_COST_PROBE_PARALLAX, 16u)       // the parallax height read: no shift
+// The constant id of carbtf_material.glsl's specialization constant that picks how the light's and the
+// view's 3 weights combine into weights of (light, view) pairs (PairCoupling, direction_interpolation.hpp):
+// CARBTF_PAIR_COUPLING_PRODUCT, the default, reads 9 pairs; CARBTF_PAIR_COUPLING_STAIRCASE at most 5.
+#define CARBTF_PAIR_COUPLING_DEFAULT_CONSTANT_ID 1003
+CARBTF_CONST_UINT(CARBTF_PAIR_COUPLING_PRODUCT, 0u)
+CARBTF_CONST_UINT(CARBTF_PAIR_COUPLING_STAIRCASE, 1u)
+// The staircase coupling: the light's 3 weights and the view's, each in ascending order of direction
+// index, laid end to end on [0, 1]; a pair gets the length its light's and its view's intervals share.
+// Walked from the first light and view to the third of each, one pair per step, 5 steps: a step takes
+// what both current intervals still hold, then moves on to the next light where the light's interval
+// ends first (or the views are done), else to the next view.
+CARBTF_CONST_UINT(CARBTF_STAIRCASE_STEPS, 5u)
+CARBTF_FUNCTION bool carbtf_staircase_next_is_light(float light_left, float view_left, uint light_step, uint view_step) {
+  return (light_left < view_left && light_step < 2u) || view_step == 2u;
+}
 // The penumbra of the relief's cast shadows, in tangent of elevation (relief_horizons.hpp).
 CARBTF_CONST_FLOAT(CARBTF_RELIEF_SHADOW_SOFTNESS, 0.1f)
 // Lights one draw of carbtf's own mesh pipeline shades with.

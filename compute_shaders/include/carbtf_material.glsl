@@ -56,6 +56,14 @@ layout(constant_id = CARBTF_SHADOWS_CONSTANT_ID) const bool carbtf_shadows_compi
 #endif
 layout(constant_id = CARBTF_HARDWARE_FILTERING_CONSTANT_ID) const bool carbtf_hardware_filtering = false;
 
+// Specialization constant: how the light's and the view's 3 weights combine into pair weights
+// (PairCoupling, direction_interpolation.hpp): CARBTF_PAIR_COUPLING_PRODUCT, the default, the paper's 9
+// pairs; CARBTF_PAIR_COUPLING_STAIRCASE at most 5, so 5 subspace image reads per light instead of 9.
+#ifndef CARBTF_PAIR_COUPLING_CONSTANT_ID
+#define CARBTF_PAIR_COUPLING_CONSTANT_ID CARBTF_PAIR_COUPLING_DEFAULT_CONSTANT_ID
+#endif
+layout(constant_id = CARBTF_PAIR_COUPLING_CONSTANT_ID) const uint carbtf_pair_coupling = CARBTF_PAIR_COUPLING_PRODUCT;
+
 // Specialization constant: carbtf_gpu_shared.h's CARBTF_COST_PROBE_* bits, for benchmarks only; 0 draws
 // the material, and compiles every probe out.
 #ifndef CARBTF_COST_PROBE_CONSTANT_ID
@@ -323,10 +331,50 @@ void carbtf_direction_weights(DirectionLookupGpu set, vec2 p, out uvec3 index, o
   weight /= weight.x + weight.y + weight.z;
 }
 
+// Ascending direction index, by compare and swap (couple_pair_weights() sorts alike).
+void carbtf_order_by_index(inout uvec3 index, inout vec3 weight) {
+  for (int k = 0; k < 3; ++k) {
+    int a = k == 1 ? 1 : 0;
+    if (index[a] > index[a + 1]) {
+      uint i = index[a];
+      index[a] = index[a + 1];
+      index[a + 1] = i;
+      float w = weight[a];
+      weight[a] = weight[a + 1];
+      weight[a + 1] = w;
+    }
+  }
+}
+
+// Pair p's part of the interpolated colour: weight w times the pair's gain times its subspace image at
+// uv, with the image's share of the relief tone; nothing where the pair has no layer.
+vec3 carbtf_pair_colour(uint p, float w, vec2 uv, float lod, CarbtfLod s, CarbtfBilinear b, CarbtfBilinear b_up,
+                        vec3 tone_offset) {
+  if (w == 0.0) return vec3(0.0);
+  uvec4 quad = carbtf_probed(CARBTF_COST_PROBE_PAIR_READS) ? uvec4(p % 16u, 0x10040100u, p % 16u, 0x10040100u)
+                                                         : carbtf_table_quad(carbtf_header.pair_table + (p >> 1));
+  uvec2 entry = (p & 1u) == 0u ? quad.xy : quad.zw;
+  uint layer = entry.x & 0xFFFFu;
+  if (layer == CARBTF_PAIR_NO_LAYER) return vec3(0.0);
+  float tone_weight = unpackHalf2x16(entry.x).y;
+  vec3 texel;
+  if (carbtf_probed(CARBTF_COST_PROBE_SUBSPACE_READS)) {
+    texel = vec3(float(layer) / 16.0);
+  } else if (carbtf_hardware_filtering) {
+    texel = textureLod(carbtf_subspaces, vec3(uv, float(layer)), lod).rgb;
+  } else {
+    texel = carbtf_subspace_texel(b, layer, s.level);
+    if (s.t > 0.0) texel = mix(texel, carbtf_subspace_texel(b_up, layer, s.level + 1), s.t);
+  }
+  vec3 gain = vec3(uvec3(entry.y, entry.y >> 10, entry.y >> 20) & 1023u) * (1.0 / CARBTF_PAIR_GAIN_UNITS);
+  return (w * max(1.0 + tone_weight * tone_offset, vec3(0.0))) * (gain * texel);
+}
+
 // The smooth BTF colour at (already parallax-shifted) uv for tangent-frame light and view directions,
-// with the relief tone `tone` at uv (one per colour channel): sum over the 3 x 3 nearest measured
-// (light, view) pairs of weight * max(1 + tone weight * (tone - 1), 0) * (pair gain * subspace image of
-// the pair), per channel, as render_reference.cpp computes it.
+// with the relief tone `tone` at uv (one per colour channel): sum over the (light, view) pairs around the
+// directions (the 3 x 3 nearest, or the staircase's 5 of them: carbtf_pair_coupling) of weight *
+// max(1 + tone weight * (tone - 1), 0) * (pair gain * subspace image of the pair), per channel, as
+// render_reference.cpp computes it.
 vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, vec3 view, vec3 tone, float lod) {
   uvec3 li, vi;
   vec3 lw, vw;
@@ -345,28 +393,30 @@ vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, vec3 view, vec3 tone, float lo
   vec3 colour = vec3(0.0);
   uint views = carbtf_header.views.count;
   vec3 tone_offset = tone - 1.0;
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) {
-      float w = lw[i] * vw[j];
-      if (w == 0.0) continue;
-      uint p = li[i] * views + vi[j];
-      uvec4 quad = carbtf_probed(CARBTF_COST_PROBE_PAIR_READS) ? uvec4(p % 16u, 0x10040100u, p % 16u, 0x10040100u)
-                                                             : carbtf_table_quad(carbtf_header.pair_table + (p >> 1));
-      uvec2 entry = (p & 1u) == 0u ? quad.xy : quad.zw;
-      uint layer = entry.x & 0xFFFFu;
-      if (layer == CARBTF_PAIR_NO_LAYER) continue;
-      float tone_weight = unpackHalf2x16(entry.x).y;
-      vec3 texel;
-      if (carbtf_probed(CARBTF_COST_PROBE_SUBSPACE_READS)) {
-        texel = vec3(float(layer) / 16.0);
-      } else if (carbtf_hardware_filtering) {
-        texel = textureLod(carbtf_subspaces, vec3(uv, float(layer)), lod).rgb;
+  if (carbtf_pair_coupling == CARBTF_PAIR_COUPLING_STAIRCASE) {
+    carbtf_order_by_index(li, lw);
+    carbtf_order_by_index(vi, vw);
+    uint i = 0u, j = 0u;
+    float light_left = lw[0], view_left = vw[0];
+    for (uint k = 0u; k < CARBTF_STAIRCASE_STEPS; ++k) {
+      // The two sides' sums agree only to rounding: what one overdraws is never negative weight.
+      float w = max(min(light_left, view_left), 0.0);
+      colour += carbtf_pair_colour(li[i] * views + vi[j], w, uv, lod, s, b, b_up, tone_offset);
+      if (carbtf_staircase_next_is_light(light_left, view_left, i, j)) {
+        view_left -= light_left;
+        i = min(i + 1u, 2u);
+        light_left = lw[i];
       } else {
-        texel = carbtf_subspace_texel(b, layer, s.level);
-        if (s.t > 0.0) texel = mix(texel, carbtf_subspace_texel(b_up, layer, s.level + 1), s.t);
+        light_left -= view_left;
+        j = min(j + 1u, 2u);
+        view_left = vw[j];
       }
-      vec3 gain = vec3(uvec3(entry.y, entry.y >> 10, entry.y >> 20) & 1023u) * (1.0 / CARBTF_PAIR_GAIN_UNITS);
-      colour += (w * max(1.0 + tone_weight * tone_offset, vec3(0.0))) * (gain * texel);
+    }
+  } else {
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) {
+        colour += carbtf_pair_colour(li[i] * views + vi[j], lw[i] * vw[j], uv, lod, s, b, b_up, tone_offset);
+      }
     }
   }
   return colour;

@@ -1,5 +1,7 @@
 #include "carbtf/engine/material/direction_interpolation.hpp"
 
+#include <carbtf_gpu_shared.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -146,19 +148,65 @@ DirectionWeights direction_weights(const DirectionTriangulation& tri, double the
   return w;
 }
 
-PairWeights pair_weights(const DirectionTriangulation& lights, const DirectionTriangulation& views, double light_theta, double light_phi,
-                         double view_theta, double view_phi) {
-  const DirectionWeights l = direction_weights(lights, light_theta, light_phi);
-  const DirectionWeights v = direction_weights(views, view_theta, view_phi);
+namespace {
+
+// Ascending direction index, by the fragment stage's compare-and-swap network.
+DirectionWeights by_index(DirectionWeights w) {
+  const auto order = [&w](int a, int b) {
+    if (w.index[a] > w.index[b]) {
+      std::swap(w.index[a], w.index[b]);
+      std::swap(w.weight[a], w.weight[b]);
+    }
+  };
+  order(0, 1);
+  order(1, 2);
+  order(0, 1);
+  return w;
+}
+
+}  // namespace
+
+PairWeights couple_pair_weights(const DirectionWeights& light, const DirectionWeights& view, PairCoupling coupling) {
   PairWeights pair;
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) {
-      pair.light[i * 3 + j] = l.index[i];
-      pair.view[i * 3 + j] = v.index[j];
-      pair.weight[i * 3 + j] = l.weight[i] * v.weight[j];
+  if (coupling == PairCoupling::product) {
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) {
+        pair.light[i * 3 + j] = light.index[i];
+        pair.view[i * 3 + j] = view.index[j];
+        pair.weight[i * 3 + j] = light.weight[i] * view.weight[j];
+      }
+    }
+    return pair;
+  }
+  const DirectionWeights l = by_index(light), v = by_index(view);
+  std::uint32_t i = 0, j = 0;
+  float light_left = l.weight[0], view_left = v.weight[0];
+  for (std::uint32_t k = 0; k < gpu::CARBTF_STAIRCASE_STEPS; ++k) {
+    pair.light[k] = l.index[i];
+    pair.view[k] = v.index[j];
+    // The sums of the two sides agree only to rounding: what one side overdraws is never negative mass.
+    pair.weight[k] = std::max(std::min(light_left, view_left), 0.0f);
+    if (gpu::carbtf_staircase_next_is_light(light_left, view_left, i, j)) {
+      view_left -= light_left;
+      i = std::min(i + 1, 2u);
+      light_left = l.weight[i];
+    } else {
+      light_left -= view_left;
+      j = std::min(j + 1, 2u);
+      view_left = v.weight[j];
     }
   }
+  for (std::size_t k = gpu::CARBTF_STAIRCASE_STEPS; k < pair.weight.size(); ++k) {
+    pair.light[k] = l.index[2];
+    pair.view[k] = v.index[2];
+  }
   return pair;
+}
+
+PairWeights pair_weights(const DirectionTriangulation& lights, const DirectionTriangulation& views, double light_theta, double light_phi,
+                         double view_theta, double view_phi, PairCoupling coupling) {
+  return couple_pair_weights(direction_weights(lights, light_theta, light_phi), direction_weights(views, view_theta, view_phi),
+                             coupling);
 }
 
 }  // namespace carbtf

@@ -155,6 +155,7 @@ struct MaterialBinding::Resources {
   bool shadows = false;
   bool hardware_filtering = false;
   std::uint32_t cost_probe = 0;  // MaterialBindingInfo::cost_probe
+  PairCoupling pair_coupling = PairCoupling::product;
   UniqueHandle<VkSampler> sampler;
   UniqueHandle<VkDescriptorSetLayout> set_layout;
   UniqueHandle<VkDescriptorPool> pool;
@@ -211,6 +212,7 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     r.width = textures.width;
     r.height = textures.height;
     r.cost_probe = info.cost_probe;
+    r.pair_coupling = info.pair_coupling;
 
     // Host side: the tables and the range map.
     r.tables.assign(kHeaderWords, 0u);
@@ -428,11 +430,17 @@ bool MaterialBinding::hardware_filtering() const noexcept {
   return resources_->hardware_filtering;
 }
 
+PairCoupling MaterialBinding::pair_coupling() const noexcept {
+  return resources_->pair_coupling;
+}
+
 void MaterialBinding::shader_constants(MaterialShaderConstants& out) const noexcept {
-  out.values = {casts_shadows() ? VK_TRUE : VK_FALSE, hardware_filtering() ? VK_TRUE : VK_FALSE, resources_->cost_probe};
+  out.values = {casts_shadows() ? VK_TRUE : VK_FALSE, hardware_filtering() ? VK_TRUE : VK_FALSE, resources_->cost_probe,
+                pair_coupling() == PairCoupling::staircase ? gpu::CARBTF_PAIR_COUPLING_STAIRCASE : gpu::CARBTF_PAIR_COUPLING_PRODUCT};
   out.entries = {VkSpecializationMapEntry{CARBTF_SHADOWS_DEFAULT_CONSTANT_ID, 0, sizeof(VkBool32)},
                  VkSpecializationMapEntry{CARBTF_HARDWARE_FILTERING_DEFAULT_CONSTANT_ID, 4, sizeof(VkBool32)},
-                 VkSpecializationMapEntry{CARBTF_COST_PROBE_DEFAULT_CONSTANT_ID, 8, sizeof(std::uint32_t)}};
+                 VkSpecializationMapEntry{CARBTF_COST_PROBE_DEFAULT_CONSTANT_ID, 8, sizeof(std::uint32_t)},
+                 VkSpecializationMapEntry{CARBTF_PAIR_COUPLING_DEFAULT_CONSTANT_ID, 12, sizeof(std::uint32_t)}};
   out.info = {static_cast<std::uint32_t>(out.entries.size()), out.entries.data(), sizeof out.values, out.values.data()};
 }
 

@@ -39,9 +39,9 @@ Status MaterialDirections::build(const Material& material, MaterialDirections& o
   }
 }
 
-PairWeights MaterialDirections::weights(double light_theta, double light_phi, double view_theta,
-                                        double view_phi) const {
-  return pair_weights(lights_, views_, light_theta, light_phi, view_theta, view_phi);
+PairWeights MaterialDirections::weights(double light_theta, double light_phi, double view_theta, double view_phi,
+                                        PairCoupling coupling) const {
+  return pair_weights(lights_, views_, light_theta, light_phi, view_theta, view_phi, coupling);
 }
 
 std::vector<std::uint32_t> MaterialDirections::subspaces_of(const PairWeights& weights) const {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "carbtf/analysis/btf/btf_dataset.hpp"
+#include "carbtf/engine/material/direction_interpolation.hpp"
 #include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
 #include "carbtf/engine/vulkan/context.hpp"
 #include "cli/command_error.hpp"
@@ -26,6 +27,10 @@ void add_device_options(CLI::App& command, DeviceOptions& options);
 
 // --scheme automatic|serial|wavefront: how CAR recursions run on the Vulkan device.
 void add_car_scheme_option(CLI::App& command, CarScheme& scheme);
+
+// --direction-taps 9|5: the (light, view) pairs the render pass reads per light
+// (MaterialBindingInfo::pair_coupling: 9 the paper's product, 5 the staircase).
+void add_direction_taps_option(CLI::App& command, PairCoupling& coupling);
 
 // For unsigned options: CLI11 would otherwise wrap "-3" around to a huge value.
 const CLI::Validator& non_negative();

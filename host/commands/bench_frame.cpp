@@ -41,6 +41,7 @@ struct FrameBenchOptions {
   std::uint32_t texture_size = 0;  // 0: what the first frame needs, up to 1024
   std::uint32_t mip_levels = 0;    // MaterialBindingInfo::max_mip_levels
   bool hand_filtering = false;     // !MaterialBindingInfo::hardware_filtering
+  PairCoupling pair_coupling = PairCoupling::product;  // MaterialBindingInfo::pair_coupling
   bool parts = false;              // also time the render pass without each part (cost probes)
   std::string out = "bench_frame";
 };
@@ -71,8 +72,13 @@ MaterialBindingInfo bench_binding_info(const FrameBenchOptions& options, std::ui
   MaterialBindingInfo info{1};
   info.max_mip_levels = options.mip_levels;
   info.hardware_filtering = !options.hand_filtering;
+  info.pair_coupling = options.pair_coupling;
   info.cost_probe = cost_probe_bits;
   return info;
+}
+
+const char* direction_taps_name(PairCoupling coupling) {
+  return coupling == PairCoupling::staircase ? "5" : "9";
 }
 
 void run_bench_frame(const FrameBenchOptions& options) {
@@ -163,24 +169,36 @@ void run_bench_frame(const FrameBenchOptions& options) {
   if (options.parts) {
     std::printf("bench frame: the render pass again with each part of the fragment stage replaced by a constant\n");
     std::fflush(stdout);
-    const std::vector<std::pair<const char*, std::uint32_t>> probes = {
-        {"none (the full pass)", 0u},
-        {"direction lookups", cost_probe::lookups},
-        {"pair table reads", cost_probe::pair_reads},
-        {"subspace image reads", cost_probe::subspace_reads},
-        {"relief (normal, tone, horizons)", cost_probe::relief},
-        {"parallax height read", cost_probe::parallax}};
+    // The last variant draws the material with the other --direction-taps: the full picture, another
+    // interpolation between the measured directions.
+    const PairCoupling other_coupling =
+        options.pair_coupling == PairCoupling::staircase ? PairCoupling::product : PairCoupling::staircase;
+    const std::string other_taps = std::string(direction_taps_name(options.pair_coupling)) + " direction taps (" +
+                                   direction_taps_name(other_coupling) + " in their place)";
+    struct Variant {
+      std::string part;
+      std::uint32_t cost_probe = 0;
+      PairCoupling coupling = PairCoupling::product;
+    };
+    const std::vector<Variant> probes = {
+        {"none (the full pass)", 0u, options.pair_coupling},
+        {"direction lookups", cost_probe::lookups, options.pair_coupling},
+        {"pair table reads", cost_probe::pair_reads, options.pair_coupling},
+        {"subspace image reads", cost_probe::subspace_reads, options.pair_coupling},
+        {"relief (normal, tone, horizons)", cost_probe::relief, options.pair_coupling},
+        {"parallax height read", cost_probe::parallax, options.pair_coupling},
+        {other_taps, 0u, other_coupling}};
     std::vector<FramePartTimes> parts;
     std::vector<std::unique_ptr<MaterialBinding>> bindings(probes.size());
     std::vector<std::unique_ptr<MeshRenderer>> renderers(probes.size());
     for (std::size_t p = 0; p < probes.size(); ++p) {
-      check(MaterialBinding::create(*context, material, resident->textures(), bench_binding_info(options, probes[p].second),
-                                    bindings[p]),
-            "cannot bind");
+      MaterialBindingInfo info = bench_binding_info(options, probes[p].cost_probe);
+      info.pair_coupling = probes[p].coupling;
+      check(MaterialBinding::create(*context, material, resident->textures(), info, bindings[p]), "cannot bind");
       check(bindings[p]->upload_and_wait(), "cannot upload the material");
       check(MeshRenderer::create(*context, *bindings[p], target, renderers[p]), "cannot build the render pass");
       check(renderers[p]->set_mesh(mesh), "cannot upload the mesh");
-      parts.push_back({probes[p].first, {}});
+      parts.push_back({probes[p].part, {}});
     }
     // Frame by frame, every variant in turn, so that the machine's drift falls on all of them alike.
     for (std::uint32_t i = 0; i < options.frames; ++i) {
@@ -210,11 +228,12 @@ void run_bench_frame(const FrameBenchOptions& options) {
 
   char line[256];
   std::snprintf(line, sizeof line,
-                "bench frame: %u frames of %ux%u, %s on %s, texture %u^2 with %u mip levels, filtered %s, %zu of "
-                "%zu subspace images resident at the end\n\n",
+                "bench frame: %u frames of %ux%u, %s on %s, texture %u^2 with %u mip levels, filtered %s, %s "
+                "direction taps, %zu of %zu subspace images resident at the end\n\n",
                 options.frames, options.width, options.height, options.mesh.c_str(),
                 context->device_info().name.c_str(), texture_size, binding->mip_levels(),
-                binding->hardware_filtering() ? "by the sampler" : "by hand", resident->resident_count(),
+                binding->hardware_filtering() ? "by the sampler" : "by hand",
+                direction_taps_name(binding->pair_coupling()), resident->resident_count(),
                 material.subspaces.size());
   std::printf("%s%s", line, write_frame_bench_report(out, records, line).c_str());
   std::printf("wrote %s/bench_frame.csv and bench_frame.md\n", out.string().c_str());
@@ -251,11 +270,13 @@ void register_bench_frame_command(CLI::App& bench) {
       ->check(CLI::Range(0u, 16u))->capture_default_str();
   command->add_flag("--parts", options->parts,
                     "Also render the frames with each part of the fragment stage (direction lookups, pair table, "
-                    "subspace image reads, relief, parallax) replaced by a constant, in turn with the full pass, "
-                    "and report what each part costs (timing only; writes bench_frame_parts.md and .csv)");
+                    "subspace image reads, relief, parallax) replaced by a constant, and with the other "
+                    "--direction-taps, in turn with the full pass, and report what each part costs (timing only; "
+                    "writes bench_frame_parts.md and .csv)");
   command->add_flag("--hand-filtering", options->hand_filtering,
                     "Filter the subspace images by hand, as the CPU reference does, instead of through the "
                     "sampler's trilinear filtering (the default where the device filters RGBA32F)");
+  add_direction_taps_option(*command, options->pair_coupling);
   command->add_option("--out", options->out, "Output folder")->capture_default_str();
   add_device_options(*command, options->device);
   command->callback([options] { run_bench_frame(*options); });

@@ -39,6 +39,7 @@ struct RenderOptions {
   std::uint64_t seed = 1;
   float parallax = 1.0f;
   bool hand_filtering = false;
+  PairCoupling pair_coupling = PairCoupling::product;
   std::string out = "frame.png";
   std::string compare;  // a measured BTF to render beside the model
 };
@@ -104,7 +105,8 @@ void run_render(const RenderOptions& options) {
   std::printf("[2/3] range map, lookup tables and render pipeline\n");
   std::fflush(stdout);
   const MaterialRender model = prepare_material_render(*context, material, *synthesizer, options.seed,
-                                                       options.parallax, width, height, mesh, !options.hand_filtering);
+                                                       options.parallax, width, height, mesh, !options.hand_filtering,
+                                                       options.pair_coupling);
 
   std::printf("[3/3] rendering %ux%u, %zu triangles, %zu light(s)\n", width, height, mesh.indices.size() / 3,
               scene.lights.size());
@@ -122,7 +124,7 @@ void run_render(const RenderOptions& options) {
   write_rgb_image(out, rgb, width, height, true);
   if (measured)
     write_measured_comparison(*context, material, *measured, needs.pairs, mesh, scene, rgb, width, height,
-                              out);
+                              out, options.pair_coupling);
   std::printf("synthesis %.1f ms, render %.1f ms (wall, with readback)\nwrote %s\n", synthesis_ms, render_ms,
               out.string().c_str());
 }
@@ -189,6 +191,7 @@ void register_render_command(CLI::App& app) {
   command->add_flag("--hand-filtering", options->hand_filtering,
                     "Filter the subspace images by hand, as the CPU reference does, instead of through the "
                     "sampler's trilinear filtering (slower; the default where the device filters RGBA32F)");
+  add_direction_taps_option(*command, options->pair_coupling);
   command->add_option("--out", options->out, "Output image: .png (sRGB) or .exr (linear)")
       ->capture_default_str();
   command->add_option(

@@ -17,7 +17,7 @@ namespace carbtf::cli {
 RenderedImage render_measured(Context& context, const Material& material, const BtfDataset& dataset,
                               const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs,
                               const Mesh& mesh, const RenderScene& scene, const RenderTargetInfo& target,
-                              std::uint32_t mip_levels) {
+                              std::uint32_t mip_levels, PairCoupling coupling) {
   const std::uint32_t w = dataset.width(), h = dataset.height();
   const double bytes = static_cast<double>(pairs.size()) * w * h * 4;
   if (bytes > 1.5 * 1024 * 1024 * 1024) {
@@ -66,6 +66,7 @@ RenderedImage render_measured(Context& context, const Material& material, const 
   MaterialBindingInfo info;
   info.parallax_scale = 0.0f;
   info.hardware_filtering = false;  // filtered by hand, as the model beside it where it is scored
+  info.pair_coupling = coupling;
   std::unique_ptr<MaterialBinding> binding;
   check(MaterialBinding::create(context, flat, textures, info, binding), "cannot bind the measured images");
   check(binding->upload_and_wait(), "cannot upload the flat range map");
@@ -81,7 +82,7 @@ void write_measured_comparison(Context& context, const Material& material, const
                                const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs,
                                const Mesh& mesh, const RenderScene& scene,
                                const std::vector<float>& model_rgb, std::uint32_t width, std::uint32_t height,
-                               const std::filesystem::path& out) {
+                               const std::filesystem::path& out, PairCoupling coupling) {
   std::printf("rendering the measured BTF (%zu of its images) on the same mesh\n", pairs.size());
   std::fflush(stdout);
   RenderTargetInfo target;
@@ -89,7 +90,7 @@ void write_measured_comparison(Context& context, const Material& material, const
   target.height = height;
   target.colour_format = VK_FORMAT_R32G32B32A32_SFLOAT;
   const std::vector<float> measured =
-      rendered_rgb(render_measured(context, material, dataset, pairs, mesh, scene, target));
+      rendered_rgb(render_measured(context, material, dataset, pairs, mesh, scene, target, 0, coupling));
   check_validation(context);
   const std::filesystem::path measured_path = with_stem_suffix(out, "_measured"),
                               compare_path = with_stem_suffix(out, "_compare");

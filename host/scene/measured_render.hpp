@@ -18,10 +18,12 @@ namespace carbtf::cli {
 // The measured images of `pairs` (light, view indices; those the frame can use) as texture layers, a
 // flat range map (the relief is in the photographs already) and no parallax, rendered once. Throws
 // CommandError when the images exceed 1.5 GiB or the device's array layers. `mip_levels`: as
-// SynthesisRequest::mip_levels (0: all), so that the measurement is filtered as the model is.
+// SynthesisRequest::mip_levels (0: all), so that the measurement is filtered as the model is;
+// `coupling` (MaterialBindingInfo::pair_coupling) so that it is interpolated as the model is.
 RenderedImage render_measured(Context& context, const Material& material, const BtfDataset& dataset,
                               const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs, const Mesh& mesh,
-                              const RenderScene& scene, const RenderTargetInfo& target, std::uint32_t mip_levels = 0);
+                              const RenderScene& scene, const RenderTargetInfo& target, std::uint32_t mip_levels = 0,
+                              PairCoupling coupling = PairCoupling::product);
 
 // render --compare: the measured BTF rendered as above into an RGBA32F target of the model frame's size,
 // written beside the model's frame `out` as OUT_measured and OUT_compare (model | measured), with a line
@@ -29,6 +31,7 @@ RenderedImage render_measured(Context& context, const Material& material, const 
 void write_measured_comparison(Context& context, const Material& material, const BtfDataset& dataset,
                                const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs, const Mesh& mesh,
                                const RenderScene& scene, const std::vector<float>& model_rgb, std::uint32_t width,
-                               std::uint32_t height, const std::filesystem::path& out);
+                               std::uint32_t height, const std::filesystem::path& out,
+                               PairCoupling coupling = PairCoupling::product);
 
 }  // namespace carbtf::cli

@@ -1,7 +1,9 @@
-// The 9-weight barycentric direction interpolation: weights sum to 1, are exact at measured
-// directions, and are continuous, across triangle edges and beyond the last measured elevation.
+// The barycentric direction interpolation: weights sum to 1, are exact at measured directions, and are
+// continuous, across triangle edges and beyond the last measured elevation; and the two couplings of a
+// light's and a view's weights into pair weights (the paper's 9, the staircase's 5).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -120,6 +122,109 @@ TEST_CASE("interpolation weights are continuous across triangle edges and the la
     for (int k = 0; k < 3; ++k) {
       if (grazing.weight[k] > 0.0f) CHECK(grazing.index[k] >= 57u);
     }
+  }
+}
+
+namespace {
+
+using PairMap = std::map<std::pair<std::uint32_t, std::uint32_t>, double>;
+
+PairMap by_pair(const PairWeights& w) {
+  PairMap m;
+  for (std::size_t k = 0; k < w.weight.size(); ++k) {
+    if (w.weight[k] != 0.0f) m[{w.light[k], w.view[k]}] += w.weight[k];
+  }
+  return m;
+}
+
+double l1(const PairMap& a, const PairMap& b) {
+  double s = 0.0;
+  for (const auto& [pair, w] : a) s += std::abs(w - (b.contains(pair) ? b.at(pair) : 0.0));
+  for (const auto& [pair, w] : b) {
+    if (!a.contains(pair)) s += std::abs(w);
+  }
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("the staircase coupling keeps the light's and the view's weights in at most 5 pairs", "[interpolation]") {
+  const auto directions = test::ubo2003_material_directions();
+  DirectionTriangulation tri;
+  REQUIRE(build_direction_triangulation(directions, tri).ok());
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> theta(0.0, 0.5 * std::numbers::pi), phi(0.0, 2.0 * std::numbers::pi);
+  double largest_difference_from_product = 0.0;
+  for (int q = 0; q < 5000; ++q) {
+    const DirectionWeights light = direction_weights(tri, theta(rng), phi(rng));
+    const DirectionWeights view = direction_weights(tri, theta(rng), phi(rng));
+    const PairWeights staircase = couple_pair_weights(light, view, PairCoupling::staircase);
+    const PairWeights product = couple_pair_weights(light, view, PairCoupling::product);
+    INFO("query " << q);
+    int nonzero = 0;
+    for (std::size_t k = 0; k < staircase.weight.size(); ++k) {
+      REQUIRE(staircase.weight[k] >= 0.0f);
+      nonzero += staircase.weight[k] != 0.0f;
+      if (k >= 5) REQUIRE(staircase.weight[k] == 0.0f);
+    }
+    REQUIRE(nonzero <= 5);
+    // The sums over views are the light's weights and the sums over lights the view's, as for the product.
+    const std::vector<double> light_dense = dense(light, directions.size()), view_dense = dense(view, directions.size());
+    std::vector<double> light_sums(directions.size(), 0.0), view_sums(directions.size(), 0.0);
+    for (const auto& [pair, w] : by_pair(staircase)) {
+      light_sums[pair.first] += w;
+      view_sums[pair.second] += w;
+    }
+    REQUIRE(l1(light_sums, light_dense) < 1e-6);
+    REQUIRE(l1(view_sums, view_dense) < 1e-6);
+    // The order the lookups list their directions in does not matter.
+    DirectionWeights light_turned = light, view_turned = view;
+    std::rotate(light_turned.index.begin(), light_turned.index.begin() + 1, light_turned.index.end());
+    std::rotate(light_turned.weight.begin(), light_turned.weight.begin() + 1, light_turned.weight.end());
+    std::swap(view_turned.index[0], view_turned.index[2]);
+    std::swap(view_turned.weight[0], view_turned.weight[2]);
+    REQUIRE(l1(by_pair(couple_pair_weights(light_turned, view_turned, PairCoupling::staircase)), by_pair(staircase)) < 1e-7);
+    largest_difference_from_product = std::max(largest_difference_from_product, l1(by_pair(staircase), by_pair(product)));
+  }
+  // Another interpolation than the product's between the measured pairs (at the centroids of both
+  // triangles the product spreads 1/9 over 9 pairs, the staircase 1/3 over 3).
+  CHECK(largest_difference_from_product > 0.5);
+
+  SECTION("exact at the measured pairs") {
+    for (std::uint32_t i = 0; i < directions.size(); i += 7) {
+      for (std::uint32_t j = 0; j < directions.size(); j += 5) {
+        const PairMap m = by_pair(pair_weights(tri, tri, directions[i].theta, directions[i].phi, directions[j].theta,
+                                               directions[j].phi, PairCoupling::staircase));
+        INFO("light " << i << ", view " << j);
+        REQUIRE(m.size() == 1u);
+        REQUIRE(m.begin()->first == std::make_pair(i, j));
+        REQUIRE(m.begin()->second == 1.0);
+      }
+    }
+  }
+  SECTION("continuous across the edges of either triangulation") {
+    // Two light directions either side of each edge, one view between measured directions, and the
+    // same with the roles swapped: the pair weights hardly move.
+    const DirectionWeights between = direction_weights(tri, 0.55, 2.2);
+    int edges = 0;
+    for (const auto& t : tri.triangles) {
+      for (int e = 0; e < 3; ++e) {
+        const auto &a = tri.points[t[e]], &b = tri.points[t[(e + 1) % 3]];
+        const double mx = 0.4 * a[0] + 0.6 * b[0], my = 0.4 * a[1] + 0.6 * b[1];
+        const double nx = -(b[1] - a[1]), ny = b[0] - a[0];
+        const double eps = 1e-7 / std::hypot(nx, ny);
+        const auto [t1, p1] = unproject(mx + eps * nx, my + eps * ny);
+        const auto [t2, p2] = unproject(mx - eps * nx, my - eps * ny);
+        const DirectionWeights one = direction_weights(tri, t1, p1), other = direction_weights(tri, t2, p2);
+        INFO("edge " << t[e] << "-" << t[(e + 1) % 3]);
+        REQUIRE(l1(by_pair(couple_pair_weights(one, between, PairCoupling::staircase)),
+                   by_pair(couple_pair_weights(other, between, PairCoupling::staircase))) < 1e-5);
+        REQUIRE(l1(by_pair(couple_pair_weights(between, one, PairCoupling::staircase)),
+                   by_pair(couple_pair_weights(between, other, PairCoupling::staircase))) < 1e-5);
+        ++edges;
+      }
+    }
+    CHECK(edges > 300);
   }
 }
 

@@ -251,6 +251,28 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
     REQUIRE(other_renderer->render(scene, other_frame).ok());
     return as_floats(other_frame);
   };
+  // Another GPU picture against a reference picture over the pixels all three cover: the largest and
+  // RMS error, and the largest difference from the first GPU picture (`gpu`).
+  struct Deviation {
+    double worst = 0.0, rms = 0.0, from_gpu = 0.0;
+    std::size_t compared = 0;
+  };
+  auto deviation = [&](const std::vector<float>& picture, const std::vector<float>& reference_picture) {
+    Deviation d;
+    double squares = 0.0;
+    for (std::size_t i = 0; i < picture.size(); i += 4) {
+      if (picture[i + 3] != 1.0f || reference_picture[i + 3] != 1.0f || gpu[i + 3] != 1.0f) continue;
+      ++d.compared;
+      for (int k = 0; k < 3; ++k) {
+        const double e = std::abs(static_cast<double>(picture[i + k]) - reference_picture[i + k]);
+        d.worst = std::max(d.worst, e);
+        squares += e * e;
+        d.from_gpu = std::max(d.from_gpu, std::abs(static_cast<double>(picture[i + k]) - gpu[i + k]));
+      }
+    }
+    d.rms = std::sqrt(squares / static_cast<double>(3 * std::max<std::size_t>(d.compared, 1)));
+    return d;
+  };
 
   {
     // The fast path: the same scene with the subspace images read through the sampler's trilinear
@@ -265,31 +287,45 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
     context->vk().vkGetPhysicalDeviceFormatProperties(context->physical_device(), VK_FORMAT_R32G32B32A32_SFLOAT, &format);
     REQUIRE(fast_binding->hardware_filtering() ==
             ((format.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) != 0));
-    double fast_worst = 0.0, fast_squares = 0.0, path_difference = 0.0;
-    std::size_t compared = 0;
-    for (std::size_t i = 0; i < fast.size(); i += 4) {
-      if (fast[i + 3] != 1.0f || cpu[i + 3] != 1.0f || gpu[i + 3] != 1.0f) continue;
-      ++compared;
-      for (int k = 0; k < 3; ++k) {
-        const double d = std::abs(static_cast<double>(fast[i + k]) - cpu[i + k]);
-        fast_worst = std::max(fast_worst, d);
-        fast_squares += d * d;
-        path_difference = std::max(path_difference, std::abs(static_cast<double>(fast[i + k]) - gpu[i + k]));
-      }
-    }
-    const double fast_rms = std::sqrt(fast_squares / static_cast<double>(3 * std::max<std::size_t>(compared, 1)));
-    INFO("sampler filtering: max error " << fast_worst << ", rms " << fast_rms << " (peak " << peak << "), "
-                                         << "max difference from the hand filtering " << path_difference);
-    REQUIRE(compared > gpu.size() / 4 / 4);
+    const Deviation d = deviation(fast, cpu);
+    INFO("sampler filtering: max error " << d.worst << ", rms " << d.rms << " (peak " << peak << "), "
+                                         << "max difference from the hand filtering " << d.from_gpu);
+    REQUIRE(d.compared > gpu.size() / 4 / 4);
     // Vulkan lets a sampler quantize its bilinear and mip weights to the device's sub-texel and mipmap
     // precision (at least 4 bits; 8 on most GPUs), so a filtered read may be off by a step of that
     // times the spread of the texels it blends. Documented tolerance: 2^-8 of the peak at any pixel,
     // 2^-12 RMS. Measured on lavapipe, which filters floats in float: up to 6.6e-5 of the peak,
     // 2.1e-6 RMS, and at most 4.4e-6 from the hand filtering's picture.
-    CHECK(fast_worst <= peak / 256.0);
-    CHECK(fast_rms <= peak / 4096.0);
+    CHECK(d.worst <= peak / 256.0);
+    CHECK(d.rms <= peak / 4096.0);
     // The constant took effect: the two pictures are not the same bits.
-    if (fast_binding->hardware_filtering()) CHECK(path_difference > 0.0);
+    if (fast_binding->hardware_filtering()) CHECK(d.from_gpu > 0.0);
+  }
+
+  {
+    // The staircase's 5 pairs per light (MaterialBindingInfo::pair_coupling) against the reference
+    // computing the same coupling, to the tolerance above; at the measured directions it is the
+    // product's picture bit for bit (one pair has all the weight), between them another.
+    MaterialBindingInfo staircase_info = binding_info;
+    staircase_info.pair_coupling = PairCoupling::staircase;
+    std::unique_ptr<MaterialBinding> staircase_binding;
+    const std::vector<float> staircase = render_through(staircase_info, staircase_binding);
+    CHECK(staircase_binding->pair_coupling() == PairCoupling::staircase);
+    reference::ReferenceRenderInput staircase_input = input;
+    staircase_input.pair_coupling = PairCoupling::staircase;
+    const std::vector<float> staircase_cpu =
+        reference::render_plane(staircase_input, scene, target.width, target.height, target.clear);
+    const Deviation d = deviation(staircase, staircase_cpu);
+    INFO("staircase: max error " << d.worst << ", rms " << d.rms << " (peak " << peak
+                                 << "), max difference from the product's picture " << d.from_gpu);
+    REQUIRE(d.compared > gpu.size() / 4 / 4);
+    CHECK(d.worst <= 1e-4 * peak);
+    CHECK(d.rms <= 1e-5 * peak);
+    if (what == "measured") {
+      CHECK(d.from_gpu == 0.0);
+    } else {
+      CHECK(d.from_gpu > 1e-3 * peak);
+    }
   }
 
   // The cost probes of `bench frame --parts` (MaterialBindingInfo::cost_probe): each replaces its part,

@@ -50,6 +50,7 @@ TEST_CASE("bad arguments give one error line and a non-zero exit", "[cli]") {
   };
   for (const Case& c : {Case{"noise --size 0", "--size"}, Case{"noise --size abc", "--size"},
                         Case{"noise --seed -3", "--seed"}, Case{"frobnicate", "frobnicate"},
+                        Case{"render m.cbtf --direction-taps 7", "--direction-taps: 7 not in {9,5}"},
                         Case{"noise --out " + (folder / "n.xyz").string(), "unsupported image extension"},
                         Case{"noise --size 16 --device no-such-gpu --out " + (folder / "n.png").string(),
                              "no-such-gpu"},
@@ -267,6 +268,15 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
     // The sphere covers the centre, the clear colour the corner, and the two differ.
     const std::size_t centre = (32u * 96u + 48u) * 3u;
     CHECK(image.srgb8[centre] != image.srgb8[0]);
+    // --direction-taps 5: the staircase's pairs, another picture between the measured directions.
+    const fs::path staircase = folder / "render" / "sphere_5.png";
+    const Run five = run("render " + material.string() + " --mesh sphere --size 96x64 --texture-size 32 --light 40,90 "
+                         "--point-light 1,1,2,2 --direction-taps 5 --validation --out " + staircase.string());
+    INFO(five.output);
+    REQUIRE(five.status == 0);
+    const RgbImage five_image = decode_rgb_image(staircase.string(), read_file_bytes(staircase));
+    REQUIRE(five_image.srgb8.size() == image.srgb8.size());
+    CHECK(five_image.srgb8 != image.srgb8);
 
     // Beside the measurement: the measured BTF drawn the same way on the same plane, view and light.
     const fs::path compare = folder / "render" / "plane.png";
@@ -325,12 +335,13 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
                                  Catch::Contains("synthesis, GPU timestamps (frames that synthesize)"));
     // --parts: the full pass and each part replaced, every one timed on the 4 frames.
     for (const char* part : {"none (the full pass)", "direction lookups", "pair table reads", "subspace image reads",
-                             "relief (normal, tone, horizons)", "parallax height read"}) {
+                             "relief (normal, tone, horizons)", "parallax height read",
+                             "9 direction taps (5 in their place)"}) {
       CHECK_THAT(bench.output, Catch::Contains(std::string("| ") + part + " | 4 |"));
     }
     const auto parts_bytes = read_file_bytes(out / "bench_frame_parts.csv");
     const std::string parts_csv(reinterpret_cast<const char*>(parts_bytes.data()), parts_bytes.size());
-    CHECK(line_count(parts_csv) == 1 + 6 * 4);
+    CHECK(line_count(parts_csv) == 1 + 7 * 4);
     CHECK_THAT(parts_csv, Catch::Contains("\n\"relief (normal, tone, horizons)\",3,"));  // quoted: it holds commas
     CHECK(fs::exists(out / "bench_frame_parts.md"));
     const auto csv_bytes = read_file_bytes(out / "bench_frame.csv");

@@ -274,7 +274,7 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
         double lt, lp, vt, vp_angle;
         angles(l, lt, lp);
         angles(view, vt, vp_angle);
-        const PairWeights w = directions.weights(lt, lp, vt, vp_angle);
+        const PairWeights w = directions.weights(lt, lp, vt, vp_angle, input.pair_coupling);
         glm::vec3 btf(0.0f);
         for (int k = 0; k < 9; ++k) {
           if (w.weight[k] == 0.0f) continue;

@@ -9,6 +9,7 @@
 #include <span>
 #include <vector>
 
+#include "carbtf/engine/material/direction_interpolation.hpp"
 #include "carbtf/engine/material/material.hpp"
 #include "carbtf/engine/render/render_scene.hpp"
 #include "carbtf/engine/synthesis/synthesis_request.hpp"
@@ -33,6 +34,8 @@ struct ReferenceRenderInput {
   bool normals_from_heights = false;
   // The textures tile (a periodic synthesis): texel addresses wrap instead of repeating the edge.
   bool wrap = false;
+  // How the light's and the view's weights combine (MaterialBindingInfo::pair_coupling).
+  PairCoupling pair_coupling = PairCoupling::product;
 };
 
 // width * height RGBA floats, row 0 at the top: linear colour and alpha 1 where the plane covers the

@@ -37,8 +37,9 @@ class MaterialDirections {
   const DirectionLookupGrid& light_grid() const noexcept { return light_grid_; }
   const DirectionLookupGrid& view_grid() const noexcept { return view_grid_; }
 
-  // The 9 weights of a (light, view) query in radians (pair_weights()).
-  PairWeights weights(double light_theta, double light_phi, double view_theta, double view_phi) const;
+  // The pair weights of a (light, view) query in radians (pair_weights()).
+  PairWeights weights(double light_theta, double light_phi, double view_theta, double view_phi,
+                      PairCoupling coupling = PairCoupling::product) const;
 
   // The subspace images that carry non-zero weight, in the order the weights first name them.
   std::vector<std::uint32_t> subspaces_of(const PairWeights& weights) const;

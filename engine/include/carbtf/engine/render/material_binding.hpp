@@ -21,6 +21,7 @@
 
 #include "carbtf/engine/vulkan/buffer.hpp"
 #include "carbtf/engine/vulkan/context.hpp"
+#include "carbtf/engine/material/direction_interpolation.hpp"
 #include "carbtf/engine/material/material.hpp"
 
 namespace carbtf {
@@ -80,6 +81,11 @@ struct MaterialBindingInfo {
   // fast path, within the device's sub-texel precision of the hand filtering. false: a sampler that does not filter, for hosts that compare the render with
   // the CPU twin (render_reference.hpp) bit for bit or nearly.
   bool hardware_filtering = true;
+  // How the light's and the view's weights combine into (light, view) pair weights
+  // (direction_interpolation.hpp): the paper's 9 pairs, or the staircase's 5, which reads 5 subspace
+  // images per light instead of 9 (a 1920x1080 sphere's render pass on lavapipe about a fifth faster)
+  // and draws another picture between the measured directions (docs/design.md 4.5).
+  PairCoupling pair_coupling = PairCoupling::product;
   // For benchmarks only (`carbtf bench frame --parts`): cost_probe bits, each part of the fragment stage
   // they name replaced by a constant, the picture wrong. 0: the material.
   std::uint32_t cost_probe = 0;
@@ -87,12 +93,12 @@ struct MaterialBindingInfo {
 
 // The values of carbtf_material.glsl's specialization constants that suit one binding, at their default
 // ids (CARBTF_SHADOWS_DEFAULT_CONSTANT_ID, CARBTF_HARDWARE_FILTERING_DEFAULT_CONSTANT_ID,
-// CARBTF_COST_PROBE_DEFAULT_CONSTANT_ID): a fragment
+// CARBTF_COST_PROBE_DEFAULT_CONSTANT_ID, CARBTF_PAIR_COUPLING_DEFAULT_CONSTANT_ID): a fragment
 // stage's pSpecializationInfo = &constants.info. Self-referencing: keep the object where it is (no copy
 // or move) until the pipeline is created.
 struct MaterialShaderConstants {
-  std::array<std::uint32_t, 3> values{};  // two VkBool32, then the cost probe's bits
-  std::array<VkSpecializationMapEntry, 3> entries{};
+  std::array<std::uint32_t, 4> values{};  // two VkBool32, the cost probe's bits, the pair coupling
+  std::array<VkSpecializationMapEntry, 4> entries{};
   VkSpecializationInfo info{};
 };
 
@@ -125,7 +131,10 @@ class MaterialBinding {
   // height, the tone and the horizons once instead of 8 texels by hand (on lavapipe a fifth to a quarter
   // of a sphere frame's render pass).
   bool hardware_filtering() const noexcept;
-  // Both constants above for a pipeline that draws this material (or materials whose bindings agree).
+  // MaterialBindingInfo::pair_coupling: a pipeline sets carbtf_material.glsl's specialization constant
+  // CARBTF_PAIR_COUPLING_CONSTANT_ID (1003 by default) to match (shader_constants() does).
+  PairCoupling pair_coupling() const noexcept;
+  // The constants above for a pipeline that draws this material (or materials whose bindings agree).
   void shader_constants(MaterialShaderConstants& out) const noexcept;
   // Convenience: record_upload() through the context's submit-and-wait.
   Status upload_and_wait() noexcept;
