@@ -24,13 +24,15 @@ void main() {
   vec3 view = normalize(to_tangent * to_eye);
   vec2 uv = carbtf_parallax_uv(in_uv, view, lod);
 
+  // The relief and the view's lookup once for every light.
+  CarbtfSurface surface = carbtf_material_surface(uv, view, lod);
   vec3 colour = vec3(0.0);
   for (uint i = 0u; i < min(frame.counts.x, CARBTF_RENDER_MAX_LIGHTS); ++i) {
     vec4 light = frame.light_position[i];
     vec3 to_light = light.w > 0.5 ? light.xyz - in_world : light.xyz;
     float falloff = light.w > 0.5 ? 1.0 / max(dot(to_light, to_light), 1.0e-12) : 1.0;
     vec3 l = normalize(to_tangent * to_light);
-    colour += falloff * frame.light_colour[i].rgb * carbtf_material_shade(uv, l, view, lod);
+    colour += falloff * frame.light_colour[i].rgb * carbtf_material_shade(surface, l);
   }
   out_colour = vec4(colour, 1.0);
 }

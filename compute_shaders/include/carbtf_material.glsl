@@ -370,22 +370,30 @@ vec3 carbtf_pair_colour(uint p, float w, vec2 uv, float lod, CarbtfLod s, Carbtf
   return (w * max(1.0 + tone_weight * tone_offset, vec3(0.0))) * (gain * texel);
 }
 
-// The smooth BTF colour at (already parallax-shifted) uv for tangent-frame light and view directions,
-// with the relief tone `tone` at uv (one per colour channel): sum over the (light, view) pairs around the
-// directions (the 3 x 3 nearest, or the staircase's 5 of them: carbtf_pair_coupling) of weight *
-// max(1 + tone weight * (tone - 1), 0) * (pair gain * subspace image of the pair), per channel, as
-// render_reference.cpp computes it.
-vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, vec3 view, vec3 tone, float lod) {
-  uvec3 li, vi;
-  vec3 lw, vw;
+// The view's measured directions around `view` and their weights (the lookup, or the cost probe's constants).
+void carbtf_view_weights(vec3 view, out uvec3 index, out vec3 weight) {
+  if (carbtf_probed(CARBTF_COST_PROBE_LOOKUPS)) {
+    index = uvec3(0u, 1u, 2u) % max(carbtf_header.views.count, 1u);
+    weight = vec3(0.5, 0.3, 0.2);
+  } else {
+    carbtf_direction_weights(carbtf_header.views, carbtf_project_direction(view), index, weight);
+  }
+}
+
+// The smooth BTF colour at (already parallax-shifted) uv for a tangent-frame light direction and the
+// view's measured directions vi and weights vw (carbtf_view_weights(): a fragment lit by several lights
+// looks the view up once), with the relief tone `tone` at uv (one per colour channel): sum over the
+// (light, view) pairs around the directions (the 3 x 3 nearest, or the staircase's 5 of them:
+// carbtf_pair_coupling) of weight * max(1 + tone weight * (tone - 1), 0) * (pair gain * subspace image
+// of the pair), per channel, as render_reference.cpp computes it.
+vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, uvec3 vi, vec3 vw, vec3 tone, float lod) {
+  uvec3 li;
+  vec3 lw;
   if (carbtf_probed(CARBTF_COST_PROBE_LOOKUPS)) {
     li = uvec3(0u, 1u, 2u) % max(carbtf_header.lights.count, 1u);
-    vi = uvec3(0u, 1u, 2u) % max(carbtf_header.views.count, 1u);
     lw = vec3(0.5, 0.3, 0.2);
-    vw = lw;
   } else {
     carbtf_direction_weights(carbtf_header.lights, carbtf_project_direction(light), li, lw);
-    carbtf_direction_weights(carbtf_header.views, carbtf_project_direction(view), vi, vw);
   }
   CarbtfLod s = carbtf_split_lod(lod);
   CarbtfBilinear b = carbtf_bilinear(uv, s.level);
@@ -422,6 +430,32 @@ vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, vec3 view, vec3 tone, float lo
   return colour;
 }
 
+// What the material at one point and view is, whatever the light: the relief there and the view's
+// lookup. A fragment lit by several lights computes it once (carbtf_material_surface()) and shades each
+// light from it, which saves a relief read and a lookup per light after the first.
+struct CarbtfSurface {
+  vec2 uv;  // parallax-shifted
+  vec3 view;
+  float lod;
+  CarbtfRelief relief;
+  uvec3 view_index;
+  vec3 view_weight;
+};
+
+CarbtfSurface carbtf_material_surface(vec2 uv, vec3 view, float lod) {
+  CarbtfSurface surface;
+  surface.uv = uv;
+  surface.view = view;
+  surface.lod = lod;
+  if (carbtf_probed(CARBTF_COST_PROBE_RELIEF)) {
+    surface.relief = CarbtfRelief(vec3(0.0, 0.0, 1.0), 1.0, vec3(1.0), vec4(0.0), vec4(0.0));
+  } else {
+    surface.relief = carbtf_relief(uv, lod);
+  }
+  carbtf_view_weights(view, surface.view_index, surface.view_weight);
+  return surface;
+}
+
 // The material under one light: the interpolated smooth BTF, each image with its share of the relief
 // tone, times the range map
 // relit for the light, max(N.L, 0) / max(L.z, light_z_floor). The measured images already hold the flat surface's cosine
@@ -429,26 +463,27 @@ vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, vec3 view, vec3 tone, float lo
 // nothing. Beyond the last measured elevation the interpolation holds that ring's images, whose
 // falloff is the floor's, so the floor keeps the product bounded at grazing light. Directions are
 // unit vectors in the tangent frame; uv is the parallax-shifted coordinate. Zero below the horizon.
-// `lod`: carbtf_material_lod() of the fragment (0, level 0 only, where the host has none).
-vec3 carbtf_material_shade(vec2 uv, vec3 light, vec3 view, float lod) {
+// `lod`: carbtf_material_lod() of the fragment (0, level 0 only, where the host has none). Under several
+// lights, shade each from one carbtf_material_surface(uv, view, lod); the other forms build it per call.
+vec3 carbtf_material_shade(CarbtfSurface surface, vec3 light) {
+  vec3 view = surface.view;
   if (light.z <= 0.0 || view.z <= 0.0) return vec3(0.0);
-  CarbtfRelief relief;
-  if (carbtf_probed(CARBTF_COST_PROBE_RELIEF)) {
-    relief = CarbtfRelief(vec3(0.0, 0.0, 1.0), 1.0, vec3(1.0), vec4(0.0), vec4(0.0));
-  } else {
-    relief = carbtf_relief(uv, lod);
-  }
+  CarbtfRelief relief = surface.relief;
   float n_dot_l = max(dot(relief.normal, light), 0.0);
   float visibility = 1.0;
   if (carbtf_shadows_compiled && carbtf_header.shadows != 0u) visibility = carbtf_relief_visibility(relief, light);
   float relit = n_dot_l / max(light.z, carbtf_header.light_z_floor) * visibility;
-  vec3 colour = relit * carbtf_interpolated_btf(uv, light, view, relief.tone, lod);
+  vec3 colour = relit * carbtf_interpolated_btf(surface.uv, light, surface.view_index, surface.view_weight, relief.tone,
+                                                surface.lod);
   // The relief's specular lobe (RangeTiles::specular_strength), grey, where the facet turns to the half vector.
   if (carbtf_header.specular_strength > 0.0) {
     float n_dot_h = max(dot(relief.normal, normalize(light + view)), 0.0);
     colour += vec3(carbtf_header.specular_strength * n_dot_l * visibility * pow(n_dot_h, carbtf_header.specular_gloss));
   }
   return colour;
+}
+vec3 carbtf_material_shade(vec2 uv, vec3 light, vec3 view, float lod) {
+  return carbtf_material_shade(carbtf_material_surface(uv, view, lod), light);
 }
 vec3 carbtf_material_shade(vec2 uv, vec3 light, vec3 view) {
   return carbtf_material_shade(uv, light, view, 0.0);

@@ -36,6 +36,7 @@ struct FrameBenchOptions {
   std::string material;  // empty: the leather sample, analysed into the output folder
   std::string mesh = "sphere";
   std::uint32_t frames = 30;
+  std::uint32_t lights = 1;
   std::uint32_t width = 1920;
   std::uint32_t height = 1080;
   std::uint32_t texture_size = 0;  // 0: what the first frame needs, up to 1024
@@ -112,7 +113,7 @@ void run_bench_frame(const FrameBenchOptions& options) {
   // Only what the frame can use: the subspace images its (light, view) pairs fall in.
   const std::unique_ptr<ScenePruner> pruner = make_scene_pruner(material);
   for (std::uint32_t i = 0; i < options.frames; ++i) {
-    const RenderScene scene = orbiting_scene(i, options.frames);
+    const RenderScene scene = orbiting_scene(i, options.frames, options.lights);
     const auto start = std::chrono::steady_clock::now();
     SceneNeeds needs;
     check(pruner->needs(mesh, scene, options.width, options.height, needs), "cannot prune the scene");
@@ -202,7 +203,7 @@ void run_bench_frame(const FrameBenchOptions& options) {
     }
     // Frame by frame, every variant in turn, so that the machine's drift falls on all of them alike.
     for (std::uint32_t i = 0; i < options.frames; ++i) {
-      const RenderScene scene = orbiting_scene(i, options.frames);
+      const RenderScene scene = orbiting_scene(i, options.frames, options.lights);
       for (std::size_t p = 0; p < probes.size(); ++p) {
         check(context->submit_and_wait([&](VkCommandBuffer cb) {
           timer.record_reset(cb);
@@ -228,9 +229,10 @@ void run_bench_frame(const FrameBenchOptions& options) {
 
   char line[256];
   std::snprintf(line, sizeof line,
-                "bench frame: %u frames of %ux%u, %s on %s, texture %u^2 with %u mip levels, filtered %s, %s "
-                "direction taps, %zu of %zu subspace images resident at the end\n\n",
-                options.frames, options.width, options.height, options.mesh.c_str(),
+                "bench frame: %u frames of %ux%u, %s, %u light%s, on %s, texture %u^2 with %u mip levels, filtered "
+                "%s, %s direction taps, %zu of %zu subspace images resident at the end\n\n",
+                options.frames, options.width, options.height, options.mesh.c_str(), options.lights,
+                options.lights == 1 ? "" : "s",
                 context->device_info().name.c_str(), texture_size, binding->mip_levels(),
                 binding->hardware_filtering() ? "by the sampler" : "by hand",
                 direction_taps_name(binding->pair_coupling()), resident->resident_count(),
@@ -255,6 +257,9 @@ void register_bench_frame_command(CLI::App& bench) {
       ->capture_default_str();
   command->add_option("--frames", options->frames, "Frames to render")
       ->check(CLI::Range(1u, 100000u))
+      ->capture_default_str();
+  command->add_option("--lights", options->lights, "Directional lights, spread evenly in azimuth around the sphere")
+      ->check(CLI::Range(1u, static_cast<unsigned>(kMaxRenderLights)))
       ->capture_default_str();
   command->add_option("--width", options->width, "Frame width")
       ->check(CLI::Range(1u, 16384u))

@@ -26,8 +26,9 @@ RenderScene scene_from_options(const std::vector<double>& camera, float fov_y_de
                                const std::vector<std::vector<double>>& lights,
                                const std::vector<std::vector<double>>& point_lights);
 
-// Frame i of n of `bench frame`: the camera orbits at 60 degrees from the pole, 3.6 away, one
-// directional light the other way at 40 degrees.
-RenderScene orbiting_scene(std::uint32_t i, std::uint32_t n);
+// Frame i of n of `bench frame`: the camera orbits at 60 degrees from the pole, 3.6 away, and
+// `lights` directional lights (1 to kMaxRenderLights) the other way at 40 degrees, spread evenly in
+// azimuth, each 1 / lights strong.
+RenderScene orbiting_scene(std::uint32_t i, std::uint32_t n, std::uint32_t lights = 1);
 
 }  // namespace carbtf::cli

@@ -51,6 +51,7 @@ TEST_CASE("bad arguments give one error line and a non-zero exit", "[cli]") {
   for (const Case& c : {Case{"noise --size 0", "--size"}, Case{"noise --size abc", "--size"},
                         Case{"noise --seed -3", "--seed"}, Case{"frobnicate", "frobnicate"},
                         Case{"render m.cbtf --direction-taps 7", "--direction-taps: 7 not in {9,5}"},
+                        Case{"bench frame --lights 5", "--lights"},
                         Case{"noise --out " + (folder / "n.xyz").string(), "unsupported image extension"},
                         Case{"noise --size 16 --device no-such-gpu --out " + (folder / "n.png").string(),
                              "no-such-gpu"},
@@ -328,11 +329,12 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
   SECTION("carbtf bench frame reports synthesis and render times per frame") {
     const fs::path out = folder / "frames";
     const Run bench = run("bench frame --material " + material.string() + " --frames 4 --width 64 --height 48 "
-                          "--texture-size 32 --parts --validation --out " + out.string());
+                          "--texture-size 32 --lights 2 --parts --validation --out " + out.string());
     INFO(bench.output);
     REQUIRE(bench.status == 0);
     CHECK_THAT(bench.output, Catch::Contains("render pass, GPU timestamps | 4 |") &&
-                                 Catch::Contains("synthesis, GPU timestamps (frames that synthesize)"));
+                                 Catch::Contains("synthesis, GPU timestamps (frames that synthesize)") &&
+                                 Catch::Contains("sphere, 2 lights, on "));
     // --parts: the full pass and each part replaced, every one timed on the 4 frames.
     for (const char* part : {"none (the full pass)", "direction lookups", "pair table reads", "subspace image reads",
                              "relief (normal, tone, horizons)", "parallax height read",
