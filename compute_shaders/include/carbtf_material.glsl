@@ -1,6 +1,8 @@
 // carbtf's material for any fragment shader: a host engine includes this file (with carbtf_gpu_shared.h
 // on its include path), binds MaterialBinding's descriptor set at CARBTF_MATERIAL_SET, and calls
-// carbtf_material_shade() per light. Its own pipeline layout puts MaterialBinding::set_layout() there.
+// carbtf_material_shade() per light (from one carbtf_material_surface() under several lights). Its own
+// pipeline layout puts MaterialBinding::set_layout() there, and its pipeline takes the specialization
+// constants MaterialBinding::shader_constants() gives.
 //
 // Directions are in the surface's tangent frame: x along +u (texture right), y towards texture row 0
 // (texture up, i.e. minus the v direction), z along the normal. Texture coordinates (u, v) in [0, 1]^2
@@ -8,7 +10,7 @@
 // textures are periodic (MaterialTablesHeader::wrap, for closed meshes): then addresses wrap.
 //
 // Per fragment: parallax mapping with offset limiting (Welsh 2004) from the enlarged range map, the
-// 9-weight interpolation of the subspace images (docs/design.md 4.5) through precomputed lookup grids
+// 9-weight (or 5-pair staircase) interpolation of the subspace images (docs/design.md 4.5) through precomputed lookup grids
 // (a fixed, short list of candidates per grid cell: no search over the direction set), times the range
 // map relit for the light, hidden where the relief casts a shadow (the material's shadow scale above
 // 0). The CPU twin is analysis/reference/src/render_reference.cpp.
