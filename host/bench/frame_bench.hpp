@@ -26,7 +26,8 @@ std::string write_frame_bench_report(const std::filesystem::path& out,
                                      const std::vector<FrameRecord>& records, const std::string& heading);
 
 // `bench frame --parts`: the render pass with one part of the fragment stage replaced by a constant
-// (MaterialBindingInfo::cost_probe), its frames rendered in turn with the full pass's.
+// (MaterialBindingInfo::cost_probe), or drawn with the other pair coupling, its frames rendered in turn
+// with the full pass's.
 struct FramePartTimes {
   std::string part;                // "none" for the full pass
   std::vector<double> render_gpu_ms;  // one per frame

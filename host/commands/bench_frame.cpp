@@ -168,7 +168,8 @@ void run_bench_frame(const FrameBenchOptions& options) {
     records.push_back(record);
   }
   if (options.parts) {
-    std::printf("bench frame: the render pass again with each part of the fragment stage replaced by a constant\n");
+    std::printf("bench frame: the render pass again with each part of the fragment stage replaced by a constant, "
+                "and with the other --direction-taps\n");
     std::fflush(stdout);
     // The last variant draws the material with the other --direction-taps: the full picture, another
     // interpolation between the measured directions.
