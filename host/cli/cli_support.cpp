@@ -38,17 +38,23 @@ void add_car_scheme_option(CLI::App& command, CarScheme& scheme) {
       ->default_str(car_scheme_name(scheme));
 }
 
+const char* direction_taps_name(PairCoupling coupling) {
+  return coupling == PairCoupling::staircase ? "5" : "9";
+}
+
 void add_direction_taps_option(CLI::App& command, PairCoupling& coupling) {
   command
       .add_option_function<std::string>(
           "--direction-taps",
-          [&coupling](const std::string& taps) { coupling = taps == "5" ? PairCoupling::staircase : PairCoupling::product; },
+          [&coupling](const std::string& taps) {
+            coupling = taps == direction_taps_name(PairCoupling::staircase) ? PairCoupling::staircase : PairCoupling::product;
+          },
           "(Light, view) pairs the render pass reads per light: 9, every light weight times every view weight "
           "(the paper's), or 5, a staircase of the same weights, exact at the measured pairs, whose render "
           "pass is about a fifth faster on lavapipe and whose picture between the measured directions differs "
           "(docs/design.md 4.5)")
-      ->check(CLI::IsMember({"9", "5"}))
-      ->default_str(coupling == PairCoupling::staircase ? "5" : "9");
+      ->check(CLI::IsMember({direction_taps_name(PairCoupling::product), direction_taps_name(PairCoupling::staircase)}))
+      ->default_str(direction_taps_name(coupling));
 }
 
 const CLI::Validator& non_negative() {

@@ -31,6 +31,8 @@ void add_car_scheme_option(CLI::App& command, CarScheme& scheme);
 // --direction-taps 9|5: the (light, view) pairs the render pass reads per light
 // (MaterialBindingInfo::pair_coupling: 9 the paper's product, 5 the staircase).
 void add_direction_taps_option(CLI::App& command, PairCoupling& coupling);
+// "9" or "5": the --direction-taps value of a coupling.
+const char* direction_taps_name(PairCoupling coupling);
 
 // For unsigned options: CLI11 would otherwise wrap "-3" around to a huge value.
 const CLI::Validator& non_negative();

@@ -78,10 +78,6 @@ MaterialBindingInfo bench_binding_info(const FrameBenchOptions& options, std::ui
   return info;
 }
 
-const char* direction_taps_name(PairCoupling coupling) {
-  return coupling == PairCoupling::staircase ? "5" : "9";
-}
-
 void run_bench_frame(const FrameBenchOptions& options) {
   OwnedFolder folder(options.out);
   folder.keep();  // the results stay; only the scratch BTF is released
