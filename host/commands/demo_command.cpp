@@ -137,7 +137,7 @@ void run_demo(const DemoOptions& options) {
       run_fidelity(*context, material, dataset, default_fidelity_pairs(material), fidelity_options);
   const FidelitySummaryLine fidelity_summary = summarize(fidelity);
   const RgbField grid = fidelity_grid(fidelity);
-  write_rgb_image(folder / "fidelity_grid.png", grid.rgb, grid.width, grid.height, false);
+  write_rgb_image(folder / "fidelity_grid.png", grid.rgb, grid.width, grid.height);
   std::ofstream(folder / "fidelity.csv") << fidelity_csv(fidelity, material);
   timed("fidelity (" + std::to_string(fidelity.size()) + " pairs: synthesis, two renders and the measure each)",
         seconds_since(start));

@@ -72,7 +72,7 @@ void run_fidelity_command(const FidelityOptions& options) {
   md << "| mean | " << summary.mean_rel << " | " << summary.mean_gaussian_rel << " | " << summary.beats_gaussian << " of " << summary.pairs
      << " |\n| worst | " << summary.worst_rel << " | | |\n";
   const RgbField grid = fidelity_grid(results);
-  write_rgb_image(out / "fidelity_grid.png", grid.rgb, grid.width, grid.height, false);
+  write_rgb_image(out / "fidelity_grid.png", grid.rgb, grid.width, grid.height);
   std::printf("wrote %s/fidelity.csv, fidelity.md and fidelity_grid.png (rows: pairs; columns: model | measured | Gaussian reference)\n",
               out.string().c_str());
 }

@@ -229,9 +229,8 @@ RgbField fidelity_grid(const std::vector<PairFidelity>& results) {
       for (std::uint32_t y = 0; y < cell.height; ++y) {
         for (std::uint32_t x = 0; x < cell.width; ++x) {
           const std::size_t to = (std::size_t(row * (cell_h + gap) + y) * grid.width + column * (cell_w + gap) + x) * 3;
-          for (int k = 0; k < 3; ++k) {
-            grid.rgb[to + k] = linear_to_srgb(std::clamp(cell.rgb[(std::size_t{y} * cell.width + x) * 3 + k], 0.0f, 1.0f));
-          }
+          std::copy_n(cell.rgb.begin() + static_cast<std::ptrdiff_t>((std::size_t{y} * cell.width + x) * 3), 3,
+                      grid.rgb.begin() + static_cast<std::ptrdiff_t>(to));
         }
       }
     }

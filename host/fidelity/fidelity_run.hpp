@@ -61,7 +61,7 @@ struct FidelitySummaryLine {
 FidelitySummaryLine summarize(const std::vector<PairFidelity>& results);
 
 // One row per pair: model | measured | Gaussian reference, each cell padded to the largest crop,
-// display-encoded (sRGB) RGB for write_rgb_image(..., srgb_encode = false).
+// linear RGB, white between the cells, for write_rgb_image() to encode.
 RgbField fidelity_grid(const std::vector<PairFidelity>& results);
 
 // CSV with a header: pair, light and view in degrees, rel, gaussian_rel, floor, ceiling, the model's
