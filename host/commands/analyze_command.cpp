@@ -115,7 +115,8 @@ void register_analyze_command(CLI::App& app) {
                   "Store the relief tone as one plane per colour channel (R, G, B), so that colour follows the relief "
                   "texel by texel (threads of different colours keep their colours): auto where the tone's colour departs "
                   "from grey visibly (a two-colour weave, not a leather), yes, or no. Off by default: fabric looks much "
-                  "nearer its measurement with it (mean rel 0.48 -> 0.38 at 256^2), but its fitted noise is then too strong");
+                  "nearer its measurement with it (mean rel 0.42 -> 0.35 at 256^2), but the measure then no longer sees its "
+                  "noise: every sigma halved scores as well (docs/design.md 4.2)");
   add_auto_choice(command, "--shadows", a.relief_shadows,
                   "With the relief tone, let the relief cast shadows in the render pass (a crease wall that faces the "
                   "light stays lit, the crease behind it goes dark): auto at the strength that best explains the "
