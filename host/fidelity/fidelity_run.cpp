@@ -227,11 +227,9 @@ RgbField fidelity_grid(const std::vector<PairFidelity>& results) {
     for (std::uint32_t column = 0; column < 3; ++column) {
       const RgbField& cell = *cells[column];
       for (std::uint32_t y = 0; y < cell.height; ++y) {
-        for (std::uint32_t x = 0; x < cell.width; ++x) {
-          const std::size_t to = (std::size_t(row * (cell_h + gap) + y) * grid.width + column * (cell_w + gap) + x) * 3;
-          std::copy_n(cell.rgb.begin() + static_cast<std::ptrdiff_t>((std::size_t{y} * cell.width + x) * 3), 3,
-                      grid.rgb.begin() + static_cast<std::ptrdiff_t>(to));
-        }
+        const std::size_t to = (std::size_t(row * (cell_h + gap) + y) * grid.width + column * (cell_w + gap)) * 3;
+        std::copy_n(cell.rgb.begin() + static_cast<std::ptrdiff_t>(std::size_t{y} * cell.width * 3), std::size_t{cell.width} * 3,
+                    grid.rgb.begin() + static_cast<std::ptrdiff_t>(to));
       }
     }
   }
