@@ -76,6 +76,13 @@ const std::vector<ModelVariant>& model_variants() {
          o.tiles.tone_bits = 6;
          o.deshade_floor = 0.3;
        }},
+      {"tone_planes_deshade_specular", "tone_planes_deshade with the relief's specular lobe (fabric's nearest model measured)",
+       [](AnalysisOptions& o) {
+         o.tone_planes = TonePlanes::always;
+         o.tiles.tone_bits = 6;
+         o.deshade_floor = 0.3;
+         o.relief_specular = true;
+       }},
   };
   return variants;
 }
