@@ -333,19 +333,23 @@ void carbtf_direction_weights(DirectionLookupGpu set, vec2 p, out uvec3 index, o
   weight /= weight.x + weight.y + weight.z;
 }
 
-// Ascending direction index, by compare and swap (couple_pair_weights() sorts alike).
-void carbtf_order_by_index(inout uvec3 index, inout vec3 weight) {
-  for (int k = 0; k < 3; ++k) {
-    int a = k == 1 ? 1 : 0;
-    if (index[a] > index[a + 1]) {
-      uint i = index[a];
-      index[a] = index[a + 1];
-      index[a + 1] = i;
-      float w = weight[a];
-      weight[a] = weight[a + 1];
-      weight[a + 1] = w;
-    }
+// Entries a and a + 1 in ascending direction index.
+void carbtf_order_adjacent(inout uvec3 index, inout vec3 weight, int a) {
+  if (index[a] > index[a + 1]) {
+    uint i = index[a];
+    index[a] = index[a + 1];
+    index[a + 1] = i;
+    float w = weight[a];
+    weight[a] = weight[a + 1];
+    weight[a + 1] = w;
   }
+}
+
+// Ascending direction index, by the compare-and-swap network couple_pair_weights() sorts with.
+void carbtf_order_by_index(inout uvec3 index, inout vec3 weight) {
+  carbtf_order_adjacent(index, weight, 0);
+  carbtf_order_adjacent(index, weight, 1);
+  carbtf_order_adjacent(index, weight, 0);
 }
 
 // Pair p's part of the interpolated colour: weight w times the pair's gain times its subspace image at
@@ -372,18 +376,19 @@ vec3 carbtf_pair_colour(uint p, float w, vec2 uv, float lod, CarbtfLod s, Carbtf
   return (w * max(1.0 + tone_weight * tone_offset, vec3(0.0))) * (gain * texel);
 }
 
-// The view's measured directions around `view` and their weights (the lookup, or the cost probe's constants).
-void carbtf_view_weights(vec3 view, out uvec3 index, out vec3 weight) {
+// The measured directions of `set` (the lights or the views) around a tangent-frame direction and
+// their weights: the lookup, or the cost probe's constants.
+void carbtf_measured_weights(DirectionLookupGpu set, vec3 direction, out uvec3 index, out vec3 weight) {
   if (carbtf_probed(CARBTF_COST_PROBE_LOOKUPS)) {
-    index = uvec3(0u, 1u, 2u) % max(carbtf_header.views.count, 1u);
+    index = uvec3(0u, 1u, 2u) % max(set.count, 1u);
     weight = vec3(0.5, 0.3, 0.2);
   } else {
-    carbtf_direction_weights(carbtf_header.views, carbtf_project_direction(view), index, weight);
+    carbtf_direction_weights(set, carbtf_project_direction(direction), index, weight);
   }
 }
 
 // The smooth BTF colour at (already parallax-shifted) uv for a tangent-frame light direction and the
-// view's measured directions vi and weights vw (carbtf_view_weights(): a fragment lit by several lights
+// view's measured directions vi and weights vw (carbtf_measured_weights(): a fragment lit by several lights
 // looks the view up once), with the relief tone `tone` at uv (one per colour channel): sum over the
 // (light, view) pairs around the directions (the 3 x 3 nearest, or the staircase's 5 of them:
 // carbtf_pair_coupling) of weight * max(1 + tone weight * (tone - 1), 0) * (pair gain * subspace image
@@ -391,12 +396,7 @@ void carbtf_view_weights(vec3 view, out uvec3 index, out vec3 weight) {
 vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, uvec3 vi, vec3 vw, vec3 tone, float lod) {
   uvec3 li;
   vec3 lw;
-  if (carbtf_probed(CARBTF_COST_PROBE_LOOKUPS)) {
-    li = uvec3(0u, 1u, 2u) % max(carbtf_header.lights.count, 1u);
-    lw = vec3(0.5, 0.3, 0.2);
-  } else {
-    carbtf_direction_weights(carbtf_header.lights, carbtf_project_direction(light), li, lw);
-  }
+  carbtf_measured_weights(carbtf_header.lights, light, li, lw);
   CarbtfLod s = carbtf_split_lod(lod);
   CarbtfBilinear b = carbtf_bilinear(uv, s.level);
   CarbtfBilinear b_up = carbtf_bilinear(uv, s.level + (s.t > 0.0 ? 1 : 0));
@@ -454,7 +454,7 @@ CarbtfSurface carbtf_material_surface(vec2 uv, vec3 view, float lod) {
   } else {
     surface.relief = carbtf_relief(uv, lod);
   }
-  carbtf_view_weights(view, surface.view_index, surface.view_weight);
+  carbtf_measured_weights(carbtf_header.views, view, surface.view_index, surface.view_weight);
   return surface;
 }
 

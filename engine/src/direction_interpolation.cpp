@@ -196,10 +196,6 @@ PairWeights couple_pair_weights(const DirectionWeights& light, const DirectionWe
       view_left = v.weight[j];
     }
   }
-  for (std::size_t k = gpu::CARBTF_STAIRCASE_STEPS; k < pair.weight.size(); ++k) {
-    pair.light[k] = l.index[2];
-    pair.view[k] = v.index[2];
-  }
   return pair;
 }
 
