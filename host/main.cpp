@@ -1,6 +1,8 @@
 // carbtf: compress a measured BTF into a probabilistic model and synthesize it on the GPU.
 #include <CLI/CLI.hpp>
 
+#include <csignal>
+
 #include <cstdlib>
 #include <iostream>
 #include <string>
@@ -20,6 +22,9 @@ std::string one_line(std::string message) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Past a file-size limit (ulimit -f) a write then fails with EFBIG, which the command reports and
+  // cleans up after, instead of the process being killed halfway through a file.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{
       "carbtf: extreme BTF compression (Haindl & Filip) with Vulkan synthesis.\n"
       "Environment: CARBTF_DEVICE picks the Vulkan device (index or part of its name)."};

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "carbtf/analysis/btf/btf_dataset.hpp"
+#include "carbtf/engine/file_output.hpp"
 #include "carbtf/analysis/input_error.hpp"
 #include "text.hpp"
 
@@ -36,6 +37,30 @@ const char* image_reader(const std::string& ext) {
   if (ext == ".pfm") return "pnm";
   if (ext == ".webp") return "webp";  // the built-in sample materials' maps (assets/materials)
   return nullptr;
+}
+
+// Encodes `channels` interleaved samples per pixel of `type` in memory, for a file named `name`: the
+// encoder follows the extension, and the file is written whole afterwards (write_output_file()).
+std::vector<std::byte> encode_image(const std::string& name, const void* pixels, OIIO::TypeDesc type,
+                                    std::uint32_t width, std::uint32_t height, int channels) {
+  std::vector<unsigned char> encoded;
+  OIIO::Filesystem::IOVecOutput memory(encoded);
+  auto output = OIIO::ImageOutput::create(name);
+  if (!output) throw InputError(name, "no encoder for this extension");
+  output->set_ioproxy(&memory);
+  OIIO::ImageSpec spec(static_cast<int>(width), static_cast<int>(height), channels, type);
+  spec.attribute("CompressionQuality", 95);
+  if (!output->open(name, spec)) throw InputError(name, "cannot encode: " + output->geterror());
+  if (!output->write_image(type, pixels) || !output->close()) throw InputError(name, "cannot encode: " + output->geterror());
+  std::vector<std::byte> result(encoded.size());
+  std::memcpy(result.data(), encoded.data(), encoded.size());
+  return result;
+}
+
+// The engine's file errors start with the path, which InputError puts in front again.
+std::string without_path(const std::string& message, const std::filesystem::path& path) {
+  const std::string prefix = path.string() + ": ";
+  return message.starts_with(prefix) ? message.substr(prefix.size()) : message;
 }
 
 }  // namespace
@@ -64,26 +89,20 @@ void write_field_image(const std::filesystem::path& path, std::span<const float>
   if (values.size() < std::size_t{width} * height || width == 0 || height == 0) {
     throw InputError(path, "no pixels to write");
   }
-  create_folder(path.parent_path());
-  auto output = OIIO::ImageOutput::create(path.string());
-  if (!output) throw InputError(path, "cannot write: " + OIIO::geterror());
-  const bool as_float = is_float_format(ext);
-  OIIO::ImageSpec spec(static_cast<int>(width), static_cast<int>(height), 1,
-                       as_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-  if (!output->open(path.string(), spec)) throw InputError(path, "cannot write: " + output->geterror());
-  bool written = false;
-  if (as_float) {
-    written = output->write_image(OIIO::TypeDesc::FLOAT, values.data());
+  const std::size_t count = std::size_t{width} * height;
+  std::vector<std::byte> encoded;
+  if (is_float_format(ext)) {
+    encoded = encode_image(path.string(), values.data(), OIIO::TypeDesc::FLOAT, width, height, 1);
   } else {
-    std::vector<std::uint8_t> bytes(std::size_t{width} * height);
+    std::vector<std::uint8_t> bytes(count);
     const float scale = 255.0f / (display.high - display.low);
-    for (std::size_t i = 0; i < bytes.size(); ++i) {
+    for (std::size_t i = 0; i < count; ++i) {
       const float v = std::clamp((values[i] - display.low) * scale, 0.0f, 255.0f);
       bytes[i] = static_cast<std::uint8_t>(std::lround(v));
     }
-    written = output->write_image(OIIO::TypeDesc::UINT8, bytes.data());
+    encoded = encode_image(path.string(), bytes.data(), OIIO::TypeDesc::UINT8, width, height, 1);
   }
-  if (!written || !output->close()) throw InputError(path, "write failed: " + output->geterror());
+  write_output_file(path, encoded);
 }
 
 }  // namespace carbtf
@@ -205,40 +224,30 @@ RgbImage decode_rgb_image(const std::string& name, std::span<const std::byte> by
 
 std::vector<std::byte> encode_rgb_image(const std::string& name, std::span<const float> linear_rgb,
                                         std::uint32_t width, std::uint32_t height, bool srgb_encode) {
-  const std::filesystem::path path(name);
-  const bool as_float = is_float_image_extension(path);
-  std::vector<unsigned char> encoded;
-  OIIO::Filesystem::IOVecOutput memory(encoded);
-  auto output = OIIO::ImageOutput::create(name);
-  if (!output) throw InputError(name, "no encoder for this extension");
-  output->set_ioproxy(&memory);
-  OIIO::ImageSpec spec(static_cast<int>(width), static_cast<int>(height), 3,
-                       as_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-  spec.attribute("CompressionQuality", 95);
-  if (!output->open(name, spec)) throw InputError(name, "cannot encode: " + output->geterror());
-  bool written = false;
-  if (as_float) {
-    written = output->write_image(OIIO::TypeDesc::FLOAT, linear_rgb.data());
-  } else {
-    std::vector<std::uint8_t> bytes(linear_rgb.size());
-    for (std::size_t i = 0; i < bytes.size(); ++i) {
-      bytes[i] = srgb_encode ? linear_to_srgb8(linear_rgb[i]) : static_cast<std::uint8_t>(std::lround(std::clamp(linear_rgb[i], 0.0f, 1.0f) * 255.0f));
-    }
-    written = output->write_image(OIIO::TypeDesc::UINT8, bytes.data());
+  if (is_float_image_extension(std::filesystem::path(name))) {
+    return encode_image(name, linear_rgb.data(), OIIO::TypeDesc::FLOAT, width, height, 3);
   }
-  if (!written || !output->close()) throw InputError(name, "cannot encode: " + output->geterror());
-  std::vector<std::byte> result(encoded.size());
-  std::memcpy(result.data(), encoded.data(), encoded.size());
-  return result;
+  std::vector<std::uint8_t> bytes(linear_rgb.size());
+  for (std::size_t i = 0; i < bytes.size(); ++i) {
+    bytes[i] = srgb_encode ? linear_to_srgb8(linear_rgb[i]) : static_cast<std::uint8_t>(std::lround(std::clamp(linear_rgb[i], 0.0f, 1.0f) * 255.0f));
+  }
+  return encode_image(name, bytes.data(), OIIO::TypeDesc::UINT8, width, height, 3);
 }
 
 void write_rgb_image(const std::filesystem::path& path, std::span<const float> rgb, std::uint32_t width,
                      std::uint32_t height, bool srgb_encode) {
-  const std::vector<std::byte> bytes = encode_rgb_image(path.string(), rgb, width, height, srgb_encode);
+  write_output_file(path, encode_rgb_image(path.string(), rgb, width, height, srgb_encode));
+}
+
+void write_output_file(const std::filesystem::path& path, std::span<const std::byte> bytes) {
+  if (Status s = check_output_file(path.string()); !s.ok()) throw InputError(path, without_path(s.message(), path));
   create_folder(path.parent_path());
-  std::ofstream file(path, std::ios::binary);
-  file.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-  if (!file) throw InputError(path, "cannot write");
+  const Status s = write_file_whole(path.string(), std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()));
+  if (!s.ok()) throw InputError(path, without_path(s.message(), path));
+}
+
+void write_output_file(const std::filesystem::path& path, std::string_view text) {
+  write_output_file(path, std::span<const std::byte>(reinterpret_cast<const std::byte*>(text.data()), text.size()));
 }
 
 }  // namespace carbtf

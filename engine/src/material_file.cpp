@@ -1,5 +1,7 @@
 #include "carbtf/engine/material/material_file.hpp"
 
+#include "carbtf/engine/file_output.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cstdio>
@@ -912,23 +914,11 @@ Status read_material_file(const std::string& path, Material& out) {
 }
 
 Status write_material_file(const std::string& path, const Material& material) {
+  // Refused before the encoding's work, as a command refuses it before the analysis.
+  if (Status s = check_output_file(path); !s.ok()) return s;
   std::vector<std::uint8_t> bytes;
   if (Status s = encode_material(material, bytes); !s.ok()) return s;
-  const std::string temporary = path + ".partial";
-  {
-    std::ofstream file(temporary, std::ios::binary | std::ios::trunc);
-    if (!file) return {ErrorCode::file_error, path + ": cannot create the file"};
-    file.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-    if (!file.flush()) {
-      std::remove(temporary.c_str());
-      return {ErrorCode::file_error, path + ": cannot write the file"};
-    }
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    std::remove(temporary.c_str());
-    return {ErrorCode::file_error, path + ": cannot write the file"};
-  }
-  return {};
+  return write_file_whole(path, bytes);
 }
 
 }  // namespace carbtf

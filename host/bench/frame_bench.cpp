@@ -1,7 +1,9 @@
 #include "bench/frame_bench.hpp"
 
 #include <cstdio>
-#include <fstream>
+#include <sstream>
+
+#include "carbtf/analysis/image_io.hpp"
 
 #include "cli/cli_support.hpp"
 
@@ -9,7 +11,7 @@ namespace carbtf::cli {
 
 std::string write_frame_bench_report(const std::filesystem::path& out,
                                      const std::vector<FrameRecord>& records, const std::string& heading) {
-  std::ofstream csv(out / "bench_frame.csv");
+  std::ostringstream csv;
   csv << "frame,synthesized_subspaces,resident_subspaces,synthesis_gpu_ms,render_gpu_ms,frame_wall_ms\n";
   for (const FrameRecord& r : records) {
     csv << r.frame << ',' << r.synthesized << ',' << r.resident << ',' << r.synthesis_gpu_ms << ','
@@ -33,13 +35,14 @@ std::string write_frame_bench_report(const std::filesystem::path& out,
   row("frame wall time, render only", render_wall);
   row("synthesis, GPU timestamps (frames that synthesize)", synthesis_gpu);
   row("frame wall time, with synthesis", synthesis_wall);
-  std::ofstream(out / "bench_frame.md") << heading << table;
+  write_output_file(out / "bench_frame.csv", csv.str());
+  write_output_file(out / "bench_frame.md", heading + table);
   return table;
 }
 
 std::string write_frame_parts_report(const std::filesystem::path& out, const std::vector<FramePartTimes>& parts,
                                      const std::string& heading) {
-  std::ofstream csv(out / "bench_frame_parts.csv");
+  std::ostringstream csv;
   csv << "part,frame,render_gpu_ms\n";
   for (const FramePartTimes& p : parts) {
     // Quoted: a part's name may hold commas.
@@ -54,7 +57,8 @@ std::string write_frame_parts_report(const std::filesystem::path& out, const std
     std::snprintf(line, sizeof line, "| %s | %zu | %.2f | %.2f |\n", p.part.c_str(), p.render_gpu_ms.size(), m, full - m);
     table += line;
   }
-  std::ofstream(out / "bench_frame_parts.md") << heading << table;
+  write_output_file(out / "bench_frame_parts.csv", csv.str());
+  write_output_file(out / "bench_frame_parts.md", heading + table);
   return table;
 }
 

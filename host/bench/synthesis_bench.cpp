@@ -4,7 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
+#include <sstream>
 #include <string_view>
 
 #include "carbtf/analysis/image_io.hpp"
@@ -29,12 +29,12 @@ Material material_for(const SynthesisBenchCase& c, const Material* loaded,
 
 void write_tables(const std::filesystem::path& out, const std::vector<SynthesisBenchRow>& rows,
                   const std::string& device, unsigned threads) {
-  std::ofstream csv(out / "bench_synth.csv");
+  std::ostringstream csv;
   csv << "sweep,size,levels,neighbours,subspaces,scheme,batches,dispatches,gpu_ms,gpu_prepare_ms,gpu_car_ms,"
          "gpu_collapse_ms,gpu_colour_ms,gpu_wall_ms,cpu_f32_ms,cpu_f64_ms,"
          "gpu_max_err_over_std,gpu_rms_err_over_std,cpu_f32_max_err_over_std,cpu_f32_rms_err_over_std,"
          "fidelity_pairs,rel_mean,rel_worst,gaussian_rel_mean\n";
-  std::ofstream md(out / "bench_synth.md");
+  std::ostringstream md;
   md << "# carbtf bench synth\n\nDevice: " << device << ". CPU reference on " << threads
      << " threads. Errors are against the float64 CPU reference, relative to each channel's standard "
         "deviation"
@@ -80,6 +80,8 @@ void write_tables(const std::filesystem::path& out, const std::vector<SynthesisB
       md << line;
     }
   }
+  write_output_file(out / "bench_synth.csv", csv.str());
+  write_output_file(out / "bench_synth.md", md.str());
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include "carbtf/analysis/btf/btf_reader.hpp"
 #include "carbtf/analysis/image_io.hpp"
+#include "carbtf/engine/file_output.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -96,8 +97,18 @@ std::string representable_number(const std::string& token, bool real) {
 void check_every_option(CLI::App& app) {
   for (CLI::Option* option : app.get_options()) {
     if (option->check_name("--out") || option->check_name("--report")) {
-      // An empty path would write into the current folder under names like "/subspace_00.png".
-      option->check(CLI::Validator([](std::string& path) { return path.empty() ? std::string("the path is empty") : std::string(); }, ""));
+      // An empty path would write into the current folder under names like "/subspace_00.png"; a device,
+      // FIFO or socket there is never written to or replaced (a folder or a file: each command says which
+      // it takes).
+      option->check(CLI::Validator(
+          [](std::string& path) {
+            if (path.empty()) return std::string("the path is empty");
+            std::error_code error;
+            if (std::filesystem::is_directory(path, error)) return std::string();
+            const Status s = check_output_file(path);
+            return s.ok() ? std::string() : s.message();
+          },
+          ""));
       continue;
     }
     const std::string type = option->get_type_name();
@@ -118,6 +129,12 @@ void require_finite(std::span<const float> values, const std::string& what) {
                      "the material: please report it with the material file");
 }
 
+void check_output_file_path(const std::string& path, const std::string& option) {
+  if (path.empty()) throw CommandError(option + ": the output path is empty");
+  if (std::filesystem::is_directory(path)) throw CommandError(option + " " + path + ": is a folder; this option takes a file name");
+  check(check_output_file(path), option);
+}
+
 void check_image_output_path(const std::string& path, const std::string& option) {
   if (path.empty()) throw CommandError(option + ": the output path is empty");
   if (std::filesystem::is_directory(path)) {
@@ -127,6 +144,7 @@ void check_image_output_path(const std::string& path, const std::string& option)
   if (!is_supported_image_extension(path)) {
     throw CommandError(option + " " + path + ": unknown image type; use .png, .jpg, .bmp (8-bit sRGB) or .exr, .tif, .pfm (float)");
   }
+  check(check_output_file(path), option);
 }
 
 std::unique_ptr<Context> make_context(const DeviceOptions& options) {

@@ -47,8 +47,12 @@ void check_every_option(CLI::App& app);
 // last guard before a synthesized or rendered image is written.
 void require_finite(std::span<const float> values, const std::string& what);
 
+// Refuses, before any work, an output file path that exists and is not a regular file (a folder, a
+// device, a FIFO, a socket, a link to nothing): nothing is ever written in place of such a thing.
+void check_output_file_path(const std::string& path, const std::string& option);
+
 // Refuses, before any work, an output image path that cannot be written: empty, an existing folder, or
-// an extension with no encoder. `option` names the flag in the message.
+// an extension with no encoder, or anything check_output_file_path() refuses. `option` names the flag.
 void check_image_output_path(const std::string& path, const std::string& option);
 
 // Creates the context or throws CommandError with the engine's message.

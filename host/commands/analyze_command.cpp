@@ -30,6 +30,7 @@ struct AnalyzeCommandOptions {
 };
 
 void run_analyze(const AnalyzeCommandOptions& options) {
+  check_output_file_path(options.out, "--out");
   const auto start = std::chrono::steady_clock::now();
   std::vector<std::string> warnings;
   const BtfDataset dataset = load_btf(options.dataset, {}, warnings);

@@ -6,7 +6,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 #include <functional>
 
 #include "carbtf/analysis/analyze.hpp"
@@ -154,7 +154,7 @@ void run_fidelity_bench(const FidelityBenchOptions& options) {
   if (!results.empty()) std::printf("Gaussian reference rel mean %.3f\n", results.front().summary.mean_gaussian_rel);
 
   const fs::path csv_path = out.claim("fidelity_size.csv");
-  std::ofstream csv(csv_path);
+  std::ostringstream csv;
   csv << "variant,description,bytes,mean_rel,worst_rel,gaussian_mean_rel,beats_gaussian,pairs,analysis_seconds\n";
   std::vector<ScatterPoint> points;
   std::vector<std::string_view> legend;
@@ -165,6 +165,7 @@ void run_fidelity_bench(const FidelityBenchOptions& options) {
     points.push_back({static_cast<double>(r.bytes) / 1024.0, r.summary.mean_rel, static_cast<std::uint32_t>(i)});
     legend.push_back(r.variant->name);
   }
+  write_output_file(csv_path, csv.str());
   const Figure plot = scatter_figure(points, "MATERIAL SIZE (KIB)", "MEAN REL (0 = MEASUREMENT, 1 = NOISE)", legend);
   write_rgb_image(out.claim("fidelity_size.png"), plot.rgb, plot.width, plot.height, false);
   std::printf("wrote %s: one .cbtf per variant, fidelity_size.csv and fidelity_size.png (mean rel against size)\n", options.out.c_str());

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 #include <thread>
 #include <vector>
 
@@ -138,7 +138,7 @@ void run_demo(const DemoOptions& options) {
   const FidelitySummaryLine fidelity_summary = summarize(fidelity);
   const RgbField grid = fidelity_grid(fidelity);
   write_rgb_image(folder / "fidelity_grid.png", grid.rgb, grid.width, grid.height);
-  std::ofstream(folder / "fidelity.csv") << fidelity_csv(fidelity, material);
+  write_output_file(folder / "fidelity.csv", fidelity_csv(fidelity, material));
   timed("fidelity (" + std::to_string(fidelity.size()) + " pairs: synthesis, two renders and the measure each)",
         seconds_since(start));
   // 5. The material on a sphere, from the front and from behind, where u wraps (the images are periodic).

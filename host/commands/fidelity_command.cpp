@@ -5,7 +5,7 @@
 // a picture grid (model | measured | Gaussian reference).
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 
 #include "carbtf/analysis/image_io.hpp"
 #include "carbtf/engine/material/material_file.hpp"
@@ -62,8 +62,8 @@ void run_fidelity_command(const FidelityOptions& options) {
   std::printf("rel mean %.3f, worst %.3f; Gaussian reference mean %.3f; the model beats it on %zu of %zu pairs\n", summary.mean_rel,
               summary.worst_rel, summary.mean_gaussian_rel, summary.beats_gaussian, summary.pairs);
 
-  std::ofstream(out / "fidelity.csv") << fidelity_csv(results, material);
-  std::ofstream md(out / "fidelity.md");
+  write_output_file(out / "fidelity.csv", fidelity_csv(results, material));
+  std::ostringstream md;
   md << "| pair | rel | Gaussian reference rel | beats it |\n|---|---|---|---|\n";
   for (const PairFidelity& r : results) {
     md << "| " << r.pair.label << " | " << r.result.rel << " | " << r.result.gaussian_rel << " | "
@@ -71,6 +71,7 @@ void run_fidelity_command(const FidelityOptions& options) {
   }
   md << "| mean | " << summary.mean_rel << " | " << summary.mean_gaussian_rel << " | " << summary.beats_gaussian << " of " << summary.pairs
      << " |\n| worst | " << summary.worst_rel << " | | |\n";
+  write_output_file(out / "fidelity.md", md.str());
   const RgbField grid = fidelity_grid(results);
   write_rgb_image(out / "fidelity_grid.png", grid.rgb, grid.width, grid.height);
   std::printf("wrote %s/fidelity.csv, fidelity.md and fidelity_grid.png (rows: pairs; columns: model | measured | Gaussian reference)\n",

@@ -28,6 +28,7 @@ void run_noise(const NoiseOptions& options) {
   if (!is_supported_image_extension(options.out)) {
     throw CommandError(options.out + ": unsupported image extension (use .png, .jpg, .bmp, .exr, .tif or .pfm)");
   }
+  check_output_file_path(options.out, "--out");
   std::vector<float> values;
   const auto start = std::chrono::steady_clock::now();
   std::string where;

@@ -3,7 +3,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 
 #include "carbtf/analysis/btf/directions.hpp"
 #include "carbtf/analysis/image_io.hpp"
@@ -46,12 +46,12 @@ void run_sample(const SampleOptions& options) {
   const std::filesystem::path btf = out / (options.zip ? "btf.zip" : "btf");
   write_sample_btf(surface, btf, "." + options.format, options.zip);
   write_ground_truth(surface, out / "ground_truth");
-  std::ofstream info(out / "material.json");
+  std::ostringstream info;
   info << "{\n  \"material\": \"" << options.name << "\",\n  \"size\": " << options.size
        << ",\n  \"seed\": " << options.seed << ",\n  \"format\": \"" << options.format
        << "\",\n  \"height_units\": \"texels\",\n  \"specular\": " << surface.specular
        << ",\n  \"gloss\": " << surface.gloss << "\n}\n";
-  if (!info) throw CommandError((out / "material.json").string() + ": cannot write");
+  write_output_file(out / "material.json", info.str());
   std::printf("wrote %s: %zu images of %ux%u (%s) in %.1f s; ground truth in %s\n", btf.c_str(),
               ubo2003_directions().size() * ubo2003_directions().size(), options.size, options.size,
               options.format.c_str(), seconds_since(start), (out / "ground_truth").c_str());

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
+#include <sstream>
 
 #include "carbtf/analysis/image_io.hpp"
 #include "carbtf/analysis/report/figures.hpp"
@@ -35,13 +35,14 @@ void write_analysis_report(const fs::path& folder, const BtfDataset& dataset, co
   const Figure spectrum = eigenvalue_figure(seg.eigenvalues);
   write_rgb_image(folder / "eigenvalues.png", spectrum.rgb, spectrum.width, spectrum.height, false);
   {
-    std::ofstream csv(folder / "eigenvalues.csv");
+    std::ostringstream csv;
     csv << "rank,eigenvalue\n";
     for (std::size_t i = 0; i < seg.eigenvalues.size(); ++i)
       csv << i + 1 << ',' << seg.eigenvalues[i] << '\n';
+    write_output_file(folder / "eigenvalues.csv", csv.str());
   }
   {
-    std::ofstream csv(folder / "subspaces.csv");
+    std::ostringstream csv;
     csv << "subspace,light,view,light_theta_deg,light_phi_deg,view_theta_deg,view_phi_deg,images\n";
     for (std::size_t s = 0; s < seg.representatives.size(); ++s) {
       const LightView p = seg.representatives[s];
@@ -49,6 +50,7 @@ void write_analysis_report(const fs::path& folder, const BtfDataset& dataset, co
           << dataset.lights()[p.light].phi_degrees() << ',' << dataset.views()[p.view].theta_degrees() << ','
           << dataset.views()[p.view].phi_degrees() << ',' << seg.sizes[s] << '\n';
     }
+    write_output_file(folder / "subspaces.csv", csv.str());
   }
   std::vector<float> rgb(dataset.pixel_count() * 3);
   for (std::size_t s = 0; s < seg.representatives.size(); ++s) {
@@ -73,13 +75,15 @@ void write_analysis_report(const fs::path& folder, const BtfDataset& dataset, co
   write_field_image(folder / "range_enlarged.png", enlarged, enlarged_size, enlarged_size,
                     {*low, std::max(*high, *low + 1e-6f)});
   {
-    std::ofstream csv(folder / "stages.csv");
+    std::ostringstream csv;
     csv << "stage,seconds,peak_rss_mib\n";
     for (const StageReport& s : result.stages)
       csv << s.name << ',' << s.seconds << ',' << s.peak_rss_bytes / 1048576.0 << '\n';
+    write_output_file(folder / "stages.csv", csv.str());
   }
-  std::ofstream log(folder / "analysis_log.txt");
-  for (const std::string& line : result.log) log << line << '\n';
+  std::string log;
+  for (const std::string& line : result.log) log += line + '\n';
+  write_output_file(folder / "analysis_log.txt", log);
 }
 
 }  // namespace carbtf::cli

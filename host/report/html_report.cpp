@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
+#include <sstream>
+
+#include "carbtf/engine/file_output.hpp"
 
 namespace carbtf::cli {
 
@@ -97,16 +99,15 @@ void HtmlReport::histogram_chart(const std::vector<double>& centres, const std::
 
 bool HtmlReport::write(const std::filesystem::path& folder, std::string& error) const {
   const std::filesystem::path file = folder / "index.html";
-  std::ofstream out(file);
+  std::ostringstream out;
   out << "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>" << html_escape(title_)
       << "</title>\n<style>body{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}"
          "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:4px 10px;text-align:left}"
          "figure{display:inline-block;margin:1em}figcaption{font-size:90%;color:#555}</style></head>\n<body>\n<h1>"
       << html_escape(title_) << "</h1>\n"
       << body_ << "</body></html>\n";
-  out.close();
-  if (!out) {
-    error = file.string() + ": cannot write";
+  if (const Status s = write_file_whole(file.string(), out.str()); !s.ok()) {
+    error = s.message();
     return false;
   }
   return true;

@@ -20,6 +20,8 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <sstream>
+#include <iterator>
 
 #include "carbtf/analysis/btf/btf_reader.hpp"
 #include "carbtf/analysis/btf/ubo2003_names.hpp"
@@ -331,6 +333,85 @@ TEST_CASE("bad input: an empty zip, and a file that is no zip", "[btf][bad-input
   require_input_error(folder / "none.zip", {"none.zip", "zip"});
   std::ofstream(folder / "text.zip") << "just text";
   require_input_error(folder / "text.zip", {"text.zip", "not a readable zip archive"});
+  fs::remove_all(folder);
+}
+
+namespace {
+
+// A zip of one PNG member, stored or deflated, read back as bytes.
+std::vector<std::uint8_t> zip_of_one_png(const fs::path& folder, bool stored) {
+  write_uniform(folder / "member.png", 8, 0.4f);
+  const std::vector<std::byte> png = read_file_bytes(folder / "member.png");
+  const fs::path path = folder / "one.zip";
+  zip_t* archive = zip_open(path.c_str(), ZIP_CREATE | ZIP_TRUNCATE, nullptr);
+  REQUIRE(archive != nullptr);
+  zip_source_t* source = zip_source_buffer(archive, png.data(), png.size(), 0);
+  const zip_int64_t index = zip_file_add(archive, name_of(0, 0).c_str(), source, 0);
+  REQUIRE(index >= 0);
+  REQUIRE(zip_set_file_compression(archive, static_cast<zip_uint64_t>(index), stored ? ZIP_CM_STORE : ZIP_CM_DEFLATE, 0) == 0);
+  REQUIRE(zip_close(archive) == 0);
+  std::ifstream file(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+}
+
+// Offsets of every record with the little-endian signature `signature`.
+std::vector<std::size_t> records(const std::vector<std::uint8_t>& bytes, std::uint32_t signature) {
+  std::vector<std::size_t> at;
+  for (std::size_t i = 0; i + 4 <= bytes.size(); ++i) {
+    std::uint32_t word = 0;
+    std::memcpy(&word, bytes.data() + i, 4);
+    if (word == signature) at.push_back(i);
+  }
+  return at;
+}
+
+}  // namespace
+
+TEST_CASE("bad input: a zip member whose data does not match its CRC-32 is refused, naming the member", "[btf][bad-input][zip]") {
+  const fs::path folder = scratch_folder("zipcrc");
+  for (const bool stored : {true, false}) {
+    INFO((stored ? "stored" : "deflated") << " member");
+    const std::vector<std::uint8_t> good = zip_of_one_png(folder, stored);
+    const std::vector<std::size_t> local = records(good, 0x04034b50), central = records(good, 0x02014b50);
+    REQUIRE(local.size() == 1);
+    REQUIRE(central.size() == 1);
+    std::vector<std::string> warnings;
+    CHECK(load_btf(folder / "one.zip", kQuiet, warnings).present_pairs().size() == 1);
+
+    // The recorded CRC changed in both headers (they agree, so the archive opens), the data intact.
+    std::vector<std::uint8_t> bad_crc = good;
+    bad_crc[local[0] + 14] ^= 0x01;
+    bad_crc[central[0] + 16] ^= 0x01;
+    std::ofstream(folder / "crcbad.zip", std::ios::binary).write(reinterpret_cast<const char*>(bad_crc.data()), static_cast<std::streamsize>(bad_crc.size()));
+    require_input_error(folder / "crcbad.zip", {"crcbad.zip:" + name_of(0, 0) + ": CRC-32 mismatch"});
+
+    if (stored) {
+      // The data changed, its CRC as before: a PNG byte past its signature.
+      std::uint16_t name_length = 0, extra_length = 0;
+      std::memcpy(&name_length, good.data() + local[0] + 26, 2);
+      std::memcpy(&extra_length, good.data() + local[0] + 28, 2);
+      std::vector<std::uint8_t> bad_data = good;
+      bad_data[local[0] + 30 + name_length + extra_length + 20] ^= 0x40;
+      std::ofstream(folder / "databad.zip", std::ios::binary).write(reinterpret_cast<const char*>(bad_data.data()), static_cast<std::streamsize>(bad_data.size()));
+      require_input_error(folder / "databad.zip", {"databad.zip:" + name_of(0, 0) + ": CRC-32 mismatch"});
+    }
+  }
+  fs::remove_all(folder);
+}
+
+TEST_CASE("bad input: a manifest whose direction table would be too large is refused before it is allocated", "[btf][manifest][bad-input]") {
+  const fs::path folder = scratch_folder("manifest_large");
+  // 10,000 rows at 10,000 distinct light and view directions: a table of 10^8 pairs.
+  std::ostringstream many;
+  for (int i = 0; i < 10000; ++i) many << "a.png," << 0.008 * i << "," << 0.03 * i << "," << 0.008 * i << "," << 0.05 * i << "\n";
+  std::ofstream(folder / "many.csv") << many.str();
+  require_input_error(folder / "many.csv", {"many.csv", "more than 1024 distinct light directions"});
+
+  // 300 rows, 300 lights x 300 views: 90,000 pairs of which 300 measured.
+  std::ostringstream sparse;
+  for (int i = 0; i < 300; ++i) sparse << "a.png," << 0.25 * i << ",0," << 0.25 * i << ",90\n";
+  std::ofstream(folder / "sparse.csv") << sparse.str();
+  require_input_error(folder / "sparse.csv", {"sparse.csv", "measures 300 of the 300 x 300 = 90000", "at least 1 in 4"});
   fs::remove_all(folder);
 }
 

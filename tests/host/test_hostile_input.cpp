@@ -24,16 +24,9 @@ using namespace carbtf;
 using test::line_count;
 using test::run;
 using test::Run;
+using test::check_refused;
 
 namespace {
-
-// One line, starting "carbtf: error: ", holding `expected`, and a non-zero exit.
-void check_refused(const Run& r, const std::string& expected) {
-  INFO(r.output);
-  CHECK(r.status != 0);
-  CHECK(line_count(r.output) == 1);
-  CHECK_THAT(r.output, Catch::StartsWith("carbtf: error: ") && Catch::Contains(expected));
-}
 
 // A valid material file whose bytes are then patched: every `marker` float becomes `value`.
 fs::path patched_material(const fs::path& path, Material material, const std::vector<std::pair<float, float>>& patches) {

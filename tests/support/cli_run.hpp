@@ -42,4 +42,13 @@ inline std::size_t line_count(const std::string& text) {
   return lines;
 }
 
+// One line, starting "carbtf: error: ", holding `expected`, and an error exit (non-zero, not a crash).
+inline void check_refused(const Run& r, const std::string& expected) {
+  INFO(r.output);
+  CHECK(r.status != 0);
+  CHECK(r.status < 128);
+  CHECK(line_count(r.output) == 1);
+  CHECK_THAT(r.output, Catch::StartsWith("carbtf: error: ") && Catch::Contains(expected));
+}
+
 }  // namespace carbtf::test

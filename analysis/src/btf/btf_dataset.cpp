@@ -186,6 +186,25 @@ bool same_directions(const std::vector<Direction>& measured, const std::vector<M
 
 }  // namespace
 
+void check_direction_table(const std::string& input, std::size_t lights, std::size_t views, std::size_t measured) {
+  for (const auto& [count, what] : {std::pair{lights, "light"}, std::pair{views, "view"}}) {
+    if (count > kMaxDatasetDirections) {
+      throw InputError(input, "has more than " + std::to_string(kMaxDatasetDirections) + " distinct " + what +
+                                  " directions; carbtf reads at most " + std::to_string(kMaxDatasetDirections));
+    }
+  }
+  const std::size_t table = lights * views;
+  if (table > kSparseTablePairs && measured * kMinMeasuredShareDenominator < table) {
+    throw InputError(input, "measures " + std::to_string(measured) + " of the " + std::to_string(lights) + " x " +
+                                std::to_string(views) + " = " + std::to_string(table) +
+                                " light/view pairs its directions span; in a table of over " +
+                                std::to_string(kSparseTablePairs) + " pairs carbtf needs at least 1 in " +
+                                std::to_string(kMinMeasuredShareDenominator) + " (" +
+                                std::to_string((table + kMinMeasuredShareDenominator - 1) / kMinMeasuredShareDenominator) +
+                                ") measured");
+  }
+}
+
 void require_directions_of(const BtfDataset& dataset, const Material& material, const std::string& input) {
   if (!same_directions(dataset.lights(), material.lights) || !same_directions(dataset.views(), material.views)) {
     throw InputError(input, "its light and view directions are not the material's (" + std::to_string(dataset.lights().size()) +

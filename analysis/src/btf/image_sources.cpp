@@ -41,6 +41,7 @@ BtfDataset decode_sources(const std::vector<ImageSource>& sources, std::vector<D
                           std::vector<Direction> views, std::string description, const BtfLoadOptions& options,
                           std::vector<std::string>& warnings, const ImageAdjustment& adjust) {
   if (sources.empty()) throw InputError(description, "no images");
+  check_direction_table(description, lights.size(), views.size(), sources.size());
   ImageShape shape;
   const ImageShape* expected = nullptr;  // none until the first image is decoded
   auto decode = [&](const ImageSource& source) {

@@ -89,6 +89,11 @@ BtfDataset read_manifest(const std::filesystem::path& manifest, const BtfLoadOpt
                                   " >= 90 degrees)");
     }
     if (fields[0].empty()) throw InputError(where, "empty image path");
+    if (rows.size() == kMaxDatasetDirections * kMaxDatasetDirections) {
+      throw InputError(where, "more than " + std::to_string(rows.size()) + " images, the most a table of " +
+                                  std::to_string(kMaxDatasetDirections) + " x " + std::to_string(kMaxDatasetDirections) +
+                                  " directions holds");
+    }
     rows.push_back({manifest.parent_path() / fields[0], Direction::from_degrees(angles[0], angles[1]),
                     Direction::from_degrees(angles[2], angles[3]), line});
   }
@@ -99,6 +104,8 @@ BtfDataset read_manifest(const std::filesystem::path& manifest, const BtfLoadOpt
   std::vector<detail::ImageSource> sources;
   for (const Row& row : rows) {
     const LightView pair{index_of(lights, row.light), index_of(views, row.view)};
+    // Stopped at the first direction past the limit: counting 10,000 of them costs 10^8 comparisons.
+    check_direction_table(manifest.string(), lights.size(), views.size(), lights.size() * views.size());
     const auto [previous, inserted] = seen.emplace(std::make_pair(pair.light, pair.view), row.line);
     if (!inserted) {
       throw InputError(manifest.string() + ":" + std::to_string(row.line),

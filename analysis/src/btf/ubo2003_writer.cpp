@@ -4,7 +4,6 @@
 
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 
 #include "carbtf/analysis/btf/ubo2003_names.hpp"
 #include "carbtf/analysis/image_io.hpp"
@@ -55,11 +54,7 @@ void Ubo2003Writer::write(std::uint32_t light, std::uint32_t view, std::span<con
     }
     return;
   }
-  const std::filesystem::path path = output_ / entry;
-  create_folder(path.parent_path());
-  std::ofstream file(path, std::ios::binary);
-  file.write(reinterpret_cast<const char*>(encoded.data()), static_cast<std::streamsize>(encoded.size()));
-  if (!file) throw InputError(path, "cannot write");
+  write_output_file(output_ / entry, encoded);
 }
 
 void Ubo2003Writer::finish() {

@@ -1,7 +1,10 @@
 // The UBO2003 layout inside a .zip archive. Entries are read into memory, never extracted, and any
 // entry whose name is absolute or climbs out with ".." is refused as hostile.
 #include <zip.h>
+#include <zlib.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -42,6 +45,41 @@ bool hostile_entry_name(const std::string& name) {
   return false;
 }
 
+// An entry's bytes, checked against the size and CRC-32 its header records: libzip checks the CRC only
+// when a read reaches the end, and a stored entry with a wrong CRC would otherwise pass unnoticed.
+std::vector<std::byte> read_checked_entry(ZipArchive& archive, zip_uint64_t index, zip_uint64_t size, zip_uint32_t crc,
+                                          const std::string& display) {
+  std::lock_guard<std::mutex> lock(archive.mutex);
+  zip_file_t* file = zip_fopen_index(archive.handle, index, 0);
+  if (!file) throw InputError(display, std::string("cannot open entry: ") + zip_strerror(archive.handle));
+  std::vector<std::byte> bytes(static_cast<std::size_t>(size));
+  const zip_int64_t got = zip_fread(file, bytes.data(), size);
+  std::byte past_end{};
+  const zip_int64_t more = got < 0 ? 0 : zip_fread(file, &past_end, 1);  // reaching the end lets libzip check too
+  const std::string library_error = zip_file_strerror(file);
+  const bool crc_error = zip_error_code_zip(zip_file_get_error(file)) == ZIP_ER_CRC;
+  zip_fclose(file);
+  if (crc_error) throw InputError(display, "CRC-32 mismatch: the data does not give the CRC its header records; the archive is corrupt");
+  if (got < 0 || more < 0) throw InputError(display, "entry is corrupt (" + library_error + ")");
+  if (static_cast<zip_uint64_t>(got) != size || more != 0) {
+    throw InputError(display, "entry holds " + std::string(more != 0 ? "more" : "fewer") + " bytes than the " +
+                                  std::to_string(size) + " its header records");
+  }
+  uLong actual = crc32(0L, Z_NULL, 0);
+  for (std::size_t at = 0; at < bytes.size();) {
+    const auto chunk = static_cast<uInt>(std::min<std::size_t>(bytes.size() - at, 1u << 30));
+    actual = crc32(actual, reinterpret_cast<const Bytef*>(bytes.data() + at), chunk);
+    at += chunk;
+  }
+  if (static_cast<zip_uint32_t>(actual) != crc) {
+    char text[96];
+    std::snprintf(text, sizeof text, "CRC-32 mismatch: the data gives %08lx, the header records %08x", actual,
+                  static_cast<unsigned>(crc));
+    throw InputError(display, std::string(text) + "; the archive is corrupt");
+  }
+  return bytes;
+}
+
 }  // namespace
 
 BtfDataset read_ubo2003_zip(const std::filesystem::path& archive_path, const BtfLoadOptions& options,
@@ -79,20 +117,12 @@ BtfDataset read_ubo2003_zip(const std::filesystem::path& archive_path, const Btf
       throw InputError(display, "entry is " + std::to_string(stat.size >> 20) + " MiB, too large for a BTF image");
     }
     const LightView pair = detail::ubo2003_pair(display, file_name, folder_name, seen);
+    if (!(stat.valid & ZIP_STAT_SIZE) || !(stat.valid & ZIP_STAT_CRC)) {
+      throw InputError(display, "entry has no recorded size or CRC-32; refusing data that cannot be checked");
+    }
     const auto index = static_cast<zip_uint64_t>(i);
-    const zip_uint64_t size = stat.size;
-    sources.push_back({display,
-                       [archive, index, size, display] {
-                         std::lock_guard<std::mutex> lock(archive->mutex);
-                         zip_file_t* file = zip_fopen_index(archive->handle, index, 0);
-                         if (!file) throw InputError(display, std::string("cannot open entry: ") + zip_strerror(archive->handle));
-                         std::vector<std::byte> bytes(static_cast<std::size_t>(size));
-                         const zip_int64_t got = zip_fread(file, bytes.data(), size);
-                         zip_fclose(file);
-                         if (got < 0 || static_cast<zip_uint64_t>(got) != size) {
-                           throw InputError(display, "entry is truncated or corrupt");
-                         }
-                         return bytes;
+    sources.push_back({display, [archive, index, size = stat.size, crc = stat.crc, display] {
+                         return read_checked_entry(*archive, index, size, crc, display);
                        },
                        pair});
   }

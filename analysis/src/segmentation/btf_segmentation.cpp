@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <stdexcept>
 
 #include "carbtf/reference/parallel_for.hpp"
@@ -41,6 +42,58 @@ std::vector<double> spectrum(const Eigen::MatrixXd& thumbnails) {
   std::reverse(values.begin(), values.end());
   for (double& v : values) v = std::max(v, 0.0);
   return values;
+}
+
+// Each missing pair takes the label of the present pair nearest it, by the light's angle plus the
+// view's; of equally near ones, the first in the table's order. Searched outward from the pair over
+// lights and views sorted by angle, stopping once no nearer pair can follow: a partial table of
+// 1024 x 1024 pairs costs seconds instead of the hours of comparing every missing pair with every
+// present one.
+void fill_missing_pairs(const BtfDataset& dataset, const std::vector<LightView>& present,
+                        const std::vector<std::uint32_t>& labels, Segmentation& result) {
+  const std::vector<LightView> missing = dataset.missing_pairs();
+  if (missing.empty()) return;
+  const std::size_t views = result.views;
+  std::vector<std::int64_t> present_at(std::size_t{result.lights} * views, -1);  // index into `present`
+  for (std::size_t i = 0; i < present.size(); ++i) present_at[present[i].light * views + present[i].view] = static_cast<std::int64_t>(i);
+  struct Nearer {
+    std::vector<double> angle;          // n x n
+    std::vector<std::uint32_t> order;   // per row, the directions by ascending angle
+  };
+  auto by_angle = [](const std::vector<Direction>& set) {
+    const std::size_t n = set.size();
+    Nearer t{std::vector<double>(n * n), std::vector<std::uint32_t>(n * n)};
+    for (std::size_t a = 0; a < n; ++a) {
+      for (std::size_t b = 0; b < n; ++b) t.angle[a * n + b] = angle_between(set[a], set[b]);
+      const auto row = t.order.begin() + static_cast<std::ptrdiff_t>(a * n);
+      std::iota(row, row + static_cast<std::ptrdiff_t>(n), 0u);
+      std::stable_sort(row, row + static_cast<std::ptrdiff_t>(n), [&](std::uint32_t x, std::uint32_t y) { return t.angle[a * n + x] < t.angle[a * n + y]; });
+    }
+    return t;
+  };
+  const Nearer lights = by_angle(dataset.lights());
+  const Nearer view_table = by_angle(dataset.views());
+  const std::size_t light_count = dataset.lights().size();
+  for (const LightView pair : missing) {
+    double best = std::numeric_limits<double>::infinity();
+    std::int64_t best_index = -1;
+    for (std::size_t k = 0; k < light_count; ++k) {
+      const std::uint32_t l = lights.order[pair.light * light_count + k];
+      const double light_angle = lights.angle[pair.light * light_count + l];
+      if (light_angle > best) break;
+      for (std::size_t j = 0; j < views; ++j) {
+        const std::uint32_t v = view_table.order[pair.view * views + j];
+        const double d = light_angle + view_table.angle[pair.view * views + v];
+        if (d > best) break;
+        const std::int64_t i = present_at[l * views + v];
+        if (i >= 0 && (d < best || i < best_index)) {
+          best = d;
+          best_index = i;
+        }
+      }
+    }
+    result.index[pair.light * views + pair.view] = static_cast<std::uint8_t>(labels[static_cast<std::size_t>(best_index)]);
+  }
 }
 
 }  // namespace
@@ -82,17 +135,7 @@ Segmentation segment_btf(const BtfDataset& dataset, const SegmentationOptions& o
   for (std::size_t i = 0; i < present.size(); ++i) {
     result.index[std::size_t{present[i].light} * result.views + present[i].view] = static_cast<std::uint8_t>(clusters.labels[i]);
   }
-  for (const LightView missing : dataset.missing_pairs()) {
-    double best = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < present.size(); ++i) {
-      const double d = angle_between(dataset.lights()[missing.light], dataset.lights()[present[i].light]) +
-                       angle_between(dataset.views()[missing.view], dataset.views()[present[i].view]);
-      if (d < best) {
-        best = d;
-        result.index[std::size_t{missing.light} * result.views + missing.view] = static_cast<std::uint8_t>(clusters.labels[i]);
-      }
-    }
-  }
+  fill_missing_pairs(dataset, present, clusters.labels, result);
   for (std::uint32_t member : clusters.nearest) result.representatives.push_back(present[member]);
   result.sizes = clusters.sizes;
   result.inertia = clusters.inertia;

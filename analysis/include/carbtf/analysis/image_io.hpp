@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace carbtf {
@@ -67,5 +68,11 @@ std::vector<std::byte> encode_rgb_image(const std::string& name, std::span<const
 // encode_rgb_image() written to `path` (parent folders created); throws InputError naming the file.
 void write_rgb_image(const std::filesystem::path& path, std::span<const float> rgb, std::uint32_t width,
                      std::uint32_t height, bool srgb_encode = true);
+
+// `bytes` (or `text`) written to `path` whole or not at all (write_file_whole() in the engine's
+// file_output.hpp), parent folders created; InputError naming the file when that fails or when `path`
+// is something other than a regular file (a device, FIFO, socket or folder is never replaced).
+void write_output_file(const std::filesystem::path& path, std::span<const std::byte> bytes);
+void write_output_file(const std::filesystem::path& path, std::string_view text);
 
 }  // namespace carbtf

@@ -77,6 +77,20 @@ class BtfDataset {
   std::vector<std::vector<std::uint16_t>> half_;   // per slot, empty when missing
 };
 
+// The largest direction sets a dataset may have, and how sparse a large light x view table may be. The
+// table has a slot per pair and every missing pair is filled from the measured ones, so a manifest of
+// 10,000 images at 10,000 distinct directions each would otherwise ask for a table of 10^8 pairs
+// (gigabytes) before its first image is read. UBO2003 has 81 x 81, UBO2014 151 x 151: any table up to
+// kSparseTablePairs may be as sparse as it likes; a larger one must be at least a quarter measured.
+inline constexpr std::size_t kMaxDatasetDirections = 1024;
+inline constexpr std::size_t kSparseTablePairs = 65536;
+inline constexpr std::size_t kMinMeasuredShareDenominator = 4;  // at least 1 pair in 4 of a larger table
+
+// Throws InputError naming `input`, with the counts found and the limit, unless `lights` and `views`
+// are each at most kMaxDatasetDirections and a table of more than kSparseTablePairs pairs has at least
+// a quarter of them `measured`. The readers call it before they allocate anything for the table.
+void check_direction_table(const std::string& input, std::size_t lights, std::size_t views, std::size_t measured);
+
 // Throws InputError naming `input` unless the dataset's light and view directions are the material's
 // (within 1e-4 rad; the azimuth modulo a turn, and not at all at the pole): the check before a model
 // is compared with a measurement.

@@ -71,6 +71,7 @@ Status decode_material(std::span<const std::uint8_t> bytes, const std::string& n
 Status read_material_file(const std::string& path, Material& out);
 // The file's bytes, unchecked (with the same size limit and errors), for callers that also list chunks.
 Status read_material_file_bytes(const std::string& path, std::vector<std::uint8_t>& bytes);
+// Whole or not at all, and never over what is not a regular file (write_file_whole(), file_output.hpp).
 Status write_material_file(const std::string& path, const Material& material);
 
 // One chunk of an encoded material, for size breakdowns (`carbtf info material.cbtf`).
