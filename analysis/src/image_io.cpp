@@ -239,10 +239,10 @@ void write_rgb_image(const std::filesystem::path& path, std::span<const float> r
   write_output_file(path, encode_rgb_image(path.string(), rgb, width, height, srgb_encode));
 }
 
-void write_output_file(const std::filesystem::path& path, std::span<const std::byte> bytes) {
+void write_output_file(const std::filesystem::path& path, std::span<const std::byte> bytes, Flush flush) {
   if (Status s = check_output_file(path.string()); !s.ok()) throw InputError(path, without_path(s.message(), path));
   create_folder(path.parent_path());
-  const Status s = write_file_whole(path.string(), std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()));
+  const Status s = write_file_whole(path.string(), std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()), flush);
   if (!s.ok()) throw InputError(path, without_path(s.message(), path));
 }
 

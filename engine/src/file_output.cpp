@@ -100,7 +100,7 @@ Status check_output_file(const std::string& path) {
   return resolve_target(path, target, exists, mode);
 }
 
-Status write_file_whole(const std::string& path, std::span<const std::uint8_t> bytes) {
+Status write_file_whole(const std::string& path, std::span<const std::uint8_t> bytes, Flush flush) {
   std::string target;
   bool exists = false;
   mode_t mode = 0;
@@ -110,7 +110,7 @@ Status write_file_whole(const std::string& path, std::span<const std::uint8_t> b
   if (fd < 0) return file_error(path, "cannot create the file (" + system_reason(errno) + ")");
   Status written = write_all(fd, bytes.data(), bytes.size());
   if (written.ok() && exists && ::fchmod(fd, mode) != 0) written = {ErrorCode::file_error, system_reason(errno)};
-  if (written.ok() && ::fsync(fd) != 0) written = {ErrorCode::file_error, system_reason(errno)};
+  if (written.ok() && flush == Flush::each_file && ::fsync(fd) != 0) written = {ErrorCode::file_error, system_reason(errno)};
   if (::close(fd) != 0 && written.ok()) written = {ErrorCode::file_error, system_reason(errno)};
   if (written.ok()) {
     // The target may have changed since it was checked; a device put there meanwhile is still kept.
@@ -127,8 +127,18 @@ Status write_file_whole(const std::string& path, std::span<const std::uint8_t> b
   return {};
 }
 
-Status write_file_whole(const std::string& path, std::string_view text) {
-  return write_file_whole(path, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+Status write_file_whole(const std::string& path, std::string_view text, Flush flush) {
+  return write_file_whole(path, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()), flush);
+}
+
+Status flush_file_system(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return file_error(path, "cannot be opened to flush it (" + system_reason(errno) + ")");
+  const int result = ::syncfs(fd);
+  const int error = errno;
+  ::close(fd);
+  if (result != 0) return file_error(path, "the disk reported an error writing it (" + system_reason(error) + ")");
+  return {};
 }
 
 }  // namespace carbtf

@@ -4,6 +4,7 @@
 
 #include <cstdlib>
 #include <cstring>
+#include <stdexcept>
 
 #include "carbtf/analysis/btf/ubo2003_names.hpp"
 #include "carbtf/analysis/image_io.hpp"
@@ -20,6 +21,7 @@ Ubo2003Writer::Ubo2003Writer(std::filesystem::path output, std::string extension
     : output_(std::move(output)), extension_(std::move(extension)) {
   if (zip) {
     create_folder(output_.parent_path());
+    if (const Status s = check_output_file(output_.string()); !s.ok()) throw std::runtime_error(s.message());
     int error = 0;
     archive_ = std::make_unique<Archive>();
     archive_->handle = zip_open(output_.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &error);
@@ -54,11 +56,16 @@ void Ubo2003Writer::write(std::uint32_t light, std::uint32_t view, std::span<con
     }
     return;
   }
-  write_output_file(output_ / entry, encoded);
+  write_output_file(output_ / entry, encoded, Flush::later);  // flushed once, by finish()
 }
 
 void Ubo2003Writer::finish() {
-  if (!archive_ || !archive_->handle) return;
+  if (!archive_) {
+    // The images skipped a flush each (Flush::later): one for all of them.
+    if (const Status s = flush_file_system(output_.string()); !s.ok()) throw std::runtime_error(s.message());
+    return;
+  }
+  if (!archive_->handle) return;
   std::lock_guard<std::mutex> lock(mutex_);
   if (zip_close(archive_->handle) < 0) {
     const std::string message = zip_strerror(archive_->handle);

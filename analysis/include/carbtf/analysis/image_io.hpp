@@ -9,6 +9,8 @@
 #include <string_view>
 #include <vector>
 
+#include "carbtf/engine/file_output.hpp"
+
 namespace carbtf {
 
 // How a float field is mapped to an 8-bit file (EXR, TIFF, PFM keep the floats as they are).
@@ -72,7 +74,7 @@ void write_rgb_image(const std::filesystem::path& path, std::span<const float> r
 // `bytes` (or `text`) written to `path` whole or not at all (write_file_whole() in the engine's
 // file_output.hpp), parent folders created; InputError naming the file when that fails or when `path`
 // is something other than a regular file (a device, FIFO, socket or folder is never replaced).
-void write_output_file(const std::filesystem::path& path, std::span<const std::byte> bytes);
+void write_output_file(const std::filesystem::path& path, std::span<const std::byte> bytes, Flush flush = Flush::each_file);
 void write_output_file(const std::filesystem::path& path, std::string_view text);
 
 }  // namespace carbtf

@@ -25,7 +25,8 @@ class Ubo2003Writer {
   // Writes the image of UBO2003 light index `light` and view index `view` (0..80), linear RGB.
   void write(std::uint32_t light, std::uint32_t view, std::span<const float> linear_rgb, std::uint32_t width,
              std::uint32_t height);
-  // Finishes the archive (zip mode); throws InputError when it cannot be written.
+  // Finishes the archive (zip mode), or flushes the folder's images to the disk; throws when the
+  // archive cannot be written or the disk reports an error.
   void finish();
 
  private:
