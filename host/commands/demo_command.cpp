@@ -172,10 +172,7 @@ void run_demo(const DemoOptions& options) {
   std::printf("material %.1f KiB, ratio 1 : %.0f; GPU synthesis %.1f ms, bit-identical to the CPU on %zu of "
               "%zu values\n",
       file_bytes / 1024.0, raw_bytes / file_bytes, timing.total_ms, texels - differing, texels);
-  std::printf("fidelity (rel: 0 = the measurement itself, 1 = white noise): mean %.3f, worst %.3f; the "
-              "Gaussian reference %.3f; the model beats it on %zu of %zu pairs\n",
-      fidelity_summary.mean_rel, fidelity_summary.worst_rel, fidelity_summary.mean_gaussian_rel,
-      fidelity_summary.beats_gaussian, fidelity_summary.pairs);
+  std::printf("fidelity: %s\n", summary_text(fidelity_summary).c_str());
   std::printf("report: %s\n", (folder / "index.html").c_str());
   if (differing != 0) throw CommandError("the GPU synthesis differs from the CPU reference");
 }

@@ -12,6 +12,7 @@
 #include "carbtf/engine/render/mesh.hpp"
 #include "carbtf/engine/render/mesh_renderer.hpp"
 #include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
+#include "carbtf/analysis/report/figures.hpp"
 #include "cli/cli_support.hpp"
 #include "scene/material_render.hpp"
 #include "scene/measured_render.hpp"
@@ -186,8 +187,8 @@ std::vector<PairFidelity> run_fidelity(Context& context, const Material& materia
     result.result = calibrated_fidelity(result.model, result.measured, options.seed);
     result.gaussian = phase_randomised(result.measured, options.seed);
     if (options.progress) {
-      std::printf("  %-40s rel %6.3f   Gaussian reference %6.3f%s\n", p.label.c_str(), result.result.rel, result.result.gaussian_rel,
-                  result.result.rel < result.result.gaussian_rel ? "" : "   (the model does not beat it)");
+      std::printf("  %-40s s %6.3f   rel %6.3f (Gaussian reference %6.3f)   %s\n", p.label.c_str(), result.result.structure, result.result.rel,
+                  result.result.gaussian_rel, verdict(result.result));
       std::fflush(stdout);
     }
     results.push_back(std::move(result));
@@ -195,20 +196,50 @@ std::vector<PairFidelity> run_fidelity(Context& context, const Material& materia
   return results;
 }
 
+const char* verdict(const CalibratedFidelity& f) {
+  return f.beats_gaussian() ? "beats the Gaussian reference" : "does not beat the Gaussian reference";
+}
+
 FidelitySummaryLine summarize(const std::vector<PairFidelity>& results) {
   FidelitySummaryLine s;
   for (const PairFidelity& r : results) {
+    s.mean_structure += r.result.structure;
+    s.worst_structure = s.pairs == 0 ? r.result.structure : std::max(s.worst_structure, r.result.structure);
     s.mean_rel += r.result.rel;
     s.mean_gaussian_rel += r.result.gaussian_rel;
     s.worst_rel = s.pairs == 0 ? r.result.rel : std::max(s.worst_rel, r.result.rel);
-    s.beats_gaussian += r.result.rel < r.result.gaussian_rel;
+    s.beats_gaussian += r.result.beats_gaussian();
     ++s.pairs;
   }
   if (s.pairs) {
+    s.mean_structure /= static_cast<double>(s.pairs);
     s.mean_rel /= static_cast<double>(s.pairs);
     s.mean_gaussian_rel /= static_cast<double>(s.pairs);
   }
   return s;
+}
+
+std::string summary_text(const FidelitySummaryLine& s) {
+  char text[400];
+  std::snprintf(text, sizeof text,
+                "s mean %.3f, worst %.3f (0: the measurement itself, 1: no better than a Gaussian field); rel mean %.3f, worst %.3f "
+                "(1: white noise), the Gaussian reference's %.3f; the model beats the Gaussian reference on %zu of %zu pairs",
+                s.mean_structure, s.worst_structure, s.mean_rel, s.worst_rel, s.mean_gaussian_rel, s.beats_gaussian, s.pairs);
+  return text;
+}
+
+std::string fidelity_markdown(const std::vector<PairFidelity>& results) {
+  const FidelitySummaryLine summary = summarize(results);
+  std::ostringstream md;
+  md << "| pair | s | rel | Gaussian reference rel | the model beats it |\n|---|---|---|---|---|\n";
+  for (const PairFidelity& r : results) {
+    md << "| " << r.pair.label << " | " << r.result.structure << " | " << r.result.rel << " | " << r.result.gaussian_rel << " | "
+       << (r.result.beats_gaussian() ? "yes" : "no") << " |\n";
+  }
+  md << "| mean | " << summary.mean_structure << " | " << summary.mean_rel << " | " << summary.mean_gaussian_rel << " | "
+     << summary.beats_gaussian << " of " << summary.pairs << " |\n| worst | " << summary.worst_structure << " | " << summary.worst_rel
+     << " | | |\n";
+  return md.str();
 }
 
 RgbField fidelity_grid(const std::vector<PairFidelity>& results) {
@@ -217,17 +248,29 @@ RgbField fidelity_grid(const std::vector<PairFidelity>& results) {
     cell_w = std::max(cell_w, r.measured.width);
     cell_h = std::max(cell_h, r.measured.height);
   }
-  constexpr std::uint32_t gap = 4;
+  // Drawn on the picture, so that a reader checks the verdict by eye: the columns' titles on top, and
+  // above each row its pair, s and verdict.
+  // Two caption lines of the 5x7 font fit a row of 64-pixel cells (33 characters).
+  constexpr std::uint32_t gap = 4, caption = 12, row_caption = 21, scale = 1;
+  constexpr const char* kTitles[3] = {"MEASURED", "MODEL", "GAUSSIAN"};
   RgbField grid;
   grid.width = 3 * cell_w + 2 * gap;
-  grid.height = static_cast<std::uint32_t>(results.size()) * (cell_h + gap);
+  grid.height = caption + static_cast<std::uint32_t>(results.size()) * (row_caption + cell_h + gap);
   grid.rgb.assign(std::size_t{grid.width} * grid.height * 3, 1.0f);
+  for (std::uint32_t column = 0; column < 3; ++column) draw_text(grid.rgb, grid.width, grid.height, kTitles[column], static_cast<int>(column * (cell_w + gap)), 2, scale);
   for (std::size_t row = 0; row < results.size(); ++row) {
-    const RgbField* cells[3] = {&results[row].model, &results[row].measured, &results[row].gaussian};
+    const PairFidelity& r = results[row];
+    const std::uint32_t top = caption + static_cast<std::uint32_t>(row) * (row_caption + cell_h + gap);
+    char verdict_line[64];
+    std::snprintf(verdict_line, sizeof verdict_line, "S %.2f: %s", r.result.structure,
+                  r.result.beats_gaussian() ? "THE MODEL BEATS IT" : "THE GAUSSIAN IS NEARER");
+    draw_text(grid.rgb, grid.width, grid.height, r.pair.label, 0, static_cast<int>(top + 2), scale);
+    draw_text(grid.rgb, grid.width, grid.height, verdict_line, 0, static_cast<int>(top + 11), scale);
+    const RgbField* cells[3] = {&r.measured, &r.model, &r.gaussian};
     for (std::uint32_t column = 0; column < 3; ++column) {
       const RgbField& cell = *cells[column];
       for (std::uint32_t y = 0; y < cell.height; ++y) {
-        const std::size_t to = (std::size_t(row * (cell_h + gap) + y) * grid.width + column * (cell_w + gap)) * 3;
+        const std::size_t to = (std::size_t(top + row_caption + y) * grid.width + column * (cell_w + gap)) * 3;
         std::copy_n(cell.rgb.begin() + static_cast<std::ptrdiff_t>(std::size_t{y} * cell.width * 3), std::size_t{cell.width} * 3,
                     grid.rgb.begin() + static_cast<std::ptrdiff_t>(to));
       }
@@ -238,7 +281,7 @@ RgbField fidelity_grid(const std::vector<PairFidelity>& results) {
 
 std::string fidelity_csv(const std::vector<PairFidelity>& results, const Material& material) {
   std::ostringstream csv;
-  csv << "light,view,light_theta,light_phi,view_theta,view_phi,rel,gaussian_rel,floor,ceiling,model_distance";
+  csv << "light,view,light_theta,light_phi,view_theta,view_phi,rel,structure,gaussian_rel,floor,ceiling,gaussian_distance,model_distance";
   for (const char* name : TextureDistance::kGroupNames) csv << ',' << name;
   for (const char* name : TextureDistance::kGroupNames) csv << ",gaussian_" << name;
   csv << '\n';
@@ -246,8 +289,8 @@ std::string fidelity_csv(const std::vector<PairFidelity>& results, const Materia
     const MaterialDirection& l = material.lights[r.pair.light];
     const MaterialDirection& v = material.views[r.pair.view];
     csv << r.pair.light << ',' << r.pair.view << ',' << l.theta * kDegrees << ',' << l.phi * kDegrees << ',' << v.theta * kDegrees << ','
-        << v.phi * kDegrees << ',' << r.result.rel << ',' << r.result.gaussian_rel << ',' << r.result.floor << ',' << r.result.ceiling
-        << ',' << r.result.model;
+        << v.phi * kDegrees << ',' << r.result.rel << ',' << r.result.structure << ',' << r.result.gaussian_rel << ',' << r.result.floor << ','
+        << r.result.ceiling << ',' << r.result.gaussian << ',' << r.result.model;
     for (double g : r.result.parts.groups) csv << ',' << g;
     for (double g : r.result.gaussian_parts.groups) csv << ',' << g;
     csv << '\n';

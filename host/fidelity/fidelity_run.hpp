@@ -53,19 +53,31 @@ struct FidelityRunOptions {
 std::vector<PairFidelity> run_fidelity(Context& context, const Material& material, const BtfDataset& dataset,
                                        const std::vector<FidelityPair>& pairs, const FidelityRunOptions& options = {});
 
-// Mean and worst rel over the pairs, and how many pairs the model beats the Gaussian reference on.
+// "beats the Gaussian reference" or "does not beat the Gaussian reference": the verdict of one pair.
+const char* verdict(const CalibratedFidelity& f);
+
+// Mean and worst s and rel over the pairs, and how many pairs the model beats the Gaussian reference on
+// (s < 1).
 struct FidelitySummaryLine {
+  double mean_structure = 0.0, worst_structure = 0.0;
   double mean_rel = 0.0, worst_rel = 0.0, mean_gaussian_rel = 0.0;
   std::size_t beats_gaussian = 0, pairs = 0;
 };
 FidelitySummaryLine summarize(const std::vector<PairFidelity>& results);
+// "s mean 0.62, worst 0.91 (0: the measurement itself, 1: no better than a Gaussian field); rel mean
+// 0.30, worst 0.41 (1: white noise), the Gaussian reference's 0.48; the model beats the Gaussian
+// reference on 5 of 5 pairs": the one line `fidelity` and the demo print.
+std::string summary_text(const FidelitySummaryLine& s);
+// fidelity.md: a row per pair (s, rel, the Gaussian reference's rel, the verdict), the mean and worst.
+std::string fidelity_markdown(const std::vector<PairFidelity>& results);
 
-// One row per pair: model | measured | Gaussian reference, each cell padded to the largest crop,
-// linear RGB, white between the cells, for write_rgb_image() to encode.
+// One row per pair: measured | model | Gaussian reference, each cell padded to the largest crop, linear
+// RGB, white between the cells, for write_rgb_image() to encode; the columns' titles drawn on top and
+// each row's pair, s and verdict above it.
 RgbField fidelity_grid(const std::vector<PairFidelity>& results);
 
-// CSV with a header: pair, light and view in degrees, rel, gaussian_rel, floor, ceiling, the model's
-// distance and its groups.
+// CSV with a header: pair, light and view in degrees, rel, s (structure), gaussian_rel, floor, ceiling,
+// the Gaussian reference's and the model's distances, the model's groups and the reference's.
 std::string fidelity_csv(const std::vector<PairFidelity>& results, const Material& material);
 
 }  // namespace carbtf::cli

@@ -24,8 +24,8 @@ using test::Run;
 
 namespace {
 
-// The mean of column `wanted` of fidelity.csv (6: rel; 11: the model's colour group, its Lab mean's
-// delta E in units of 3).
+// The mean of column `wanted` of fidelity.csv (6: rel; 7: s; 13: the model's colour group, the transport
+// between its Lab marginals and the measurement's in units of 3).
 double mean_column(const fs::path& csv, int wanted) {
   std::ifstream file(csv);
   std::string line;
@@ -48,7 +48,7 @@ double fidelity_of(const fs::path& material, const fs::path& btf, const fs::path
   const Run r = run("fidelity " + material.string() + " " + btf.string() + " --validation --out " + out.string());
   INFO(r.output);
   REQUIRE(r.status == 0);
-  CHECK_THAT(r.output, Catch::Contains("rel mean") && Catch::Contains("fidelity_grid.png"));
+  CHECK_THAT(r.output, Catch::Contains("s mean") && Catch::Contains("rel mean") && Catch::Contains("fidelity_grid.png"));
   CHECK(fs::exists(out / "fidelity_grid.png"));
   CHECK(fs::exists(out / "fidelity.md"));
   return mean_column(out / "fidelity.csv", 6);
@@ -128,8 +128,8 @@ void check_fidelity_ranking(const std::string& name) {
   const fs::path without_gains = folder / "without_gains.cbtf";
   REQUIRE(run("analyze " + btf.string() + " --no-pair-gains --out " + without_gains.string()).status == 0);
   const double without_gains_rel = fidelity_of(without_gains, btf, folder / "without_gains");
-  const double colour = mean_column(folder / "fitted" / "fidelity.csv", 11);
-  const double without_gains_colour = mean_column(folder / "without_gains" / "fidelity.csv", 11);
+  const double colour = mean_column(folder / "fitted" / "fidelity.csv", 13);
+  const double without_gains_colour = mean_column(folder / "without_gains" / "fidelity.csv", 13);
   INFO(name << ": fitted rel " << fitted_rel << " colour " << colour << ", without pair gains rel " << without_gains_rel << " colour "
             << without_gains_colour);
   CHECK(without_gains_rel > fitted_rel);
@@ -193,7 +193,7 @@ TEST_CASE("carbtf bench fidelity sets each model option's size beside its fideli
   std::ifstream csv(out / "fidelity_size.csv");
   std::string line;
   std::getline(csv, line);
-  CHECK(line.rfind("variant,description,bytes,mean_rel", 0) == 0);
+  CHECK(line.rfind("variant,description,bytes,mean_s,worst_s,mean_rel", 0) == 0);
   int rows = 0;
   while (std::getline(csv, line)) {
     std::stringstream fields(line);

@@ -9,6 +9,15 @@
 #include "bitmap_font.hpp"
 
 namespace carbtf {
+
+void draw_text(std::span<float> rgb, std::uint32_t width, std::uint32_t height, std::string_view text, int x, int y, int scale,
+               std::array<float, 3> colour) {
+  detail::rasterize_text(text, x, y, scale, [&](int px, int py) {
+    if (px < 0 || py < 0 || static_cast<std::uint32_t>(px) >= width || static_cast<std::uint32_t>(py) >= height) return;
+    std::copy(colour.begin(), colour.end(), rgb.begin() + static_cast<std::ptrdiff_t>((static_cast<std::size_t>(py) * width + static_cast<std::size_t>(px)) * 3));
+  });
+}
+
 namespace {
 
 // Tableau 20: distinct, colour-blind-aware hues in light/dark pairs.
@@ -34,7 +43,7 @@ void draw_line(Figure& f, double x0, double y0, double x1, double y1, std::array
 }
 
 void draw_text(Figure& f, std::string_view text, int x, int y, std::array<float, 3> colour, int scale = 1) {
-  detail::rasterize_text(text, x, y, scale, [&](int px, int py) { set_pixel(f, px, py, colour); });
+  carbtf::draw_text(f.rgb, f.width, f.height, text, x, y, scale, colour);
 }
 
 // Vertical text, bottom to top (a y-axis title).

@@ -89,13 +89,16 @@ RgbField crop(const RgbField& image, std::uint32_t row0, std::uint32_t col0, std
 //  - gaussian: d(phase-randomised B, A), the most a Gaussian field alone can reach;
 //  - model:    d(the model cropped to A's size from its centre, A);
 //  - rel = (model - floor) / (ceiling - floor), and gaussian_rel alike: 0 is as good as the
-//    measurement itself, 1 as bad as white noise.
+//    measurement itself, 1 as bad as white noise;
+//  - structure = (model - floor) / (gaussian - floor), the structure score s: 0 indistinguishable from
+//    the measurement, 1 no better than a Gaussian field, below 1 the model beats it.
 // The model image must be at least as large as half the measurement. Seeded references.
 struct CalibratedFidelity {
   double floor = 0.0, ceiling = 0.0, model = 0.0, gaussian = 0.0;
-  double rel = 0.0, gaussian_rel = 0.0;
+  double rel = 0.0, gaussian_rel = 0.0, structure = 0.0;
   TextureDistance parts;           // of the model
   TextureDistance gaussian_parts;  // of the Gaussian reference
+  bool beats_gaussian() const { return model < gaussian; }
 };
 CalibratedFidelity calibrated_fidelity(const RgbField& model, const RgbField& measured, std::uint64_t seed = 1,
                                        const TextureSimilarityOptions& options = {});

@@ -38,6 +38,11 @@ struct ScatterPoint {
 Figure scatter_figure(std::span<const ScatterPoint> points, std::string_view x_title, std::string_view y_title,
                       std::span<const std::string_view> legend = {}, std::uint32_t width = 720, std::uint32_t height = 480);
 
+// `text` in the 5x7 bitmap font (upper case, digits and . , - + / : ( ) % = _) into an RGB image of
+// width x height, from its top-left corner (x, y), each font pixel `scale` pixels; clipped at the edges.
+void draw_text(std::span<float> rgb, std::uint32_t width, std::uint32_t height, std::string_view text, int x, int y, int scale = 1,
+               std::array<float, 3> colour = {0.0f, 0.0f, 0.0f});
+
 // A display colour of subspace `index` (sRGB-encoded, [0, 1]).
 std::array<float, 3> subspace_colour(std::uint32_t index);
 

@@ -1,0 +1,125 @@
+// The measure rebuilt on distributions (analysis/quality/texture_distributions, issue 42) against the
+// order a person sees (docs/design.md 5), on each sample material at three lights (15, 45 and 75
+// degrees, from azimuth 30). What it ranks as a person does is checked here, each comparison a CHECK on
+// measured distances:
+//  - another region of the same image below a 1-pixel blur, +10% gain and a 10 degree hue shift;
+//  - each of those and a quarter turn below the phase-randomised version (the same spectrum, no crease,
+//    thread or rock), and that below another material under the same light and below white noise;
+//  - in a bank of every material under 5 lights, two disjoint crops each, every crop of a crop's own
+//    material nearer than any other material's.
+// What it does not yet (measured, docs/design.md 5), and is therefore not asserted: another material
+// below white noise (it ranks fabric, leather and coast_sand_rocks further from each other than white
+// noise of the same colours, on 8 of 9 cases), a quarter turn above the crop at low light (leather at
+// 15 and 45 degrees, coast_sand_rocks at 15), and a crop's own image's other crop first in the bank
+// (23 of 30).
+#include <catch2/catch.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "carbtf/analysis/quality/texture_distributions.hpp"
+#include "texture_cases.hpp"
+
+namespace carbtf {
+namespace {
+
+struct Ranking {
+  double crop = 0, blur = 0, gain = 0, hue = 0, turned = 0, gaussian = 0, other = 0, noise = 0;
+};
+
+// The distances to the left half of `name`'s image at light `theta` of what DESIGN.md 5 orders.
+Ranking ranking_of(const std::string& name, const std::string& other_name, double theta) {
+  const RgbField image = test::rendered_sample(name, theta);
+  const std::uint32_t w = test::kSize / 2, h = test::kSize;
+  const RgbField a = crop(image, 0, 0, w, h), b = crop(image, 0, w, w, h);
+  const DistributionStatistics reference = distribution_statistics(a.rgb, w, h);
+  auto d = [&](const RgbField& x) { return distribution_distance(distribution_statistics(x.rgb, x.width, x.height), reference).total; };
+  Ranking r;
+  r.crop = d(b);
+  r.blur = d(test::blurred(b, 1.0));
+  r.gain = d(test::brighter(b, 1.1));
+  r.hue = d(test::hue_shifted(b, 10.0));
+  r.turned = d(test::rotated(b));
+  // One draw of random phases scatters: the ranking is of the mean over five.
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) r.gaussian += d(phase_randomised(b, seed)) / 5.0;
+  r.other = d(crop(test::rendered_sample(other_name, theta), 0, w, w, h));
+  r.noise = d(white_noise_like(b, 3));
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("the distribution measure ranks mild distortions below phase-randomising, and that below another material and white noise",
+          "[quality][distributions]") {
+  const auto [name, other] = GENERATE(table<std::string, std::string>(
+      {{"leather", "fabric"}, {"fabric", "coast_sand_rocks"}, {"coast_sand_rocks", "leather"}}));
+  const double theta = GENERATE(15.0, 45.0, 75.0);
+  const Ranking r = ranking_of(name, other, theta);
+  std::printf("%-17s light %2.0f: crop %.3f  blur %.3f  gain %.3f  hue %.3f  turned %.3f | phase-randomised %.3f | %s %.3f | noise %.3f\n",
+              name.c_str(), theta, r.crop, r.blur, r.gain, r.hue, r.turned, r.gaussian, other.c_str(), r.other, r.noise);
+  INFO(name << " at light " << theta << ": crop " << r.crop << ", blurred " << r.blur << ", +10% " << r.gain << ", hue +10 " << r.hue
+            << ", quarter turn " << r.turned << ", phase-randomised " << r.gaussian << ", " << other << " " << r.other << ", white noise "
+            << r.noise);
+  for (const double mild : {r.blur, r.gain, r.hue}) CHECK(r.crop < mild);
+  for (const double mild : {r.blur, r.gain, r.hue, r.turned}) CHECK(mild < r.gaussian);
+  CHECK(r.gaussian < r.other);
+  CHECK(r.gaussian < r.noise);
+}
+
+TEST_CASE("the distribution measure puts every crop of a material nearer than any other material's", "[quality][distributions]") {
+  struct Crop {
+    std::string material;
+    int image = 0;
+    DistributionStatistics statistics;
+  };
+  std::vector<Crop> bank;
+  const double lights[5][2] = {{15, 30}, {30, 150}, {45, 270}, {60, 30}, {45, 90}};
+  int image_index = 0;
+  for (const std::string name : {"leather", "fabric", "coast_sand_rocks"}) {
+    for (const auto& light : lights) {
+      const RgbField image = test::rendered_sample(name, light[0], light[1]);
+      const std::uint32_t w = test::kSize / 2;
+      for (std::uint32_t half = 0; half < 2; ++half) {
+        const RgbField part = crop(image, 0, half * w, w, test::kSize);
+        bank.push_back({name, image_index, distribution_statistics(part.rgb, part.width, part.height)});
+      }
+      ++image_index;
+    }
+  }
+  int own_image_first = 0;
+  for (std::size_t q = 0; q < bank.size(); ++q) {
+    std::size_t nearest = q == 0 ? 1 : 0;
+    double nearest_distance = 1e30, farthest_same = 0.0, nearest_other = 1e30;
+    for (std::size_t i = 0; i < bank.size(); ++i) {
+      if (i == q) continue;
+      const double d = distribution_distance(bank[q].statistics, bank[i].statistics).total;
+      if (d < nearest_distance) {
+        nearest = i;
+        nearest_distance = d;
+      }
+      if (bank[i].material == bank[q].material) {
+        farthest_same = std::max(farthest_same, d);
+      } else {
+        nearest_other = std::min(nearest_other, d);
+      }
+    }
+    INFO(bank[q].material << " image " << bank[q].image << ": farthest crop of its material " << farthest_same << ", nearest of another "
+                          << nearest_other);
+    CHECK(farthest_same < nearest_other);
+    own_image_first += bank[nearest].image == bank[q].image;
+  }
+  std::printf("retrieval: the crop's own image's other crop is nearest for %d of %zu crops\n", own_image_first, bank.size());
+}
+
+TEST_CASE("the distribution measure is zero for an image against itself and needs images of one size class", "[quality][distributions]") {
+  const RgbField image = test::rendered_sample("leather", 45.0);
+  const DistributionStatistics s = distribution_statistics(image.rgb, image.width, image.height);
+  CHECK(distribution_distance(s, s).total == 0.0);
+  const RgbField small = crop(image, 0, 0, 20, 20);
+  CHECK_THROWS_AS(distribution_distance(distribution_statistics(small.rgb, 20, 20), s), std::invalid_argument);
+  CHECK_THROWS_AS(distribution_statistics(image.rgb, 8, 8), std::invalid_argument);
+}
+
+}  // namespace carbtf
