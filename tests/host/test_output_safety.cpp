@@ -48,7 +48,7 @@ const SmallSample& small_sample() {
 
 }  // namespace
 
-TEST_CASE("--out onto a FIFO, a device or a folder is refused before any work and replaces nothing", "[cli][hostile][output]") {
+TEST_CASE("an output path that is a FIFO, a device or a folder is refused before any work and replaces nothing", "[cli][hostile][output]") {
   const SmallSample& sample = small_sample();
   const fs::path folder = carbtf::test::scratch_folder("output_safety_nodes");
   const fs::path fifo = folder / "m.cbtf";
