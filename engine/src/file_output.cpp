@@ -20,7 +20,9 @@ Status file_error(const std::string& path, const std::string& problem) {
   return {ErrorCode::file_error, path + ": " + problem};
 }
 
-std::string system_reason(int error) { return std::strerror(error); }
+std::string system_reason(int error) {
+  return std::strerror(error);
+}
 
 const char* kind_of(const struct stat& info) {
   if (S_ISDIR(info.st_mode)) return "is a folder, not a file";
@@ -44,13 +46,16 @@ Status resolve_target(const std::string& path, std::string& target, bool& exists
   }
   struct stat info = link_info;
   if (S_ISLNK(link_info.st_mode)) {
-    if (::stat(path.c_str(), &info) != 0) return file_error(path, "is a symbolic link to nothing; this command does not follow it");
+    if (::stat(path.c_str(), &info) != 0)
+      return file_error(path, "is a symbolic link to nothing; this command does not follow it");
     std::error_code error;
     target = fs::canonical(path, error).string();
-    if (error) return file_error(path, "is a symbolic link that cannot be resolved (" + error.message() + ")");
+    if (error)
+      return file_error(path, "is a symbolic link that cannot be resolved (" + error.message() + ")");
   }
   if (!S_ISREG(info.st_mode)) {
-    return file_error(path, std::string(kind_of(info)) + "; carbtf writes only regular files and does not replace it");
+    return file_error(
+        path, std::string(kind_of(info)) + "; carbtf writes only regular files and does not replace it");
   }
   exists = true;
   mode = info.st_mode & 07777;
@@ -109,8 +114,10 @@ Status write_file_whole(const std::string& path, std::span<const std::uint8_t> b
   const int fd = create_temporary(fs::path(target), temporary);
   if (fd < 0) return file_error(path, "cannot create the file (" + system_reason(errno) + ")");
   Status written = write_all(fd, bytes.data(), bytes.size());
-  if (written.ok() && exists && ::fchmod(fd, mode) != 0) written = {ErrorCode::file_error, system_reason(errno)};
-  if (written.ok() && flush == Flush::each_file && ::fsync(fd) != 0) written = {ErrorCode::file_error, system_reason(errno)};
+  if (written.ok() && exists && ::fchmod(fd, mode) != 0)
+    written = {ErrorCode::file_error, system_reason(errno)};
+  if (written.ok() && flush == Flush::each_file && ::fsync(fd) != 0)
+    written = {ErrorCode::file_error, system_reason(errno)};
   if (::close(fd) != 0 && written.ok()) written = {ErrorCode::file_error, system_reason(errno)};
   if (written.ok()) {
     // The target may have changed since it was checked; a device put there meanwhile is still kept.
@@ -118,7 +125,8 @@ Status write_file_whole(const std::string& path, std::span<const std::uint8_t> b
       ::unlink(temporary.c_str());
       return again;
     }
-    if (::rename(temporary.c_str(), target.c_str()) != 0) written = {ErrorCode::file_error, system_reason(errno)};
+    if (::rename(temporary.c_str(), target.c_str()) != 0)
+      written = {ErrorCode::file_error, system_reason(errno)};
   }
   if (!written.ok()) {
     ::unlink(temporary.c_str());
@@ -128,7 +136,9 @@ Status write_file_whole(const std::string& path, std::span<const std::uint8_t> b
 }
 
 Status write_file_whole(const std::string& path, std::string_view text, Flush flush) {
-  return write_file_whole(path, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()), flush);
+  return write_file_whole(
+      path, std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()),
+      flush);
 }
 
 Status flush_file_system(const std::string& path) {
@@ -137,7 +147,8 @@ Status flush_file_system(const std::string& path) {
   const int result = ::syncfs(fd);
   const int error = errno;
   ::close(fd);
-  if (result != 0) return file_error(path, "the disk reported an error writing it (" + system_reason(error) + ")");
+  if (result != 0)
+    return file_error(path, "the disk reported an error writing it (" + system_reason(error) + ")");
   return {};
 }
 

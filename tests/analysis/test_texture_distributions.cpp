@@ -35,7 +35,9 @@ Ranking ranking_of(const std::string& name, const std::string& other_name, doubl
   const std::uint32_t w = test::kSize / 2, h = test::kSize;
   const RgbField a = crop(image, 0, 0, w, h), b = crop(image, 0, w, w, h);
   const DistributionStatistics reference = distribution_statistics(a.rgb, w, h);
-  auto d = [&](const RgbField& x) { return distribution_distance(distribution_statistics(x.rgb, x.width, x.height), reference).total; };
+  auto d = [&](const RgbField& x) {
+    return distribution_distance(distribution_statistics(x.rgb, x.width, x.height), reference).total;
+  };
   Ranking r;
   r.crop = d(b);
   r.blur = d(test::blurred(b, 1.0));
@@ -51,24 +53,30 @@ Ranking ranking_of(const std::string& name, const std::string& other_name, doubl
 
 }  // namespace
 
-TEST_CASE("the distribution measure ranks mild distortions below phase-randomising, and that below another material and white noise",
-          "[quality][distributions]") {
+TEST_CASE(
+    "the distribution measure ranks mild distortions below phase-randomising, and that below another "
+    "material and white noise",
+    "[quality][distributions]") {
   const auto [name, other] = GENERATE(table<std::string, std::string>(
       {{"leather", "fabric"}, {"fabric", "coast_sand_rocks"}, {"coast_sand_rocks", "leather"}}));
   const double theta = GENERATE(15.0, 45.0, 75.0);
   const Ranking r = ranking_of(name, other, theta);
-  std::printf("%-17s light %2.0f: crop %.3f  blur %.3f  gain %.3f  hue %.3f  turned %.3f | phase-randomised %.3f | %s %.3f | noise %.3f\n",
-              name.c_str(), theta, r.crop, r.blur, r.gain, r.hue, r.turned, r.gaussian, other.c_str(), r.other, r.noise);
-  INFO(name << " at light " << theta << ": crop " << r.crop << ", blurred " << r.blur << ", +10% " << r.gain << ", hue +10 " << r.hue
-            << ", quarter turn " << r.turned << ", phase-randomised " << r.gaussian << ", " << other << " " << r.other << ", white noise "
-            << r.noise);
+  std::printf(
+      "%-17s light %2.0f: crop %.3f  blur %.3f  gain %.3f  hue %.3f  turned %.3f | phase-randomised %.3f | "
+      "%s %.3f | noise %.3f\n",
+      name.c_str(), theta, r.crop, r.blur, r.gain, r.hue, r.turned, r.gaussian, other.c_str(), r.other,
+      r.noise);
+  INFO(name << " at light " << theta << ": crop " << r.crop << ", blurred " << r.blur << ", +10% " << r.gain
+            << ", hue +10 " << r.hue << ", quarter turn " << r.turned << ", phase-randomised " << r.gaussian
+            << ", " << other << " " << r.other << ", white noise " << r.noise);
   for (const double mild : {r.blur, r.gain, r.hue}) CHECK(r.crop < mild);
   for (const double mild : {r.blur, r.gain, r.hue, r.turned}) CHECK(mild < r.gaussian);
   CHECK(r.gaussian < r.other);
   CHECK(r.gaussian < r.noise);
 }
 
-TEST_CASE("the distribution measure puts every crop of a material nearer than any other material's", "[quality][distributions]") {
+TEST_CASE("the distribution measure puts every crop of a material nearer than any other material's",
+          "[quality][distributions]") {
   struct Crop {
     std::string material;
     int image = 0;
@@ -105,20 +113,23 @@ TEST_CASE("the distribution measure puts every crop of a material nearer than an
         nearest_other = std::min(nearest_other, d);
       }
     }
-    INFO(bank[q].material << " image " << bank[q].image << ": farthest crop of its material " << farthest_same << ", nearest of another "
-                          << nearest_other);
+    INFO(bank[q].material << " image " << bank[q].image << ": farthest crop of its material " << farthest_same
+                          << ", nearest of another " << nearest_other);
     CHECK(farthest_same < nearest_other);
     own_image_first += bank[nearest].image == bank[q].image;
   }
-  std::printf("retrieval: the crop's own image's other crop is nearest for %d of %zu crops\n", own_image_first, bank.size());
+  std::printf("retrieval: the crop's own image's other crop is nearest for %d of %zu crops\n",
+              own_image_first, bank.size());
 }
 
-TEST_CASE("the distribution measure is zero for an image against itself and needs images of one size class", "[quality][distributions]") {
+TEST_CASE("the distribution measure is zero for an image against itself and needs images of one size class",
+          "[quality][distributions]") {
   const RgbField image = test::rendered_sample("leather", 45.0);
   const DistributionStatistics s = distribution_statistics(image.rgb, image.width, image.height);
   CHECK(distribution_distance(s, s).total == 0.0);
   const RgbField small = crop(image, 0, 0, 20, 20);
-  CHECK_THROWS_AS(distribution_distance(distribution_statistics(small.rgb, 20, 20), s), std::invalid_argument);
+  CHECK_THROWS_AS(distribution_distance(distribution_statistics(small.rgb, 20, 20), s),
+                  std::invalid_argument);
   CHECK_THROWS_AS(distribution_statistics(image.rgb, 8, 8), std::invalid_argument);
 }
 

@@ -26,7 +26,9 @@ std::string read_text(const fs::path& path) {
   return {std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
 }
 
-void write_text(const fs::path& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
 
 std::size_t entries_in(const fs::path& folder) {
   return static_cast<std::size_t>(std::distance(fs::directory_iterator(folder), fs::directory_iterator()));
@@ -52,7 +54,8 @@ struct FileSizeLimit {
 
 }  // namespace
 
-TEST_CASE("write_file_whole writes a new file and replaces a regular one, keeping its mode", "[material_file][file_output]") {
+TEST_CASE("write_file_whole writes a new file and replaces a regular one, keeping its mode",
+          "[material_file][file_output]") {
   const fs::path folder = test::scratch_folder("file_output_regular");
   const fs::path path = folder / "a.txt";
   REQUIRE(check_output_file(path.string()).ok());
@@ -61,7 +64,8 @@ TEST_CASE("write_file_whole writes a new file and replaces a regular one, keepin
   fs::permissions(path, fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read);
   REQUIRE(write_file_whole(path.string(), std::string_view("second, longer")).ok());
   CHECK(read_text(path) == "second, longer");
-  CHECK(fs::status(path).permissions() == (fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read));
+  CHECK(fs::status(path).permissions() ==
+        (fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read));
   CHECK(entries_in(folder) == 1);  // no temporary left beside it
 
   SECTION("a file of the user's named like a temporary is not touched") {
@@ -79,7 +83,8 @@ TEST_CASE("write_file_whole writes a new file and replaces a regular one, keepin
   fs::remove_all(folder);
 }
 
-TEST_CASE("write_file_whole refuses folders, FIFOs, devices and dangling links and replaces none", "[material_file][file_output]") {
+TEST_CASE("write_file_whole refuses folders, FIFOs, devices and dangling links and replaces none",
+          "[material_file][file_output]") {
   const fs::path folder = test::scratch_folder("file_output_special");
   const auto refused = [](const fs::path& path, const std::string& expected) {
     const Status checked = check_output_file(path.string());
@@ -135,7 +140,8 @@ TEST_CASE("a write that fails leaves the old file and no temporary", "[material_
   SECTION("a folder that does not exist is an error naming the path") {
     const Status missing = write_file_whole((folder / "no" / "x").string(), std::string_view("x"));
     CHECK_FALSE(missing.ok());
-    CHECK_THAT(missing.message(), Catch::Contains((folder / "no" / "x").string()) && Catch::Contains("cannot create"));
+    CHECK_THAT(missing.message(),
+               Catch::Contains((folder / "no" / "x").string()) && Catch::Contains("cannot create"));
   }
   fs::remove_all(folder);
 }

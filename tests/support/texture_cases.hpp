@@ -23,7 +23,9 @@ inline RgbField rendered_sample(const std::string& name, double theta, double ph
   RenderOptions options;
   options.progress = false;
   render_btf(surface, {Direction::from_degrees(theta, phi)}, {Direction::from_degrees(0.0, 0.0)}, options,
-             [&](std::uint32_t, std::uint32_t, std::span<const float> rgb) { std::copy(rgb.begin(), rgb.end(), image.rgb.begin()); });
+             [&](std::uint32_t, std::uint32_t, std::span<const float> rgb) {
+               std::copy(rgb.begin(), rgb.end(), image.rgb.begin());
+             });
   return image;
 }
 
@@ -32,11 +34,14 @@ inline RgbField blurred(const RgbField& in, double sigma) {
   const int radius = static_cast<int>(std::ceil(3.0 * sigma));
   std::vector<double> kernel;
   double total = 0.0;
-  for (int i = -radius; i <= radius; ++i) total += kernel.emplace_back(std::exp(-0.5 * i * i / (sigma * sigma)));
+  for (int i = -radius; i <= radius; ++i)
+    total += kernel.emplace_back(std::exp(-0.5 * i * i / (sigma * sigma)));
   RgbField tmp = in, out = in;
   const int w = static_cast<int>(in.width), h = static_cast<int>(in.height);
   auto at = [&](const RgbField& f, int r, int c, int ch) {
-    return f.rgb[(std::size_t(std::clamp(r, 0, h - 1)) * in.width + std::size_t(std::clamp(c, 0, w - 1))) * 3 + std::size_t(ch)];
+    return f
+        .rgb[(std::size_t(std::clamp(r, 0, h - 1)) * in.width + std::size_t(std::clamp(c, 0, w - 1))) * 3 +
+             std::size_t(ch)];
   };
   for (int pass = 0; pass < 2; ++pass) {
     const RgbField& src = pass == 0 ? in : tmp;
@@ -45,8 +50,11 @@ inline RgbField blurred(const RgbField& in, double sigma) {
       for (int c = 0; c < w; ++c)
         for (int ch = 0; ch < 3; ++ch) {
           double sum = 0.0;
-          for (int i = -radius; i <= radius; ++i) sum += kernel[std::size_t(i + radius)] * (pass == 0 ? at(src, r, c + i, ch) : at(src, r + i, c, ch));
-          dst.rgb[(std::size_t(r) * in.width + std::size_t(c)) * 3 + std::size_t(ch)] = static_cast<float>(sum / total);
+          for (int i = -radius; i <= radius; ++i)
+            sum +=
+                kernel[std::size_t(i + radius)] * (pass == 0 ? at(src, r, c + i, ch) : at(src, r + i, c, ch));
+          dst.rgb[(std::size_t(r) * in.width + std::size_t(c)) * 3 + std::size_t(ch)] =
+              static_cast<float>(sum / total);
         }
   }
   return out;
@@ -54,7 +62,8 @@ inline RgbField blurred(const RgbField& in, double sigma) {
 
 // Hue rotation by `degrees` about the grey axis of linear RGB (Rodrigues), clamped at 0.
 inline RgbField hue_shifted(const RgbField& in, double degrees) {
-  const double a = degrees * std::numbers::pi / 180.0, cs = std::cos(a), sn = std::sin(a), k = (1.0 - cs) / 3.0, s3 = sn / std::sqrt(3.0);
+  const double a = degrees * std::numbers::pi / 180.0, cs = std::cos(a), sn = std::sin(a),
+               k = (1.0 - cs) / 3.0, s3 = sn / std::sqrt(3.0);
   const double m[3][3] = {{cs + k, k - s3, k + s3}, {k + s3, cs + k, k - s3}, {k - s3, k + s3, cs + k}};
   RgbField out = in;
   for (std::size_t p = 0; p < in.rgb.size() / 3; ++p) {
@@ -73,7 +82,8 @@ inline RgbField rotated(const RgbField& in) {
   for (std::uint32_t r = 0; r < in.height; ++r)
     for (std::uint32_t c = 0; c < in.width; ++c)
       for (int ch = 0; ch < 3; ++ch)
-        out.rgb[(std::size_t(c) * out.width + (in.height - 1 - r)) * 3 + std::size_t(ch)] = in.rgb[(std::size_t(r) * in.width + c) * 3 + std::size_t(ch)];
+        out.rgb[(std::size_t(c) * out.width + (in.height - 1 - r)) * 3 + std::size_t(ch)] =
+            in.rgb[(std::size_t(r) * in.width + c) * 3 + std::size_t(ch)];
   return out;
 }
 

@@ -12,14 +12,14 @@ namespace carbtf {
 namespace {
 
 // What a person calls a clear difference, per feature (the calibration: docs/design.md 5).
-constexpr double kColourScale = 2.0;         // Lab units of 1D transport between marginals
-constexpr double kEnergyScale = 3.0;         // dB of an octave's L* energy
-constexpr double kChromaEnergyScale = 4.0;   // dB of an octave's a* or b* energy
-constexpr double kVisibleChroma = 3.0;       // Lab units: a chroma band fainter than this counts in proportion
-constexpr double kResponseScale = 0.08;      // transport between unit-RMS response distributions
+constexpr double kColourScale = 2.0;        // Lab units of 1D transport between marginals
+constexpr double kEnergyScale = 3.0;        // dB of an octave's L* energy
+constexpr double kChromaEnergyScale = 4.0;  // dB of an octave's a* or b* energy
+constexpr double kVisibleChroma = 3.0;      // Lab units: a chroma band fainter than this counts in proportion
+constexpr double kResponseScale = 0.08;     // transport between unit-RMS response distributions
 constexpr double kLocalEnergyScale = 0.1;   // transport between mean-1 local-energy distributions
-constexpr double kCoherenceScale = 0.15;     // correlation
-constexpr double kOrientationScale = 2.0;    // dB, of one orientation against its octave's mean
+constexpr double kCoherenceScale = 0.15;    // correlation
+constexpr double kOrientationScale = 2.0;   // dB, of one orientation against its octave's mean
 constexpr double kOddSkewnessScale = 0.15;
 // A feature counts at most this many clear differences, so that one feature gone far (a band emptied by a
 // blur) cannot outweigh the rest; the energy group's limit is higher, since white noise (10-20 dB off in
@@ -32,9 +32,9 @@ constexpr std::array<double, DistributionDistance::kGroups> kGroupWeights{1.0, 1
 constexpr std::size_t kQuantiles = 32;
 constexpr std::size_t kMaxSamples = 8192;  // per distribution; a regular subsample of larger levels
 constexpr std::uint32_t kOrientations = 4;
-constexpr int kRadius = 4;                 // of the Gabor kernels
-constexpr double kGaborSigma = 1.5;        // pixels of the pyramid level
-constexpr double kGaborFrequency = 0.25;   // cycles per pixel of the level: periods 4 * 2^octave
+constexpr int kRadius = 4;                // of the Gabor kernels
+constexpr double kGaborSigma = 1.5;       // pixels of the pyramid level
+constexpr double kGaborFrequency = 0.25;  // cycles per pixel of the level: periods 4 * 2^octave
 constexpr std::uint32_t kCoarsestSide = 8;
 
 struct Level {
@@ -45,7 +45,8 @@ struct Level {
     const int w = static_cast<int>(width), h = static_cast<int>(height);
     r = r < 0 ? -r : (r >= h ? 2 * h - 2 - r : r);
     c = c < 0 ? -c : (c >= w ? 2 * w - 2 - c : c);
-    return values[static_cast<std::size_t>(std::clamp(r, 0, h - 1)) * width + static_cast<std::size_t>(std::clamp(c, 0, w - 1))];
+    return values[static_cast<std::size_t>(std::clamp(r, 0, h - 1)) * width +
+                  static_cast<std::size_t>(std::clamp(c, 0, w - 1))];
   }
 };
 
@@ -73,7 +74,9 @@ Level decimated(const Level& blurred_level) {
   Level out{(blurred_level.width + 1) / 2, (blurred_level.height + 1) / 2, {}};
   out.values.resize(std::size_t{out.width} * out.height);
   for (std::uint32_t r = 0; r < out.height; ++r)
-    for (std::uint32_t c = 0; c < out.width; ++c) out.values[std::size_t{r} * out.width + c] = blurred_level.values[std::size_t{2 * r} * blurred_level.width + 2 * c];
+    for (std::uint32_t c = 0; c < out.width; ++c)
+      out.values[std::size_t{r} * out.width + c] =
+          blurred_level.values[std::size_t{2 * r} * blurred_level.width + 2 * c];
   return out;
 }
 
@@ -103,8 +106,9 @@ std::array<Complex, 2 * kRadius + 1> gabor_taps(double frequency) {
   std::array<Complex, 2 * kRadius + 1> taps{};
   for (int x = -kRadius; x <= kRadius; ++x) {
     const double g = std::exp(-0.5 * x * x / (kGaborSigma * kGaborSigma));
-    taps[static_cast<std::size_t>(x + kRadius)] = Complex(static_cast<float>(g * std::cos(2 * std::numbers::pi * frequency * x)),
-                                                          static_cast<float>(g * std::sin(2 * std::numbers::pi * frequency * x)));
+    taps[static_cast<std::size_t>(x + kRadius)] =
+        Complex(static_cast<float>(g * std::cos(2 * std::numbers::pi * frequency * x)),
+                static_cast<float>(g * std::sin(2 * std::numbers::pi * frequency * x)));
   }
   return taps;
 }
@@ -120,7 +124,8 @@ std::vector<Complex> oriented_response(const Level& band, std::uint32_t k) {
   for (int r = 0; r < h; ++r)
     for (int c = 0; c < w; ++c) {
       Complex sum{};
-      for (int i = -kRadius; i <= kRadius; ++i) sum += horizontal[static_cast<std::size_t>(i + kRadius)] * band.at(r, c + i);
+      for (int i = -kRadius; i <= kRadius; ++i)
+        sum += horizontal[static_cast<std::size_t>(i + kRadius)] * band.at(r, c + i);
       rows[static_cast<std::size_t>(r) * band.width + static_cast<std::size_t>(c)] = sum;
     }
   auto row_at = [&](int r, int c) {
@@ -130,7 +135,8 @@ std::vector<Complex> oriented_response(const Level& band, std::uint32_t k) {
   for (int r = 0; r < h; ++r)
     for (int c = 0; c < w; ++c) {
       Complex sum{};
-      for (int i = -kRadius; i <= kRadius; ++i) sum += vertical[static_cast<std::size_t>(i + kRadius)] * row_at(r + i, c);
+      for (int i = -kRadius; i <= kRadius; ++i)
+        sum += vertical[static_cast<std::size_t>(i + kRadius)] * row_at(r + i, c);
       out[static_cast<std::size_t>(r) * band.width + static_cast<std::size_t>(c)] = sum;
     }
   return out;
@@ -143,7 +149,8 @@ std::vector<float> quantiles_of(std::vector<float>& values) {
   if (values.empty()) return q;
   for (std::size_t i = 0; i < kQuantiles; ++i) {
     const double at = (static_cast<double>(i) + 0.5) / kQuantiles * static_cast<double>(values.size()) - 0.5;
-    const auto low = static_cast<std::size_t>(std::clamp(std::floor(at), 0.0, static_cast<double>(values.size() - 1)));
+    const auto low =
+        static_cast<std::size_t>(std::clamp(std::floor(at), 0.0, static_cast<double>(values.size() - 1)));
     const std::size_t high = std::min(low + 1, values.size() - 1);
     const double t = std::clamp(at - static_cast<double>(low), 0.0, 1.0);
     q[i] = static_cast<float>((1.0 - t) * values[low] + t * values[high]);
@@ -154,17 +161,20 @@ std::vector<float> quantiles_of(std::vector<float>& values) {
 // The grid stride that keeps a distribution's samples of a w x h level at most kMaxSamples.
 std::uint32_t sample_stride(std::uint32_t width, std::uint32_t height) {
   std::uint32_t stride = 1;
-  while (std::size_t{(width + stride - 1) / stride} * ((height + stride - 1) / stride) > kMaxSamples) ++stride;
+  while (std::size_t{(width + stride - 1) / stride} * ((height + stride - 1) / stride) > kMaxSamples)
+    ++stride;
   return stride;
 }
 
 template <typename Value, typename F>
-std::vector<float> sampled(const std::vector<Value>& field, std::uint32_t width, std::uint32_t height, F&& f) {
+std::vector<float> sampled(const std::vector<Value>& field, std::uint32_t width, std::uint32_t height,
+                           F&& f) {
   const std::uint32_t stride = sample_stride(width, height);
   std::vector<float> out;
   out.reserve(std::size_t{(width + stride - 1) / stride} * ((height + stride - 1) / stride));
   for (std::uint32_t r = stride / 2; r < height; r += stride)
-    for (std::uint32_t c = stride / 2; c < width; c += stride) out.push_back(f(field[std::size_t{r} * width + c]));
+    for (std::uint32_t c = stride / 2; c < width; c += stride)
+      out.push_back(f(field[std::size_t{r} * width + c]));
   return out;
 }
 
@@ -186,10 +196,14 @@ double correlation(const std::vector<float>& a, const std::vector<float>& b) {
   return saa > 1e-20 && sbb > 1e-20 ? sab / std::sqrt(saa * sbb) : 0.0;
 }
 
-double decibels(double energy) { return 10.0 * std::log10(energy + 1e-10); }
+double decibels(double energy) {
+  return 10.0 * std::log10(energy + 1e-10);
+}
 
 std::uint32_t octaves_for(std::uint32_t width, std::uint32_t height, const DistributionOptions& options) {
-  const auto fit = static_cast<std::uint32_t>(std::floor(std::log2(std::min(width, height) / static_cast<double>(kCoarsestSide)))) + 1;
+  const auto fit = static_cast<std::uint32_t>(
+                       std::floor(std::log2(std::min(width, height) / static_cast<double>(kCoarsestSide)))) +
+                   1;
   return std::max(2u, std::min(options.octaves, fit));
 }
 
@@ -201,15 +215,17 @@ double transport(const std::vector<float>& a, const std::vector<float>& b) {
 
 }  // namespace
 
-DistributionStatistics distribution_statistics(std::span<const float> rgb, std::uint32_t width, std::uint32_t height,
-                                     const DistributionOptions& options) {
-  if (width < 16 || height < 16) throw std::invalid_argument("texture statistics: images must be at least 16x16");
+DistributionStatistics distribution_statistics(std::span<const float> rgb, std::uint32_t width,
+                                               std::uint32_t height, const DistributionOptions& options) {
+  if (width < 16 || height < 16)
+    throw std::invalid_argument("texture statistics: images must be at least 16x16");
   const std::size_t pixels = std::size_t{width} * height;
   if (rgb.size() < pixels * 3) throw std::invalid_argument("texture statistics: image buffer too small");
   std::array<Level, 3> lab;
   for (Level& channel : lab) channel = {width, height, std::vector<float>(pixels)};
   for (std::size_t p = 0; p < pixels; ++p) {
-    const auto v = linear_srgb_to_lab(std::max(rgb[p * 3], 0.0f), std::max(rgb[p * 3 + 1], 0.0f), std::max(rgb[p * 3 + 2], 0.0f));
+    const auto v = linear_srgb_to_lab(std::max(rgb[p * 3], 0.0f), std::max(rgb[p * 3 + 1], 0.0f),
+                                      std::max(rgb[p * 3 + 2], 0.0f));
     for (std::size_t c = 0; c < 3; ++c) lab[c].values[p] = v[c];
   }
   DistributionStatistics s;
@@ -262,7 +278,8 @@ DistributionStatistics distribution_statistics(std::span<const float> rgb, std::
       m2 /= static_cast<double>(n);
       m3 /= static_cast<double>(n);
       s.odd_skewness.push_back(m2 > 1e-20 ? m3 / (m2 * std::sqrt(m2)) : 0.0);
-      const std::vector<float> part = sampled(z, band.width, band.height, [unit](Complex v) { return v.real() * unit; });
+      const std::vector<float> part =
+          sampled(z, band.width, band.height, [unit](Complex v) { return v.real() * unit; });
       pooled.insert(pooled.end(), part.begin(), part.end());
     }
     s.response_quantiles.push_back(quantiles_of(pooled));
@@ -270,12 +287,15 @@ DistributionStatistics distribution_statistics(std::span<const float> rgb, std::
     for (float& e : energy) mean += (e = std::sqrt(e));
     mean /= static_cast<double>(n);
     const auto inverse = static_cast<float>(1.0 / std::max(mean, 1e-20));
-    std::vector<float> normalised = sampled(energy, band.width, band.height, [inverse](float v) { return v * inverse; });
+    std::vector<float> normalised =
+        sampled(energy, band.width, band.height, [inverse](float v) { return v * inverse; });
     s.energy_quantiles.push_back(quantiles_of(normalised));
     // Adjacent orientations (k, k + 1 cyclically), then orthogonal ones (0-90, 45-135).
     double adjacent = 0.0, orthogonal = 0.0;
-    for (std::uint32_t k = 0; k < kOrientations; ++k) adjacent += correlation(magnitude[k], magnitude[(k + 1) % kOrientations]) / kOrientations;
-    for (std::uint32_t k = 0; k < kOrientations / 2; ++k) orthogonal += correlation(magnitude[k], magnitude[k + kOrientations / 2]) / (kOrientations / 2);
+    for (std::uint32_t k = 0; k < kOrientations; ++k)
+      adjacent += correlation(magnitude[k], magnitude[(k + 1) % kOrientations]) / kOrientations;
+    for (std::uint32_t k = 0; k < kOrientations / 2; ++k)
+      orthogonal += correlation(magnitude[k], magnitude[k + kOrientations / 2]) / (kOrientations / 2);
     s.cross_orientation.push_back(adjacent);
     s.cross_orientation.push_back(orthogonal);
     local_energy[o] = std::move(energy);
@@ -288,8 +308,10 @@ DistributionStatistics distribution_statistics(std::span<const float> rgb, std::
     for (std::uint32_t r = 0; r < coarse.height && 2 * r + 1 < fine.height; ++r)
       for (std::uint32_t c = 0; c < coarse.width && 2 * c + 1 < fine.width; ++c) {
         const auto& e = local_energy[o];
-        a.push_back(0.25f * (e[std::size_t{2 * r} * fine.width + 2 * c] + e[std::size_t{2 * r} * fine.width + 2 * c + 1] +
-                             e[std::size_t{2 * r + 1} * fine.width + 2 * c] + e[std::size_t{2 * r + 1} * fine.width + 2 * c + 1]));
+        a.push_back(0.25f * (e[std::size_t{2 * r} * fine.width + 2 * c] +
+                             e[std::size_t{2 * r} * fine.width + 2 * c + 1] +
+                             e[std::size_t{2 * r + 1} * fine.width + 2 * c] +
+                             e[std::size_t{2 * r + 1} * fine.width + 2 * c + 1]));
         b.push_back(local_energy[o + 1][std::size_t{r} * coarse.width + c]);
       }
     s.cross_scale.push_back(correlation(a, b));
@@ -298,7 +320,8 @@ DistributionStatistics distribution_statistics(std::span<const float> rgb, std::
 }
 
 DistributionDistance distribution_distance(const DistributionStatistics& a, const DistributionStatistics& b) {
-  if (a.octaves != b.octaves || a.energy_db.size() != b.energy_db.size() || a.cross_scale.size() != b.cross_scale.size()) {
+  if (a.octaves != b.octaves || a.energy_db.size() != b.energy_db.size() ||
+      a.cross_scale.size() != b.cross_scale.size()) {
     throw std::invalid_argument("texture statistics from different options or image sizes");
   }
   struct Group {
@@ -314,7 +337,8 @@ DistributionDistance distribution_distance(const DistributionStatistics& a, cons
   const std::size_t octaves = a.octaves;
   std::array<Group, DistributionDistance::kGroups> g;
   g[1].saturation = kEnergySaturation;
-  for (std::size_t c = 0; c < 3; ++c) g[0].add(transport(a.lab_quantiles[c], b.lab_quantiles[c]) / kColourScale);
+  for (std::size_t c = 0; c < 3; ++c)
+    g[0].add(transport(a.lab_quantiles[c], b.lab_quantiles[c]) / kColourScale);
 
   // The eye's contrast sensitivity falls towards the finest octave (periods of 2 to 4 pixels).
   const auto sensitivity = [](std::size_t octave) { return octave == 0 ? 0.35 : octave == 1 ? 0.7 : 1.0; };
@@ -330,20 +354,28 @@ DistributionDistance distribution_distance(const DistributionStatistics& a, cons
     g[1].add((octave_db_a[o] - octave_db_b[o]) / kEnergyScale, sensitivity(o));
   }
   for (std::size_t i = 0; i < a.chroma_energy_db.size(); ++i) {
-    const double visible = std::min(1.0, std::max(a.chroma_deviation[i], b.chroma_deviation[i]) / kVisibleChroma);
-    g[1].add((a.chroma_energy_db[i] - b.chroma_energy_db[i]) / kChromaEnergyScale, visible * sensitivity(i % octaves));
+    const double visible =
+        std::min(1.0, std::max(a.chroma_deviation[i], b.chroma_deviation[i]) / kVisibleChroma);
+    g[1].add((a.chroma_energy_db[i] - b.chroma_energy_db[i]) / kChromaEnergyScale,
+             visible * sensitivity(i % octaves));
   }
   for (std::size_t o = 0; o < octaves; ++o) {
     g[2].add(transport(a.response_quantiles[o], b.response_quantiles[o]) / kResponseScale, sensitivity(o));
     g[3].add(transport(a.energy_quantiles[o], b.energy_quantiles[o]) / kLocalEnergyScale, sensitivity(o));
-    for (std::size_t j = 0; j < 2; ++j) g[4].add((a.cross_orientation[2 * o + j] - b.cross_orientation[2 * o + j]) / kCoherenceScale, sensitivity(o));
+    for (std::size_t j = 0; j < 2; ++j)
+      g[4].add((a.cross_orientation[2 * o + j] - b.cross_orientation[2 * o + j]) / kCoherenceScale,
+               sensitivity(o));
     for (std::uint32_t k = 0; k < kOrientations; ++k) {
-      const double da = a.energy_db[o * kOrientations + k] - octave_db_a[o], db = b.energy_db[o * kOrientations + k] - octave_db_b[o];
+      const double da = a.energy_db[o * kOrientations + k] - octave_db_a[o],
+                   db = b.energy_db[o * kOrientations + k] - octave_db_b[o];
       g[5].add((da - db) / kOrientationScale, sensitivity(o));
-      g[5].add((a.odd_skewness[o * kOrientations + k] - b.odd_skewness[o * kOrientations + k]) / kOddSkewnessScale, sensitivity(o));
+      g[5].add(
+          (a.odd_skewness[o * kOrientations + k] - b.odd_skewness[o * kOrientations + k]) / kOddSkewnessScale,
+          sensitivity(o));
     }
   }
-  for (std::size_t i = 0; i < a.cross_scale.size(); ++i) g[4].add((a.cross_scale[i] - b.cross_scale[i]) / kCoherenceScale, sensitivity(i));
+  for (std::size_t i = 0; i < a.cross_scale.size(); ++i)
+    g[4].add((a.cross_scale[i] - b.cross_scale[i]) / kCoherenceScale, sensitivity(i));
 
   double weights = 0.0;
   for (double w : kGroupWeights) weights += w;

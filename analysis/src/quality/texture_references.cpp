@@ -14,14 +14,16 @@ namespace carbtf {
 
 using detail::ComplexField;
 
-RgbField crop(const RgbField& image, std::uint32_t row0, std::uint32_t col0, std::uint32_t width, std::uint32_t height) {
+RgbField crop(const RgbField& image, std::uint32_t row0, std::uint32_t col0, std::uint32_t width,
+              std::uint32_t height) {
   if (std::size_t{row0} + height > image.height || std::size_t{col0} + width > image.width) {
     throw std::invalid_argument("crop: region outside the image");
   }
   RgbField out{std::vector<float>(std::size_t{width} * height * 3), width, height};
   for (std::uint32_t r = 0; r < height; ++r) {
-    std::copy_n(image.rgb.begin() + static_cast<std::ptrdiff_t>((std::size_t{row0 + r} * image.width + col0) * 3), std::size_t{width} * 3,
-                out.rgb.begin() + static_cast<std::ptrdiff_t>(std::size_t{r} * width * 3));
+    std::copy_n(
+        image.rgb.begin() + static_cast<std::ptrdiff_t>((std::size_t{row0 + r} * image.width + col0) * 3),
+        std::size_t{width} * 3, out.rgb.begin() + static_cast<std::ptrdiff_t>(std::size_t{r} * width * 3));
   }
   return out;
 }
@@ -35,20 +37,24 @@ RgbField phase_randomised(const RgbField& image, std::uint64_t seed) {
   // real; adding the same phases to every channel keeps the channels' cross-spectra.
   ComplexField noise(pixels);
   for (std::uint32_t r = 0; r < h; ++r) {
-    for (std::uint32_t c = 0; c < w; ++c) noise[std::size_t{r} * w + c] = reference::gaussian_noise(seed, 0, static_cast<std::int32_t>(r), static_cast<std::int32_t>(c));
+    for (std::uint32_t c = 0; c < w; ++c)
+      noise[std::size_t{r} * w + c] =
+          reference::gaussian_noise(seed, 0, static_cast<std::int32_t>(r), static_cast<std::int32_t>(c));
   }
   detail::fourier_2d(noise, w, h);
   RgbField out{std::vector<float>(pixels * 3), w, h};
   for (int channel = 0; channel < 3; ++channel) {
     ComplexField data(pixels);
-    for (std::size_t p = 0; p < pixels; ++p) data[p] = linear_to_srgb(std::max(image.rgb[p * 3 + channel], 0.0f));
+    for (std::size_t p = 0; p < pixels; ++p)
+      data[p] = linear_to_srgb(std::max(image.rgb[p * 3 + channel], 0.0f));
     detail::fourier_2d(data, w, h);
     for (std::size_t p = 1; p < pixels; ++p) {
       const double magnitude = std::abs(noise[p]);
       if (magnitude > 0.0) data[p] *= noise[p] / magnitude;
     }
     detail::fourier_2d(data, w, h, true);
-    for (std::size_t p = 0; p < pixels; ++p) out.rgb[p * 3 + channel] = srgb_to_linear(std::clamp(static_cast<float>(data[p].real()), 0.0f, 1.0f));
+    for (std::size_t p = 0; p < pixels; ++p)
+      out.rgb[p * 3 + channel] = srgb_to_linear(std::clamp(static_cast<float>(data[p].real()), 0.0f, 1.0f));
   }
   return out;
 }
@@ -62,7 +68,9 @@ RgbField white_noise_like(const RgbField& image, std::uint64_t seed) {
   for (double& m : mean) m /= static_cast<double>(pixels);
   for (std::size_t p = 0; p < pixels; ++p) {
     for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) cov[i][j] += (image.rgb[p * 3 + i] - mean[i]) * (image.rgb[p * 3 + j] - mean[j]) / static_cast<double>(pixels);
+      for (int j = 0; j < 3; ++j)
+        cov[i][j] +=
+            (image.rgb[p * 3 + i] - mean[i]) * (image.rgb[p * 3 + j] - mean[j]) / static_cast<double>(pixels);
     }
   }
   // Cholesky of the 3x3 covariance, with a tiny ridge so that a grey image (rank 1) still factors.
@@ -78,7 +86,9 @@ RgbField white_noise_like(const RgbField& image, std::uint64_t seed) {
   for (std::uint32_t r = 0; r < image.height; ++r) {
     for (std::uint32_t c = 0; c < image.width; ++c) {
       double z[3];
-      for (std::uint32_t k = 0; k < 3; ++k) z[k] = reference::gaussian_noise(seed, 1 + k, static_cast<std::int32_t>(r), static_cast<std::int32_t>(c));
+      for (std::uint32_t k = 0; k < 3; ++k)
+        z[k] = reference::gaussian_noise(seed, 1 + k, static_cast<std::int32_t>(r),
+                                         static_cast<std::int32_t>(c));
       const std::size_t p = std::size_t{r} * image.width + c;
       for (int i = 0; i < 3; ++i) {
         double v = mean[i];
@@ -96,13 +106,16 @@ CalibratedFidelity calibrated_fidelity(const RgbField& model, const RgbField& me
   const std::uint32_t w = split_columns ? measured.width / 2 : measured.width;
   const std::uint32_t h = split_columns ? measured.height : measured.height / 2;
   if (model.width < w || model.height < h) {
-    throw std::invalid_argument("calibrated fidelity: the model image (" + std::to_string(model.width) + "x" + std::to_string(model.height) +
-                                ") is smaller than half the measurement (" + std::to_string(w) + "x" + std::to_string(h) + ")");
+    throw std::invalid_argument("calibrated fidelity: the model image (" + std::to_string(model.width) + "x" +
+                                std::to_string(model.height) + ") is smaller than half the measurement (" +
+                                std::to_string(w) + "x" + std::to_string(h) + ")");
   }
   const RgbField a = crop(measured, 0, 0, w, h);
   const RgbField b = split_columns ? crop(measured, 0, w, w, h) : crop(measured, h, 0, w, h);
   const TextureStatistics reference = texture_statistics(a.rgb, w, h, options);
-  auto distance = [&](const RgbField& image) { return texture_distance(texture_statistics(image.rgb, w, h, options), reference); };
+  auto distance = [&](const RgbField& image) {
+    return texture_distance(texture_statistics(image.rgb, w, h, options), reference);
+  };
   CalibratedFidelity f;
   f.floor = distance(b).total;
   f.ceiling = distance(white_noise_like(b, seed)).total;

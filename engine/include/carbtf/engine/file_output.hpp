@@ -29,7 +29,8 @@ Status check_output_file(const std::string& path);
 // images took 5 s instead of 1 s with it), which then calls flush_file_system() once when done: write
 // and close errors are still reported per file, and what the disk reports on write-back, once.
 enum class Flush { each_file, later };
-Status write_file_whole(const std::string& path, std::span<const std::uint8_t> bytes, Flush flush = Flush::each_file);
+Status write_file_whole(const std::string& path, std::span<const std::uint8_t> bytes,
+                        Flush flush = Flush::each_file);
 Status write_file_whole(const std::string& path, std::string_view text, Flush flush = Flush::each_file);
 
 // Flushes the file system holding `path` (syncfs), reporting a write-back error of any file written

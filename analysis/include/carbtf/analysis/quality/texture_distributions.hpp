@@ -45,16 +45,19 @@ struct DistributionStatistics {
   std::vector<double> energy_db;         // L*, octave-major: octaves x 4 orientations, 10 log10(mean |z|^2)
   std::vector<double> chroma_energy_db;  // a* then b*, one per octave
   std::vector<double> chroma_deviation;  // a* then b*, one per octave: the band's std in Lab units
-  std::vector<std::vector<float>> response_quantiles;  // per octave: the real responses, each orientation at unit RMS
-  std::vector<std::vector<float>> energy_quantiles;    // per octave: local energy over its mean
-  std::vector<double> cross_scale;        // per adjacent octave pair: correlation of local energy
+  std::vector<std::vector<float>>
+      response_quantiles;  // per octave: the real responses, each orientation at unit RMS
+  std::vector<std::vector<float>> energy_quantiles;  // per octave: local energy over its mean
+  std::vector<double> cross_scale;                   // per adjacent octave pair: correlation of local energy
   std::vector<double> cross_orientation;  // per octave: adjacent then orthogonal orientations' correlation
-  std::vector<double> odd_skewness;       // octave-major, per orientation: skewness of the odd (imaginary) response
+  std::vector<double>
+      odd_skewness;  // octave-major, per orientation: skewness of the odd (imaginary) response
 };
 
 struct DistributionDistance {
   static constexpr std::size_t kGroups = 6;
-  static constexpr std::array<const char*, kGroups> kGroupNames{"colour", "energy", "responses", "local_energy", "coherence", "orientation"};
+  static constexpr std::array<const char*, kGroups> kGroupNames{"colour",       "energy",    "responses",
+                                                                "local_energy", "coherence", "orientation"};
   std::array<double, kGroups> groups{};
   double total = 0.0;  // weighted mean over the groups
 };
@@ -64,8 +67,8 @@ struct DistributionOptions {
 };
 
 // Throws std::invalid_argument for an image under 16 x 16 or a buffer too small.
-DistributionStatistics distribution_statistics(std::span<const float> rgb, std::uint32_t width, std::uint32_t height,
-                                     const DistributionOptions& options = {});
+DistributionStatistics distribution_statistics(std::span<const float> rgb, std::uint32_t width,
+                                               std::uint32_t height, const DistributionOptions& options = {});
 // Both from the same options and images large enough for the same octaves; throws otherwise.
 DistributionDistance distribution_distance(const DistributionStatistics& a, const DistributionStatistics& b);
 
