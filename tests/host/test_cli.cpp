@@ -111,7 +111,7 @@ TEST_CASE("carbtf demo runs the whole pipeline and writes a report", "[cli]") {
   fs::remove_all(folder);
 }
 
-TEST_CASE("--help answers for every command", "[cli]") {
+TEST_CASE("every command answers --help", "[cli]") {
   for (const std::string command : {"", "noise", "devices", "demo", "sample", "info", "analyze", "normals",
                                     "synth", "conform", "render", "fidelity", "bench noise", "bench data", "bench analyze", "bench synth", "bench frame"}) {
     const Run r = run(command + " --help");
