@@ -240,6 +240,7 @@ void write_rgb_image(const std::filesystem::path& path, std::span<const float> r
 }
 
 void write_output_file(const std::filesystem::path& path, std::span<const std::byte> bytes, Flush flush) {
+  // Checked before the parent folders are made, so that a refused path creates nothing.
   if (Status s = check_output_file(path.string()); !s.ok()) throw InputError(path, without_path(s.message(), path));
   create_folder(path.parent_path());
   const Status s = write_file_whole(path.string(), std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()), flush);

@@ -34,11 +34,17 @@ const char* kind_of(const struct stat& info) {
 }
 
 // Where the bytes go: `path` itself, or the regular file a symbolic link at `path` leads to, so that
-// the link survives the rename. Fails for anything that is not a regular file or nothing.
-Status resolve_target(const std::string& path, std::string& target, bool& exists, mode_t& mode) {
+// the link survives the rename; and the mode of the file there, if any.
+struct Target {
+  std::string path;
+  bool exists = false;
+  mode_t mode = 0;
+};
+
+// Fails for anything at `path` that is not a regular file or nothing.
+Status resolve_target(const std::string& path, Target& target) {
   if (path.empty()) return {ErrorCode::file_error, "the output path is empty"};
-  target = path;
-  exists = false;
+  target = {path, false, 0};
   struct stat link_info {};
   if (::lstat(path.c_str(), &link_info) != 0) {
     if (errno == ENOENT) return {};
@@ -49,7 +55,7 @@ Status resolve_target(const std::string& path, std::string& target, bool& exists
     if (::stat(path.c_str(), &info) != 0)
       return file_error(path, "is a symbolic link to nothing; this command does not follow it");
     std::error_code error;
-    target = fs::canonical(path, error).string();
+    target.path = fs::canonical(path, error).string();
     if (error)
       return file_error(path, "is a symbolic link that cannot be resolved (" + error.message() + ")");
   }
@@ -57,8 +63,8 @@ Status resolve_target(const std::string& path, std::string& target, bool& exists
     return file_error(
         path, std::string(kind_of(info)) + "; carbtf writes only regular files and does not replace it");
   }
-  exists = true;
-  mode = info.st_mode & 07777;
+  target.exists = true;
+  target.mode = info.st_mode & 07777;
   return {};
 }
 
@@ -99,33 +105,29 @@ int create_temporary(const fs::path& target, std::string& name) {
 }  // namespace
 
 Status check_output_file(const std::string& path) {
-  std::string target;
-  bool exists = false;
-  mode_t mode = 0;
-  return resolve_target(path, target, exists, mode);
+  Target target;
+  return resolve_target(path, target);
 }
 
 Status write_file_whole(const std::string& path, std::span<const std::uint8_t> bytes, Flush flush) {
-  std::string target;
-  bool exists = false;
-  mode_t mode = 0;
-  if (Status s = resolve_target(path, target, exists, mode); !s.ok()) return s;
+  Target target;
+  if (Status s = resolve_target(path, target); !s.ok()) return s;
   std::string temporary;
-  const int fd = create_temporary(fs::path(target), temporary);
+  const int fd = create_temporary(fs::path(target.path), temporary);
   if (fd < 0) return file_error(path, "cannot create the file (" + system_reason(errno) + ")");
   Status written = write_all(fd, bytes.data(), bytes.size());
-  if (written.ok() && exists && ::fchmod(fd, mode) != 0)
+  if (written.ok() && target.exists && ::fchmod(fd, target.mode) != 0)
     written = {ErrorCode::file_error, system_reason(errno)};
   if (written.ok() && flush == Flush::each_file && ::fsync(fd) != 0)
     written = {ErrorCode::file_error, system_reason(errno)};
   if (::close(fd) != 0 && written.ok()) written = {ErrorCode::file_error, system_reason(errno)};
   if (written.ok()) {
     // The target may have changed since it was checked; a device put there meanwhile is still kept.
-    if (Status again = resolve_target(path, target, exists, mode); !again.ok()) {
+    if (Status again = resolve_target(path, target); !again.ok()) {
       ::unlink(temporary.c_str());
       return again;
     }
-    if (::rename(temporary.c_str(), target.c_str()) != 0)
+    if (::rename(temporary.c_str(), target.path.c_str()) != 0)
       written = {ErrorCode::file_error, system_reason(errno)};
   }
   if (!written.ok()) {
