@@ -1,20 +1,19 @@
-// The measure rebuilt on distributions (analysis/quality/texture_distributions, issue 42) against the
-// order a person sees (docs/design.md 5), on each sample material at three lights (15, 45 and 75
-// degrees, from azimuth 30). What it ranks as a person does is checked here, each comparison a CHECK on
-// measured distances:
-//  - another region of the same image below a 1-pixel blur, +10% gain and a 10 degree hue shift;
-//  - each of those and a quarter turn below the phase-randomised version (the same spectrum, no crease,
-//    thread or rock), and that below another material under the same light and below white noise;
-//  - in a bank of every material under 5 lights, two disjoint crops each, every crop of a crop's own
-//    material nearer than any other material's.
-// What it does not yet (measured, docs/design.md 5), and is therefore not asserted: another material
-// below white noise (it ranks fabric, leather and coast_sand_rocks further from each other than white
-// noise of the same colours, on 8 of 9 cases), a quarter turn above the crop at low light (leather at
-// 15 and 45 degrees, coast_sand_rocks at 15), and a crop's own image's other crop first in the bank
-// (23 of 30).
+// The measure on distributions (analysis/quality/texture_distributions, issue 42) against the order a
+// person sees (docs/design.md 5), on each sample material at five lights (15 to 75 degrees, from azimuth
+// 30), each comparison a CHECK on measured distances:
+//  - another region of the same image below a 1-pixel blur, +10% gain, a 10 degree hue shift and a
+//    quarter turn;
+//  - each of those below the phase-randomised version (the same spectrum, no crease, thread or rock), that
+//    below another material under the same light, and that below white noise of the measured colours;
+//  - in a bank of every material under 5 lights, two disjoint crops each, each crop's nearest neighbour
+//    its own image's other crop, and every crop of its material nearer than any other material's.
+// One exception, measured and not asserted: coast_sand_rocks' quarter turn under a light under 45 degrees
+// from the pole. Its rocks' shading there is weaker than the moss's colour (the lighting vectors of two
+// crops differ by more than a turn moves them), so a turned crop is another crop of the same material;
+// under lights from opposite azimuths at 45 degrees the measure does not tell its images apart either, and
+// neither could I by eye, so the bank's five lights differ in elevation (docs/design.md 5.1).
 #include <catch2/catch.hpp>
 
-#include <chrono>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -59,7 +58,7 @@ TEST_CASE(
     "[quality][distributions]") {
   const auto [name, other] = GENERATE(table<std::string, std::string>(
       {{"leather", "fabric"}, {"fabric", "coast_sand_rocks"}, {"coast_sand_rocks", "leather"}}));
-  const double theta = GENERATE(15.0, 45.0, 75.0);
+  const double theta = GENERATE(15.0, 30.0, 45.0, 60.0, 75.0);
   const Ranking r = ranking_of(name, other, theta);
   std::printf(
       "%-17s light %2.0f: crop %.3f  blur %.3f  gain %.3f  hue %.3f  turned %.3f | phase-randomised %.3f | "
@@ -70,12 +69,13 @@ TEST_CASE(
             << ", hue +10 " << r.hue << ", quarter turn " << r.turned << ", phase-randomised " << r.gaussian
             << ", " << other << " " << r.other << ", white noise " << r.noise);
   for (const double mild : {r.blur, r.gain, r.hue}) CHECK(r.crop < mild);
+  if (name != "coast_sand_rocks" || theta >= 45.0) CHECK(r.crop < r.turned);
   for (const double mild : {r.blur, r.gain, r.hue, r.turned}) CHECK(mild < r.gaussian);
   CHECK(r.gaussian < r.other);
-  CHECK(r.gaussian < r.noise);
+  CHECK(r.other < r.noise);
 }
 
-TEST_CASE("the distribution measure puts every crop of a material nearer than any other material's",
+TEST_CASE("the distribution measure retrieves a crop's own image first and its own material before any other",
           "[quality][distributions]") {
   struct Crop {
     std::string material;
@@ -83,7 +83,7 @@ TEST_CASE("the distribution measure puts every crop of a material nearer than an
     DistributionStatistics statistics;
   };
   std::vector<Crop> bank;
-  const double lights[5][2] = {{15, 30}, {30, 150}, {45, 270}, {60, 30}, {45, 90}};
+  const double lights[5][2] = {{15, 30}, {30, 150}, {45, 270}, {60, 30}, {75, 90}};
   int image_index = 0;
   for (const std::string name : {"leather", "fabric", "coast_sand_rocks"}) {
     for (const auto& light : lights) {
@@ -116,6 +116,7 @@ TEST_CASE("the distribution measure puts every crop of a material nearer than an
     INFO(bank[q].material << " image " << bank[q].image << ": farthest crop of its material " << farthest_same
                           << ", nearest of another " << nearest_other);
     CHECK(farthest_same < nearest_other);
+    CHECK(bank[nearest].image == bank[q].image);
     own_image_first += bank[nearest].image == bank[q].image;
   }
   std::printf("retrieval: the crop's own image's other crop is nearest for %d of %zu crops\n",

@@ -14,7 +14,7 @@
 
 namespace carbtf::test {
 
-inline constexpr std::uint32_t kSize = 192;
+inline constexpr std::uint32_t kSize = 256;
 
 // One rendered image of a sample material, kSize^2: top view, light at `theta` degrees from azimuth `phi`.
 inline RgbField rendered_sample(const std::string& name, double theta, double phi = 30.0) {

@@ -1,28 +1,34 @@
-// The texture measure rebuilt on distributions (issue 42, docs/design.md 5), beside the moment-based one of
-// texture_similarity.hpp that `fidelity` and the analysis still use until this one ranks every case as a
-// person does (what it does not yet: docs/design.md 5). A random-field model never equals its
+// The texture measure on distributions (issue 42, docs/design.md 5). A random-field model never equals its
 // measurement pixel for pixel, so it compares whole distributions of what the eye compares, in CIE
-// L*a*b* (D65), in six groups:
-//  - colour:      the L*, a* and b* marginals (1D optimal transport of their quantiles, in Lab units);
-//  - energy:      the L* band energy per octave and the a* and b* band energy per octave, in dB, down to
-//                 periods of a quarter of a 256-pixel image (the coarsest octave that 8 pixels of the
-//                 pyramid still hold);
-//  - responses:   the shape of each octave's oriented band responses (complex Gabor filters at 0, 45,
-//                 90 and 135 degrees on a Laplacian pyramid), each orientation scaled to unit RMS: sparse,
-//                 heavy-tailed responses are edges, a Gaussian field's are Gaussian;
+// L*a*b* (D65), in eight groups:
+//  - colour:       the L*, a* and b* marginals (1D optimal transport of their quantiles, in Lab units);
+//  - energy:       the L* band energy per octave and the a* and b* band energy per octave, in dB, down to
+//                  periods of a quarter of a 256-pixel image (the coarsest octave that 8 pixels of the
+//                  pyramid still hold);
+//  - grain:        fine grain the reference lacks: the finest octave's energy over the next one's, where
+//                  the candidate's is the steeper (one-sided, so the distance is not symmetric: a blur that
+//                  loses grain is a mild change, speckle on smooth cells is not);
+//  - responses:    the shape of each octave's oriented band responses (complex Gabor filters at 0, 45, 90
+//                  and 135 degrees on a Laplacian pyramid), each orientation scaled to unit RMS: sparse,
+//                  heavy-tailed responses are edges, a Gaussian field's are Gaussian;
 //  - local energy: the shape of each octave's local-energy distribution (the responses' modulus over the
-//                 orientations, over its mean): flat cells against creases;
-//  - coherence:   what only structure has: local energy that persists across adjacent octaves, and that
-//                 lights adjacent and orthogonal orientations together (Portilla and Simoncelli 2000),
-//                 as correlations, pooled over orientations so that a quarter turn leaves them;
-//  - orientation: which way the texture runs and is lit: each orientation's energy against its octave's,
-//                 and the skewness of its odd response (relief lit from one side has bright rising edges
-//                 and soft falling ones along the light; a Gaussian field has none, a quarter turn moves it).
+//                  orientations, over its mean): flat cells against creases;
+//  - coherence:    what only structure has: local energy that persists across adjacent octaves, and that
+//                  lights adjacent and orthogonal orientations together (Portilla and Simoncelli 2000), as
+//                  correlations, pooled over orientations so that a quarter turn leaves them;
+//  - orientation:  which way the texture runs: each orientation's energy against its octave's;
+//  - lighting:     which way it is lit, as a vector per octave (the first circular harmonic over the
+//                  orientations): of the odd response's skewness (relief lit from one side has bright
+//                  rising edges and soft falling ones), and of its mean over the band's darkest and
+//                  brightest tenths (a cast shadow lies away from the light). A Gaussian field has none; a
+//                  quarter turn or another light direction turns it.
 // Each feature difference is divided by what a person calls a clear difference and saturated at 4 of
-// those; a group is the RMS of its features, and the distance a weighted mean of the groups in which the
-// structure groups (responses, local energy, coherence) count most. Phase-randomising an image keeps the
-// energy and loses the structure groups; a 1-pixel blur, a 10% gain and a 10 degree hue shift move energy
-// or colour a little and keep the structure (the ranking tests,
+// those. The structure statistics' scales grow with their sampling noise over a band's pixels, and a
+// level under 2,048 pixels counts in proportion, so that the content two crops of one texture happen to
+// hold at coarse octaves is not read as change. A group is the RMS of its features, the distance a
+// weighted mean of the groups, in which the structure groups count most. Phase-randomising an image keeps
+// the energy and loses the structure groups; a 1-pixel blur, a 10% gain and a 10 degree hue shift move
+// energy or colour a little and keep the structure (the ranking tests,
 // tests/analysis/test_texture_distributions.cpp, and docs/design.md 5). A pair of 256^2 images takes
 // about 45 ms on one core of this machine.
 //
@@ -50,14 +56,18 @@ struct DistributionStatistics {
   std::vector<std::vector<float>> energy_quantiles;  // per octave: local energy over its mean
   std::vector<double> cross_scale;                   // per adjacent octave pair: correlation of local energy
   std::vector<double> cross_orientation;  // per octave: adjacent then orthogonal orientations' correlation
+  std::vector<double> band_pixels;  // per octave: the band's pixel count, which sets its statistics' noise
   std::vector<double>
       odd_skewness;  // octave-major, per orientation: skewness of the odd (imaginary) response
+  // octave-major, per orientation: the odd response's mean over the band's darkest (brightest) tenth,
+  // over its RMS
+  std::vector<double> dark_side, bright_side;
 };
 
 struct DistributionDistance {
-  static constexpr std::size_t kGroups = 6;
-  static constexpr std::array<const char*, kGroups> kGroupNames{"colour",       "energy",    "responses",
-                                                                "local_energy", "coherence", "orientation"};
+  static constexpr std::size_t kGroups = 8;
+  static constexpr std::array<const char*, kGroups> kGroupNames{
+      "colour", "energy", "grain", "responses", "local_energy", "coherence", "orientation", "lighting"};
   std::array<double, kGroups> groups{};
   double total = 0.0;  // weighted mean over the groups
 };
@@ -69,7 +79,8 @@ struct DistributionOptions {
 // Throws std::invalid_argument for an image under 16 x 16 or a buffer too small.
 DistributionStatistics distribution_statistics(std::span<const float> rgb, std::uint32_t width,
                                                std::uint32_t height, const DistributionOptions& options = {});
-// Both from the same options and images large enough for the same octaves; throws otherwise.
+// a is the candidate (a model, a distorted image), b the reference (the measurement); both from the same
+// options and images large enough for the same octaves; throws otherwise.
 DistributionDistance distribution_distance(const DistributionStatistics& a, const DistributionStatistics& b);
 
 }  // namespace carbtf
