@@ -17,7 +17,7 @@
 #include "carbtf/analysis/model/relief_specular.hpp"
 #include "carbtf/analysis/model/relief_tone.hpp"
 #include "carbtf/analysis/progress.hpp"
-#include "carbtf/analysis/quality/texture_similarity.hpp"
+#include "carbtf/analysis/quality/texture_distributions.hpp"
 #include "carbtf/reference/subspace_synthesis.hpp"
 #include "carbtf/analysis/range/surface_integration.hpp"
 #include "carbtf/analysis/resource_usage.hpp"
@@ -142,8 +142,8 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
 
   // Each candidate (tone weight, clamp) gives a model; the one whose image, as the render pass
   // composes it (smooth texture x its share of the tone x relit factor), is nearest the measured image
-  // by the texture-similarity measure wins.
-  const TextureStatistics measured = texture_statistics(rgb, width, height);
+  // by the texture measure (texture_distributions.hpp) wins.
+  const DistributionStatistics measured = distribution_statistics(rgb, width, height);
   const std::vector<double> weights = options.tone_weights.empty() ? std::vector<double>{1.0} : options.tone_weights;
   std::vector<std::uint32_t> level_counts{options.pyramid_levels};
   for (const std::uint32_t levels : options.other_level_counts) {
@@ -151,9 +151,32 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
   }
   std::optional<SubspaceModel> best;
   double best_score = 0.0, best_distance = 0.0, best_clamp = 0.0;
+  std::vector<Plane> best_share;
   std::vector<std::string> best_notes;
   const std::size_t candidates = weights.size() * options.remainder_clamps.size() * level_counts.size();
   const std::uint32_t draws = candidates > 1 ? options.selection_draws : 1;  // one candidate needs no choosing
+  // The mean distance over `draws` draws of a candidate's model image, as the render pass composes it
+  // (smooth texture x its share of the tone x relit factor, plus the highlights). Draw d of every
+  // candidate uses the same noise, so only the model differs between candidates.
+  const auto distance_of = [&](const SubspaceModel& model, const std::vector<Plane>& share) {
+    Material single;
+    single.subspaces.push_back(model);
+    double distance = 0.0;
+    std::vector<float> image(rgb.size());
+    for (std::uint32_t draw = 0; draw < draws; ++draw) {
+      reference::SubspaceBlock block;  // the default burn-in, as synthesis uses
+      block.seed = options.segmentation.seed + draw;
+      block.width = width;
+      block.height = height;
+      reference::synthesize_subspace(single, 0, block, image);
+      apply_relief(image, share, relit);
+      if (specular.strength > 0.0) {
+        for (std::size_t p = 0; p < image.size(); ++p) image[p] += static_cast<float>(highlight(static_cast<Eigen::Index>(p / 3 / width), static_cast<Eigen::Index>(p / 3 % width)));
+      }
+      distance += distribution_distance(distribution_statistics(image, width, height), measured).total / draws;
+    }
+    return distance;
+  };
   for (const double weight : weights) {
     const std::vector<Plane> smooth = prepared(weight);
     const std::vector<Plane> share = weighted_tone(tone, weight, chroma);
@@ -163,43 +186,51 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
       match_render_mean(clamped, channels, share, relit);
       for (const std::uint32_t levels : level_counts) {
         std::vector<std::string> candidate_notes;
-        Material single;
-        single.subspaces.push_back(fit_channels(clamped, pair, levels, options, candidate_notes));
-        single.subspaces[0].tone_weight = static_cast<float>(weight);
+        SubspaceModel candidate = fit_channels(clamped, pair, levels, options, candidate_notes);
+        candidate.tone_weight = static_cast<float>(weight);
         // One draw's distance varies by about as much as the candidates differ (on fabric the choice
-        // followed the noise stream), so a candidate scores the mean over several draws; draw d of every
-        // candidate uses the same noise, so only the model differs between candidates.
-        double distance = 0.0;
-        std::vector<float> image(rgb.size());
-        for (std::uint32_t draw = 0; draw < draws; ++draw) {
-          reference::SubspaceBlock block;  // the default burn-in, as synthesis uses
-          block.seed = options.segmentation.seed + draw;
-          block.width = width;
-          block.height = height;
-          reference::synthesize_subspace(single, 0, block, image);
-          apply_relief(image, share, relit);
-          if (specular.strength > 0.0) {
-            for (std::size_t p = 0; p < image.size(); ++p) image[p] += static_cast<float>(highlight(static_cast<Eigen::Index>(p / 3 / width), static_cast<Eigen::Index>(p / 3 % width)));
-          }
-          distance += texture_distance(texture_statistics(image, width, height), measured).total / draws;
-        }
+        // followed the noise stream), so a candidate scores the mean over several draws.
+        const double distance = distance_of(candidate, share);
         // Another level count has to be clearly nearer: within one draw's noise the default stays.
         const double score = levels == options.pyramid_levels ? distance : distance * (1.0 + kLevelChoiceMargin);
         if (!best || score < best_score) {
-          best = std::move(single.subspaces[0]);
+          best = std::move(candidate);
           best_score = score;
           best_distance = distance;
           best_clamp = clamp;
+          best_share = share;
           best_notes = std::move(candidate_notes);
         }
       }
     }
   }
+  // The gains, first on every band, then on the chroma bands alone (the colour PCA's second and third):
+  // where the tone already gives the threads their colours, the CAR's chroma is blotches.
+  double best_gain = 1.0, best_chroma_gain = 1.0;
+  std::size_t gain_candidates = 0;
+  for (const bool chroma_only : {false, true}) {
+    const SubspaceModel chosen = *best;
+    for (const double gain : options.noise_gains) {
+      if (gain == 1.0) continue;
+      ++gain_candidates;
+      SubspaceModel quieter = chosen;
+      for (std::size_t b = 0; b < quieter.bands.size(); ++b) {
+        if (chroma_only && b % quieter.channels == 0) continue;
+        quieter.bands[b].sigma = to_stored_precision(static_cast<float>(quieter.bands[b].sigma * gain));
+      }
+      const double distance = distance_of(quieter, best_share);
+      if (distance < best_distance) {
+        best = std::move(quieter);
+        best_distance = distance;
+        (chroma_only ? best_chroma_gain : best_gain) = gain;
+      }
+    }
+  }
   notes = std::move(best_notes);
-  char line[200];
+  char line[240];
   std::snprintf(line, sizeof line,
-                "tone weight %.2g, remainder clamp %.2g, %u pyramid levels chosen of %zu candidates (texture distance %.3f, mean of %u draws)",
-                static_cast<double>(best->tone_weight), best_clamp, best->levels, candidates, best_distance, draws);
+                "tone weight %.2g, remainder clamp %.2g, %u pyramid levels, noise gain %.2g, chroma gain %.2g chosen of %zu candidates (texture distance %.3f, mean of %u draws)",
+                static_cast<double>(best->tone_weight), best_clamp, best->levels, best_gain, best_chroma_gain, candidates + gain_candidates, best_distance, draws);
   notes.emplace_back(line);
   return *best;
 }

@@ -82,7 +82,7 @@ void register_analyze_command(CLI::App& app) {
   command->add_option("--levels", a.pyramid_levels, "Gaussian-Laplacian pyramid levels (the paper uses up to 3)")->check(CLI::Range(1, 6))->capture_default_str();
   command->add_option("--other-levels", a.other_level_counts,
                       "With the relief tone, pyramid level counts a subspace image may take instead of --levels: per "
-                      "subspace, one wins where its model looks at least 2% nearer the measurement (texture-similarity "
+                      "subspace, one wins where its model looks at least 2% nearer the measurement (texture "
                       "measure). 2 beside 3 lowers fabric's mean rel at 256^2 from 0.48 to 0.45 and leaves leather's model "
                       "as it was; 0: none, every subspace takes --levels")
       ->check(CLI::Range(0u, 6u))
@@ -126,7 +126,7 @@ void register_analyze_command(CLI::App& app) {
   command->add_option("--remainder-clamp", a.remainder_clamps,
                       "With the relief tone, each subspace image's smooth remainder is clamped to its median +- K robust "
                       "standard deviations before the CAR fit, so that relief lines the tone does not explain do not become "
-                      "speckle; per subspace the K of this list whose model looks nearest the measurement (texture-similarity "
+                      "speckle; per subspace the K of this list whose model looks nearest the measurement (texture "
                       "measure) is kept. One value fixes it; 0: no clamp")
       ->check(CLI::Range(0.0, 100.0))
       ->delimiter(',')

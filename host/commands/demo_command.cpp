@@ -128,7 +128,7 @@ void run_demo(const DemoOptions& options) {
   }
 
   // 4. Fidelity: the model and the measurement through the same render pass at a spread of measured
-  // (light, view) pairs, scored by the calibrated texture-similarity measure.
+  // (light, view) pairs, scored by the calibrated texture measure.
   step(4, "fidelity: model and measurement through the same render pass, grazing light included");
   start = std::chrono::steady_clock::now();
   FidelityRunOptions fidelity_options;

@@ -1,6 +1,6 @@
 // `carbtf fidelity material.cbtf DATASET --out DIR`: how close the model looks to the measurement it
 // was fitted to, measured (docs/design.md 5): both drawn through the same render pass at a spread of measured
-// (light, view) pairs, compared by the calibrated texture-similarity measure, beside the best
+// (light, view) pairs, compared by the calibrated texture measure on distributions, beside the best
 // stationary Gaussian texture. Prints rel per pair, mean and worst; writes a CSV, a markdown table and
 // a picture grid (measured | model | Gaussian reference).
 #include <cstdio>
@@ -77,8 +77,9 @@ void register_fidelity_command(CLI::App& app) {
   auto* command = app.add_subcommand(
       "fidelity",
       "How close the model looks to its measurement: model and measured images through the same render pass at a spread of "
-      "(light, view) pairs, grazing light included, scored by a calibrated texture-similarity measure (rel: 0 = the "
-      "measurement against itself, 1 = white noise) beside the best Gaussian texture; CSV, markdown and a picture grid");
+      "(light, view) pairs, grazing light included, scored by a calibrated texture measure on distributions (s: 0 = the measurement "
+      "against another region of itself, 1 = no better than a Gaussian field of its spectrum; rel: 1 = white noise), "
+      "with a verdict against that Gaussian per pair; CSV, markdown and a picture grid (measured | model | Gaussian)");
   command->add_option("material", options->material, "Material file (.cbtf)")->required();
   command->add_option("dataset", options->dataset, "The measured BTF the material was analysed from")->required();
   command->add_option("--out", options->out, "Output folder")->capture_default_str();

@@ -87,7 +87,7 @@ std::vector<float> rgba_floats(const RenderedImage& frame) {
   return values;
 }
 
-// The smallest side of the plane's image the measure scores (texture_statistics() wants 16 x 16).
+// The smallest side of the plane's image the measure scores (distribution_statistics() wants 16 x 16).
 constexpr std::uint32_t kMinCoveredSide = 16;
 
 }  // namespace
@@ -122,10 +122,12 @@ std::vector<FidelityPair> spread_fidelity_pairs(const Material& material, const 
     const auto light = static_cast<std::uint32_t>((x - std::floor(x)) * static_cast<double>(lights));
     const auto view = static_cast<std::uint32_t>((y - std::floor(y)) * static_cast<double>(views));
     if (light >= lights || view >= views || taken[light * views + view] || !dataset.has_image({light, view})) continue;
-    // A view so oblique that the plane's image is too thin to score (its side shrinks by cos theta, and
-    // the covered rectangle loses up to two rows at its slanted edges).
-    const double side = std::cos(static_cast<double>(material.views[view].theta)) * std::min(dataset.width(), dataset.height());
-    if (side < kMinCoveredSide + 2) continue;
+    // A view so oblique that the plane's image is too thin to score well: its side shrinks by cos theta,
+    // and at an azimuth between the axes the rectangle inside the slanted plane shrinks further (at 75
+    // degrees, 256^2 images gave halves of 22 x 45 pixels, where two crops of one image differ by as
+    // much as a model does). Views covering under a third of the frame's side are skipped.
+    const double side = std::min(dataset.width(), dataset.height());
+    if (std::cos(static_cast<double>(material.views[view].theta)) * side < std::max(side / 3.0, kMinCoveredSide + 2.0)) continue;
     taken[light * views + view] = true;
     pairs.push_back({light, view, "light " + degrees_text(material.lights[light]) + " view " + degrees_text(material.views[view])});
   }
@@ -282,8 +284,8 @@ RgbField fidelity_grid(const std::vector<PairFidelity>& results) {
 std::string fidelity_csv(const std::vector<PairFidelity>& results, const Material& material) {
   std::ostringstream csv;
   csv << "light,view,light_theta,light_phi,view_theta,view_phi,rel,structure,gaussian_rel,floor,ceiling,gaussian_distance,model_distance";
-  for (const char* name : TextureDistance::kGroupNames) csv << ',' << name;
-  for (const char* name : TextureDistance::kGroupNames) csv << ",gaussian_" << name;
+  for (const char* name : DistributionDistance::kGroupNames) csv << ',' << name;
+  for (const char* name : DistributionDistance::kGroupNames) csv << ",gaussian_" << name;
   csv << '\n';
   for (const PairFidelity& r : results) {
     const MaterialDirection& l = material.lights[r.pair.light];

@@ -1,7 +1,7 @@
 // Fidelity of a material against the measured BTF it models, as a person would judge it (docs/design.md 5,
 // issue 13): the model and the measured images are drawn through the same render pass (a plane,
-// orthographic, the measured view and light), and the calibrated texture-similarity measure
-// (analysis/quality/texture_similarity) compares them, beside the best stationary Gaussian texture.
+// orthographic, the measured view and light), and the calibrated texture measure
+// (analysis/quality/texture_references.hpp, on texture_distributions.hpp) compares them, beside the best stationary Gaussian texture.
 // Serves `carbtf fidelity` and the demo.
 #pragma once
 
@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "carbtf/analysis/btf/btf_dataset.hpp"
-#include "carbtf/analysis/quality/texture_similarity.hpp"
+#include "carbtf/analysis/quality/texture_references.hpp"
 #include "carbtf/engine/vulkan/context.hpp"
 #include "carbtf/engine/material/material.hpp"
 
@@ -30,7 +30,7 @@ std::vector<FidelityPair> default_fidelity_pairs(const Material& material);
 // `count` measured pairs spread evenly over all lights x views (the R2 low-discrepancy sequence over
 // their indices), the same for every run: a broader sample than the default five, on which a few pairs
 // can sway a verdict (the specular lobe costs coast_sand_rocks on the five, most at the mirror pair, and
-// helps it over 16 spread pairs). Views too oblique for the image size to score are skipped; fewer
+// helps it over 16 spread pairs). Views that cover under a third of the frame (over 70.5 degrees) are skipped; fewer
 // where the dataset has fewer images, none where no view can be scored.
 std::vector<FidelityPair> spread_fidelity_pairs(const Material& material, const BtfDataset& dataset, std::size_t count);
 

@@ -39,7 +39,7 @@ void write_demo_report(const std::filesystem::path& folder, const DemoFigures& f
       "from "
       "the measured view, lit from the measured light), at a spread of pairs with grazing light. The model "
       "is a "
-      "random field: it matches statistics, not pixels, so a calibrated texture-similarity measure compares "
+      "random field: it matches statistics, not pixels, so a calibrated texture measure compares "
       "distributions (Lab marginals, oriented band responses and local energy per octave, and the coherence "
       "of local energy across octaves and orientations that only structure has). The structure score s is 0 "
       "for the measurement against another region of itself and 1 for the third column, the measurement with "

@@ -14,11 +14,13 @@
 // neither could I by eye, so the bank's five lights differ in elevation (docs/design.md 5.1).
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
 
 #include "carbtf/analysis/quality/texture_distributions.hpp"
+#include "carbtf/analysis/quality/texture_references.hpp"
 #include "texture_cases.hpp"
 
 namespace carbtf {
@@ -132,6 +134,24 @@ TEST_CASE("the distribution measure is zero for an image against itself and need
   CHECK_THROWS_AS(distribution_distance(distribution_statistics(small.rgb, 20, 20), s),
                   std::invalid_argument);
   CHECK_THROWS_AS(distribution_statistics(image.rgb, 8, 8), std::invalid_argument);
+}
+
+TEST_CASE("calibrated fidelity puts the measurement near 0, white noise near 1 and the Gaussian between",
+          "[quality][distributions]") {
+  const RgbField image = test::rendered_sample("fabric", 45.0);
+  const CalibratedFidelity itself = calibrated_fidelity(image, image);
+  INFO("floor " << itself.floor << ", ceiling " << itself.ceiling << ", gaussian " << itself.gaussian
+                << ", model " << itself.model);
+  CHECK(itself.floor < itself.gaussian);
+  CHECK(itself.gaussian < itself.ceiling);
+  CHECK(std::abs(itself.rel) < 0.1);  // the model crop is the centre of the measurement
+  CHECK(itself.structure < 0.2);
+  CHECK(itself.gaussian_rel > 0.0);
+  CHECK(itself.gaussian_rel < 1.0);
+  const CalibratedFidelity noise = calibrated_fidelity(white_noise_like(image, 9), image);
+  CHECK(noise.rel == Approx(1.0).margin(0.2));
+  CHECK(noise.structure > 1.0);
+  CHECK_THROWS_AS(calibrated_fidelity(crop(image, 0, 0, 64, 64), image), std::invalid_argument);
 }
 
 }  // namespace carbtf

@@ -377,7 +377,7 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
     const Run with_choice = run("analyze " + btf.string() + " --subspaces 8 --levels 2 --tone-weights 0,1 --selection-draws 2 --out " + chosen.string());
     INFO(with_choice.output);
     REQUIRE(with_choice.status == 0);
-    CHECK_THAT(with_choice.output, Catch::Contains("chosen of 12 candidates") && Catch::Contains("mean of 2 draws"));
+    CHECK_THAT(with_choice.output, Catch::Contains("chosen of 24 candidates") && Catch::Contains("mean of 2 draws"));  // 2 weights x 6 clamps, 12 noise gains
     CHECK_THAT(run("info " + material.string()).output, Catch::Contains("taken whole by 8 subspaces") && !Catch::Contains("TWGT"));
     const Run out_of_range = run("analyze " + btf.string() + " --tone-weights 2 --out " + (folder / "bad.cbtf").string());
     CHECK(out_of_range.status != 0);

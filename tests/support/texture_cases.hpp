@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "carbtf/analysis/quality/texture_similarity.hpp"
+#include "carbtf/analysis/quality/texture_references.hpp"
 #include "carbtf/analysis/sample/height_field_renderer.hpp"
 #include "carbtf/analysis/sample/sample_materials.hpp"
 

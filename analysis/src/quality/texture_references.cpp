@@ -1,12 +1,10 @@
-// The references that calibrate the texture-similarity measure (docs/design.md 5): disjoint crops, the
-// phase-randomised image (the best stationary Gaussian field), white noise of the same colour
-// statistics, and the calibrated fidelity built from them.
+#include "carbtf/analysis/quality/texture_references.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 #include "carbtf/analysis/btf/btf_dataset.hpp"  // the sRGB transfer function
-#include "carbtf/analysis/quality/texture_similarity.hpp"
 #include "carbtf/reference/noise.hpp"
 #include "fourier_2d.hpp"
 
@@ -101,7 +99,7 @@ RgbField white_noise_like(const RgbField& image, std::uint64_t seed) {
 }
 
 CalibratedFidelity calibrated_fidelity(const RgbField& model, const RgbField& measured, std::uint64_t seed,
-                                       const TextureSimilarityOptions& options) {
+                                       const DistributionOptions& options) {
   const bool split_columns = measured.width >= measured.height;
   const std::uint32_t w = split_columns ? measured.width / 2 : measured.width;
   const std::uint32_t h = split_columns ? measured.height : measured.height / 2;
@@ -112,9 +110,9 @@ CalibratedFidelity calibrated_fidelity(const RgbField& model, const RgbField& me
   }
   const RgbField a = crop(measured, 0, 0, w, h);
   const RgbField b = split_columns ? crop(measured, 0, w, w, h) : crop(measured, h, 0, w, h);
-  const TextureStatistics reference = texture_statistics(a.rgb, w, h, options);
+  const DistributionStatistics reference = distribution_statistics(a.rgb, w, h, options);
   auto distance = [&](const RgbField& image) {
-    return texture_distance(texture_statistics(image.rgb, w, h, options), reference);
+    return distribution_distance(distribution_statistics(image.rgb, w, h, options), reference);
   };
   CalibratedFidelity f;
   f.floor = distance(b).total;

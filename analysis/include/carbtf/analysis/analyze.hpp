@@ -62,7 +62,7 @@ struct AnalysisOptions {
   // With the relief tone: the smooth remainder is clamped to its median +- k robust standard
   // deviations before the fit (model/relief_tone.hpp; k = 0: not clamped). Per subspace, the k of
   // this list whose model image (CPU synthesis x tone x relit factor) is nearest the measured image
-  // by the texture-similarity measure is kept: a woven material wants a tight clamp (its remainder
+  // by the texture measure is kept: a woven material wants a tight clamp (its remainder
   // is relief the CAR can only turn into speckle), a stochastic one a loose one. Empty: no clamp.
   std::vector<double> remainder_clamps = {0.25, 0.5, 1.0, 1.5, 2.0, 3.0};
   // Noise draws (seeds seed, seed + 1, ...) each clamp candidate is synthesized from; it scores the
@@ -85,6 +85,12 @@ struct AnalysisOptions {
   // subspaces take 2 levels and mean rel falls from 0.479 to 0.453 (fidelity seeds 1-3);
   // coast_sand_rocks 0.208 -> 0.201; leather keeps 3 everywhere, the same model. Empty: fixed.
   std::vector<std::uint32_t> other_level_counts = {2};
+  // With the relief tone and a clamp list: after the clamp, tone weight and level count, the candidate
+  // gains on every band's sigma (the smooth texture's contrast around its mean), chosen per subspace by
+  // the same measure. Where the tone and the relit range map already draw what the image holds, the
+  // CAR's remainder is mostly the relief's misregistration, and at full strength it puts speckle on
+  // leather's flat cells. Empty or {1}: the fitted sigma.
+  std::vector<double> noise_gains = {1.0, 0.7, 0.5, 0.35, 0.25, 0.125, 0.0};
   // Per measured pair, colour gains that give its render its measurement's mean Lab colour
   // (model/pair_gains.hpp, Material::pair_gains).
   bool pair_gains = true;

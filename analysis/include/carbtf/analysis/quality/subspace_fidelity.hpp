@@ -1,5 +1,5 @@
 // The fidelity of synthesized subspace images alone (the fidelity column of `carbtf bench synth`): the
-// calibrated texture-similarity rel (texture_similarity.hpp) of each subspace image against the
+// calibrated rel of the texture measure (texture_references.hpp) of each subspace image against the
 // measured image of its representative pair, the image its model was fitted to. The model image is the
 // subspace image times the enlarged relief tone and relit range map (apply_relief): the render pass at
 // the pair's own directions without parallax or interpolation, so the figure follows the synthesis
@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "carbtf/analysis/btf/btf_dataset.hpp"
-#include "carbtf/analysis/quality/texture_similarity.hpp"
+#include "carbtf/analysis/quality/texture_references.hpp"
 #include "carbtf/engine/material/material.hpp"
 #include "carbtf/engine/synthesis/synthesis_request.hpp"
 
