@@ -52,16 +52,6 @@ void run_analyze(const AnalyzeCommandOptions& options) {
   if (!options.report.empty()) std::printf("report: %s\n", options.report.c_str());
 }
 
-// An option taking auto, yes or no into an AutoChoice; its help shows the current value as default.
-void add_auto_choice(CLI::App* command, const std::string& name, AutoChoice& target, const std::string& help) {
-  static const std::map<std::string, AutoChoice> choices{
-      {"auto", AutoChoice::automatic}, {"yes", AutoChoice::always}, {"no", AutoChoice::never}};
-  const auto current = std::find_if(choices.begin(), choices.end(), [&](const auto& c) { return c.second == target; });
-  command->add_option_function<std::string>(name, [&target](const std::string& value) { target = choices.at(value); }, help)
-      ->check(CLI::IsMember({"auto", "yes", "no"}))
-      ->default_str(current->first);
-}
-
 }  // namespace
 
 void register_analyze_command(CLI::App& app) {
@@ -80,14 +70,6 @@ void register_analyze_command(CLI::App& app) {
       ->check(CLI::Range(2, 1024))->capture_default_str();
   command->add_option("--seed", a.segmentation.seed, "Seed of k-means++ and of the range tiles")->check(non_negative())->capture_default_str();
   command->add_option("--levels", a.pyramid_levels, "Gaussian-Laplacian pyramid levels (the paper uses up to 3)")->check(CLI::Range(1, 6))->capture_default_str();
-  command->add_option("--other-levels", a.other_level_counts,
-                      "With the relief tone, pyramid level counts a subspace image may take instead of --levels: per "
-                      "subspace, one wins where its model looks at least 2% nearer the measurement (texture "
-                      "measure). 2 beside 3 lowers fabric's mean rel at 256^2 from 0.48 to 0.45 and leaves leather's model "
-                      "as it was; 0: none, every subspace takes --levels")
-      ->check(CLI::Range(0u, 6u))
-      ->delimiter(',')
-      ->capture_default_str();
   command->add_option("--stereo-view", a.stereo_view, "View index for photometric stereo (-1: the view nearest the normal)")
       ->check(CLI::Range(-1, 4095))->capture_default_str();
   command->add_option("--tile-size", a.tiles.tile_size, "Range-map tile size in texels (even)")->check(CLI::Range(4, 1024))->capture_default_str();
@@ -99,71 +81,21 @@ void register_analyze_command(CLI::App& app) {
       ->check(CLI::Range(1, 16))
       ->capture_default_str();
   command->add_option("--tone-bits", a.tiles.tone_bits, "Relief-tone quantization in bits")->check(CLI::Range(1, 8))->capture_default_str();
-  command->add_option("--feather", a.tiles.feather, "Texels over which each range-tile cut cross-fades its two patches (0: hard cuts)")
-      ->check(CLI::Range(0, 4))
-      ->capture_default_str();
-  command->add_flag("--collapse-calibration", a.calibrate_collapse,
-                    "Rescale each band's sigma so that the collapsed pyramid keeps the measured contrast (the synthesized "
-                    "images otherwise keep 55-80% of the measured variance)");
   command->add_flag("!--no-relief-tone", a.relief_tone,
-                    "Leave out the relief tone: the photometric-stereo albedo stored with the range tiles, which puts the "
-                    "creases' dark colour where the range map puts the creases (on by default)");
-  command->add_flag("--coloured-tone", a.coloured_tone,
-                    "Let each colour channel follow the relief tone by its own measured slope where those slopes explain "
-                    "most of how the channels' tones differ (a fabric of blue and white threads; the tone stays grey "
-                    "otherwise). Off by default: it can leave the smooth texture's noise too strong on small images");
-  add_auto_choice(command, "--tone-planes", a.tone_planes,
-                  "Store the relief tone as one plane per colour channel (R, G, B), so that colour follows the relief "
-                  "texel by texel (threads of different colours keep their colours): auto where the tone's colour departs "
-                  "from grey visibly (a two-colour weave, not a leather), yes, or no. Off by default: fabric looks much "
-                  "nearer its measurement with it (mean rel 0.42 -> 0.35 at 256^2), but the measure then no longer sees its "
-                  "noise: every sigma halved scores as well (docs/design.md 4.2)");
-  add_auto_choice(command, "--shadows", a.relief_shadows,
-                  "With the relief tone, let the relief cast shadows in the render pass (a crease wall that faces the "
-                  "light stays lit, the crease behind it goes dark): auto at the strength that best explains the "
-                  "photometric-stereo view's images, where shadows explain them better (a rocky scan, not a leather); "
-                  "yes at full strength; no");
-  command->add_option("--remainder-clamp", a.remainder_clamps,
-                      "With the relief tone, each subspace image's smooth remainder is clamped to its median +- K robust "
-                      "standard deviations before the CAR fit, so that relief lines the tone does not explain do not become "
-                      "speckle; per subspace the K of this list whose model looks nearest the measurement (texture "
-                      "measure) is kept. One value fixes it; 0: no clamp")
-      ->check(CLI::Range(0.0, 100.0))
-      ->delimiter(',')
-      ->capture_default_str();
-  command->add_option("--selection-draws", a.selection_draws,
-                      "Noise draws each clamp and tone-weight candidate is synthesized from; it scores the mean texture "
-                      "distance, so the choice follows the model rather than one draw's noise. The subspace models' analysis "
-                      "time grows with it; 3 helped fabric and not leather or coast_sand_rocks")
-      ->check(CLI::Range(1u, 16u))
-      ->capture_default_str();
-  command->add_option("--tone-weights", a.tone_weights,
-                      "With the relief tone, the candidate shares of the tone each subspace image takes (0: none, 1: all); "
-                      "per subspace the one whose model looks nearest the measurement is kept, with its clamp. 0,1 lowers "
-                      "coast_sand_rocks' mean rel on fidelity's five pairs (0.155 -> 0.142 at 256^2) but raises it over 16 "
-                      "spread pairs (0.278 -> 0.318 at seed 1); one value fixes it")
-      ->check(CLI::Range(0.0, 1.0))
-      ->delimiter(',')
-      ->capture_default_str();
+                    "For comparison: leave out the relief tone, the photometric-stereo albedo stored with the range tiles "
+                    "that puts the creases' dark colour where the range map puts the creases");
+  // The one model opt-in; everything else the analysis chooses per material or per subspace by the
+  // texture measure (docs/design.md 5.2).
   command->add_flag("--specular", a.relief_specular,
-                    "With the relief tone, add the relief's specular lobe: highlights where the range map's facets turn to "
-                    "the half vector of light and view, fitted to the photometric-stereo view's images and kept where they "
-                    "explain them better. Off by default: fabric looks nearer its measurement with it (mean rel 0.42 -> 0.39 "
-                    "at 256^2, 0.35 -> 0.32 with --tone-planes auto), coast_sand_rocks further on fidelity's default five pairs (0.155 "
-                    "-> 0.194) but nearer over 16 spread pairs (fidelity --spread 16: 0.298 -> 0.277)");
+                    "Opt-in: add the relief's specular lobe, highlights where the range map's facets turn to the half "
+                    "vector of light and view, fitted to the photometric-stereo view's images. Measured at 256^2, fidelity seed 1 (mean s, five pairs / 16 "
+                    "spread): fabric's glossy threads 0.55 -> 0.47 / 0.50 -> 0.42; coast_sand_rocks 0.69 -> 0.83 / 1.01 -> 1.02 "
+                    "(highlights its moss does not have); leather gets no lobe");
   command->add_flag("!--no-pair-gains", a.pair_gains,
-                    "Leave out the pair gains: per measured light and view, colour gains that give the pair its measured "
-                    "mean colour, which its subspace image (the representative pair's) does not have (on by default)");
-  command->add_option("--deshade", a.deshade_floor,
-                      "Divide the representative pair's relit range map out of each subspace image before fitting, the factor "
-                      "floored at this value (0: off)")
-      ->check(CLI::Range(0.0, 1.0))
-      ->capture_default_str();
+                    "For comparison: leave out the pair gains, per measured light and view the colour gains that give the "
+                    "pair its measured mean colour, which its subspace image (the representative pair's) does not have");
   command->add_option("--threads", a.threads, "Worker threads (0: all cores; at most 256)")->check(CLI::Range(0u, 256u))->capture_default_str();
-  command->callback([options] {
-    std::erase(options->analysis.other_level_counts, 0u);  // 0: none
-    run_analyze(*options);
-  });
+  command->callback([options] { run_analyze(*options); });
 }
 
 }  // namespace carbtf::cli

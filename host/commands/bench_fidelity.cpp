@@ -52,37 +52,21 @@ const std::vector<ModelVariant>& model_variants() {
          o.tiles.height_bits = 5;
          o.tiles.tone_bits = 3;
        }},
-      {"default", "relief tone, 128-texel tiles, 6-bit heights, 4-bit tone, remainder clamp chosen per subspace", [](AnalysisOptions&) {}},
+      {"default",
+       "relief tone (R, G, B planes where its colour is not grey), 128-texel tiles with feathered cuts, 6-bit heights, "
+       "4-bit tone; clamp, levels and noise gains chosen per subspace",
+       [](AnalysisOptions&) {}},
+      {"specular", "the default with the relief's specular lobe (opt-in --specular)", [](AnalysisOptions& o) { o.relief_specular = true; }},
+      {"deshade", "the default with the relit range map divided out (floor 0.3)", [](AnalysisOptions& o) { o.deshade_floor = 0.3; }},
       {"no_pair_gains", "the default without the per-pair colour gains", [](AnalysisOptions& o) { o.pair_gains = false; }},
+      {"no_noise_gains", "the default with every subspace's fitted sigma", [](AnalysisOptions& o) { o.noise_gains = {1.0}; }},
+      {"grey_tone", "the default with a grey relief tone everywhere", [](AnalysisOptions& o) { o.tone_planes = TonePlanes::never; }},
+      {"hard_cuts", "the default with hard range-tile cuts", [](AnalysisOptions& o) { o.tiles.feather = 0; }},
       {"tone_weights", "the default with each subspace's share of the relief tone (0 or 1) chosen with its clamp",
        [](AnalysisOptions& o) { o.tone_weights = {0.0, 1.0}; }},
-      {"fixed_clamp", "the default with the remainder clamp fixed at 1.5", [](AnalysisOptions& o) { o.remainder_clamps = {1.5}; }},
-      {"levels4", "the default with 4 pyramid levels (3 where the measure does not prefer them by 2%)",
-       [](AnalysisOptions& o) {
-         o.pyramid_levels = 4;
-         o.other_level_counts = {3};
-       }},
       {"fixed_levels", "the default with 3 pyramid levels in every subspace", [](AnalysisOptions& o) { o.other_level_counts = {}; }},
-      {"collapse", "the default with the collapse calibration", [](AnalysisOptions& o) { o.calibrate_collapse = true; }},
-      {"deshade", "the default with the relit range map divided out (floor 0.3)", [](AnalysisOptions& o) { o.deshade_floor = 0.3; }},
-      {"feather", "the default with range-tile cuts cross-faded over 3 texels", [](AnalysisOptions& o) { o.tiles.feather = 1; }},
-      {"specular", "the default with the relief's specular lobe", [](AnalysisOptions& o) { o.relief_specular = true; }},
       {"no_shadows", "the default without the relief's cast shadows", [](AnalysisOptions& o) { o.relief_shadows = AutoChoice::never; }},
       {"shadows", "the default with the relief's cast shadows at full strength", [](AnalysisOptions& o) { o.relief_shadows = AutoChoice::always; }},
-      {"tone_planes", "the default with the relief tone as R, G and B planes", [](AnalysisOptions& o) { o.tone_planes = TonePlanes::always; }},
-      {"tone_planes_deshade", "the relief tone as R, G and B planes of 6 bits, and the relit range map divided out (floor 0.3)",
-       [](AnalysisOptions& o) {
-         o.tone_planes = TonePlanes::always;
-         o.tiles.tone_bits = 6;
-         o.deshade_floor = 0.3;
-       }},
-      {"tone_planes_deshade_specular", "tone_planes_deshade with the relief's specular lobe (fabric's nearest model measured)",
-       [](AnalysisOptions& o) {
-         o.tone_planes = TonePlanes::always;
-         o.tiles.tone_bits = 6;
-         o.deshade_floor = 0.3;
-         o.relief_specular = true;
-       }},
   };
   return variants;
 }

@@ -24,7 +24,7 @@ using test::Run;
 namespace {
 
 // The mean of column `wanted` of fidelity.csv (6: rel; 7: s; 13: the model's colour group, the transport
-// between its Lab marginals and the measurement's in units of 3).
+// between its Lab marginals and the measurement's in units of 2 Lab units).
 double mean_column(const fs::path& csv, int wanted) {
   std::ifstream file(csv);
   std::string line;
@@ -105,28 +105,22 @@ void check_fidelity_ranking(const std::string& name) {
   INFO(name << ": fitted rel " << fitted_rel << ", without the relief tone " << without_tone_rel);
   CHECK(without_tone_rel > fitted_rel);
   // The pair gains (on by default) give each pair its measured mean colour: the colour group and rel fall.
-  const fs::path without_gains = folder / "without_gains.cbtf";
-  REQUIRE(run("analyze " + btf.string() + " --no-pair-gains --out " + without_gains.string()).status == 0);
-  const double without_gains_rel = fidelity_of(without_gains, btf, folder / "without_gains");
-  const double colour = mean_column(folder / "fitted" / "fidelity.csv", 13);
-  const double without_gains_colour = mean_column(folder / "without_gains" / "fidelity.csv", 13);
-  INFO(name << ": fitted rel " << fitted_rel << " colour " << colour << ", without pair gains rel " << without_gains_rel << " colour "
-            << without_gains_colour);
-  CHECK(without_gains_rel > fitted_rel);
-  CHECK(without_gains_colour > colour);
+  // Not on fabric, whose tone planes already give each thread its colour: there the gains cost a little
+  // (mean s 0.540 without, 0.547 with, at 256^2 over fidelity seeds 1-3; docs/design.md 5.2).
+  if (name != "fabric") {
+    const fs::path without_gains = folder / "without_gains.cbtf";
+    REQUIRE(run("analyze " + btf.string() + " --no-pair-gains --out " + without_gains.string()).status == 0);
+    const double without_gains_rel = fidelity_of(without_gains, btf, folder / "without_gains");
+    const double colour = mean_column(folder / "fitted" / "fidelity.csv", 13);
+    const double without_gains_colour = mean_column(folder / "without_gains" / "fidelity.csv", 13);
+    INFO(name << ": fitted rel " << fitted_rel << " colour " << colour << ", without pair gains rel " << without_gains_rel
+              << " colour " << without_gains_colour);
+    CHECK(without_gains_rel > fitted_rel);
+    CHECK(without_gains_colour > colour);
+  }
   if (name == "fabric") {
-    // Its threads are blue and white: a tone that follows them in colour looks nearer the measurement,
-    // with a slope per channel, and more so with a plane per channel (chosen by its colour).
-    const fs::path coloured = folder / "coloured_tone.cbtf", planes = folder / "tone_planes.cbtf";
-    REQUIRE(run("analyze " + btf.string() + " --coloured-tone --out " + coloured.string()).status == 0);
-    REQUIRE(run("analyze " + btf.string() + " --tone-planes auto --out " + planes.string()).status == 0);
-    CHECK_THAT(run("info " + coloured.string()).output, Catch::Contains("tone colour:  red, green and blue follow it by"));
-    CHECK_THAT(run("info " + planes.string()).output, Catch::Contains("tone colour:  per texel (R, G and B planes)"));
-    const double coloured_rel = fidelity_of(coloured, btf, folder / "coloured_tone");
-    const double planes_rel = fidelity_of(planes, btf, folder / "tone_planes");
-    INFO(name << ": fitted rel " << fitted_rel << ", with the coloured tone " << coloured_rel << ", with tone planes " << planes_rel);
-    CHECK(coloured_rel < fitted_rel);
-    CHECK(planes_rel < coloured_rel);
+    // Its threads are blue and white: the analysis gives the tone a plane per colour channel.
+    CHECK_THAT(run("info " + fitted_path.string()).output, Catch::Contains("tone colour:  per texel (R, G and B planes)"));
     // Its threads are glossy: the relief's specular lobe (opt-in) puts their highlights on the thread
     // tops, where the CAR could only scatter them.
     const fs::path glossy = folder / "specular.cbtf";
@@ -137,10 +131,8 @@ void check_fidelity_ranking(const std::string& name) {
     INFO(name << ": fitted rel " << fitted_rel << ", with the specular lobe " << glossy_rel);
     CHECK(glossy_rel < fitted_rel);
   } else {
-    // Creases that darken every channel alike: asked to choose, the analysis keeps the tone grey.
-    const fs::path planes = folder / "tone_planes.cbtf";
-    REQUIRE(run("analyze " + btf.string() + " --tone-planes auto --out " + planes.string()).status == 0);
-    CHECK_THAT(run("info " + planes.string()).output, Catch::Contains("tone colour:  grey"));
+    // Creases that darken every channel alike: the analysis keeps the tone grey.
+    CHECK_THAT(run("info " + fitted_path.string()).output, Catch::Contains("tone colour:  grey"));
   }
   fs::remove_all(folder);
 }

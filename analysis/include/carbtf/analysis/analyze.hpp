@@ -50,10 +50,10 @@ struct AnalysisOptions {
   bool coloured_tone = false;
   // Whether the relief tone gets a plane per colour channel (RangeTiles::tone, model/relief_tone.hpp),
   // so that colour follows the relief texel by texel; automatic: where the tone's colour departs from
-  // grey by at least kToneColourVisible. Opt-in: on fabric at 256^2 the planes lower mean rel from 0.479
-  // to 0.372 (fidelity seeds 1-3), but the fitted noise is then no longer the measure's best (every sigma
-  // halved scores 0.367, and 0.362 against 0.386 at 64^2), which a fitted model must not allow.
-  TonePlanes tone_planes = TonePlanes::never;
+  // grey by at least kToneColourVisible (fabric's blue and white threads; leather and coast_sand_rocks
+  // keep one grey plane). On fabric at 256^2 it lowers the mean structure score s from 0.77 to 0.55
+  // (docs/design.md 5.2); with the noise gains the fitted noise stays the measure's best.
+  TonePlanes tone_planes = TonePlanes::automatic;
   // With the relief tone: whether the relief casts shadows (RangeTiles::shadow_scale,
   // model/relief_shadows.hpp); automatic: at the scale that best explains the photometric-stereo
   // view's images, where shadows explain them better (coast_sand_rocks at 256^2: mean rel 0.264 ->

@@ -30,10 +30,9 @@ struct RangeTileOptions {
   std::uint32_t tone_bits = 4;
   // Texels each cut cross-fades its two patches over (RangeTiles::feather), 0..4. 1 turns a join's
   // step into a 3-texel ramp: at 256^2 the mean height step across the cuts falls from 2.4 to 1.2 times
-  // the relief's own on leather, and from 3.1 to 1.3 on coast_sand_rocks. It stays off by default
-  // because the calibrated fidelity does not improve on every sample (mean over seeds 1-3: leather
-  // 0.328 -> 0.336, fabric 0.468 -> 0.468, coast_sand_rocks 0.271 -> 0.266), and it adds 0.2-0.7 KB.
-  std::uint32_t feather = 0;
+  // the relief's own on leather, and from 3.1 to 1.3 on coast_sand_rocks, and the mean structure score
+  // s falls on every sample (docs/design.md 5.2); it adds 0.2-0.7 KB.
+  std::uint32_t feather = 1;
   std::uint64_t seed = 1;
 };
 
