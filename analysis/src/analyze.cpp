@@ -107,7 +107,8 @@ SubspaceModel fit_channels(const std::vector<Plane>& channels, LightView pair, s
 // The model of one subspace image; notes name the band they concern.
 SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plane& range_map, std::span<const float> horizons,
                            std::span<const Plane> tone, const std::array<float, 3>& chroma, const SpecularLobe& specular, double light_z_floor,
-                           const AnalysisOptions& options, std::vector<std::string>& notes) {
+                           const AnalysisOptions& options, std::vector<std::string>& notes, double& chosen_distance) {
+  chosen_distance = 0.0;  // no candidates scored
   const std::uint32_t width = dataset.width(), height = dataset.height();
   std::vector<float> rgb(dataset.pixel_count() * 3);
   dataset.linear_rgb(pair, rgb);
@@ -232,7 +233,13 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
                 "tone weight %.2g, remainder clamp %.2g, %u pyramid levels, noise gain %.2g, chroma gain %.2g chosen of %zu candidates (texture distance %.3f, mean of %u draws)",
                 static_cast<double>(best->tone_weight), best_clamp, best->levels, best_gain, best_chroma_gain, candidates + gain_candidates, best_distance, draws);
   notes.emplace_back(line);
+  chosen_distance = best_distance;
   return *best;
+}
+
+// The specular lobe as the material stores it, as the render pass will draw it.
+SpecularLobe stored_lobe(const Material& material) {
+  return {material.range.specular_strength, material.range.specular_gloss};
 }
 
 }  // namespace
@@ -274,17 +281,59 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
                 100.0 * static_cast<double>(valid) / static_cast<double>(std::max<std::size_t>(1, result.normals.valid.size())));
   note(line);
 
+  for (const Direction& d : dataset.lights()) result.material.lights.push_back(to_material(d));
+  for (const Direction& d : dataset.views()) result.material.views.push_back(to_material(d));
+  const double z_floor = relight_floor(result.material);  // the render pass's, from the light set
+  // The tone, its planes and the range tiles, for the highlights `lobe` (none: strength 0).
+  const auto relief_stage = [&](const SpecularLobe& lobe, const RangeTileOptions& tiles, double shadow_scale) {
+    result.tone = relief_tone(dataset, result.stereo_view, result.range_map, z_floor, result.horizons, lobe);
+    result.tone_planes = {result.tone};
+    if (options.tone_planes != TonePlanes::never) {
+      std::vector<Plane> planes = relief_tone_planes(dataset, result.stereo_view, result.range_map, z_floor, result.horizons, lobe);
+      const double deviation = tone_colour_deviation(planes);
+      const bool coloured = options.tone_planes == TonePlanes::always || deviation >= kToneColourVisible;
+      if (coloured) result.tone_planes = std::move(planes);
+      std::snprintf(line, sizeof line, "relief tone: colour deviation %.3f, %s", deviation,
+                    coloured ? "stored as R, G and B planes" : "stored grey");
+      note(line);
+    }
+    result.material.range = build_range_tiles(result.range_map, tiles, result.tone_planes);
+    result.material.range.shadow_scale = static_cast<float>(shadow_scale);
+    result.material.range.specular_strength = static_cast<float>(lobe.strength);
+    result.material.range.specular_gloss = static_cast<float>(lobe.gloss);
+    if (options.coloured_tone && result.tone_planes.size() == 1) {
+      result.material.range.tone_chroma = relief_tone_chroma(dataset, result.stereo_view, result.range_map, z_floor, result.tone,
+                                                             result.horizons, stored_lobe(result.material));
+    }
+  };
+  // The subspace models over the relief in result.material.range; their mean texture distance.
+  std::vector<std::vector<std::string>> subspace_notes;
+  const auto subspace_stage = [&] {
+    const auto& representatives = result.segmentation.representatives;
+    subspace_notes.assign(representatives.size(), {});
+    std::vector<double> distances(representatives.size(), 0.0);
+    result.material.subspaces.resize(representatives.size());
+    Progress progress("subspace models", representatives.size(), options.progress);
+    // The analysis goes on with the lobe as stored, as the render pass will draw it.
+    const SpecularLobe lobe = stored_lobe(result.material);
+    detail::parallel_for(representatives.size(), options.threads, [&](std::size_t s) {
+      result.material.subspaces[s] = fit_subspace(dataset, representatives[s], result.range_map, result.horizons, result.tone_planes,
+                                                    result.material.range.tone_chroma, lobe, z_floor, options, subspace_notes[s], distances[s]);
+      progress.advance();
+    });
+    double mean = 0.0;
+    for (const double d : distances) mean += d / static_cast<double>(distances.size());
+    return mean;
+  };
+
   SpecularLobe specular;  // the relief's highlights, fitted with the tone
+  RangeTileOptions tiles = options.tiles;
+  tiles.seed = options.segmentation.seed;
+  double shadow_scale = 0.0;
   {
     StageClock clock(result, "range map and tiles");
     result.range_map = integrate_normals(result.normals.normals, dataset.width(), dataset.height());
-    RangeTileOptions tiles = options.tiles;
-    tiles.seed = options.segmentation.seed;
-    for (const Direction& d : dataset.lights()) result.material.lights.push_back(to_material(d));
-    for (const Direction& d : dataset.views()) result.material.views.push_back(to_material(d));
-    double shadow_scale = 0.0;
     if (options.relief_tone) {
-      const double z_floor = relight_floor(result.material);
       if (options.relief_shadows == AutoChoice::always) shadow_scale = 1.0;
       if (options.relief_shadows == AutoChoice::automatic) {
         const ShadowFit fit = fit_shadow_scale(dataset, result.stereo_view, result.range_map, z_floor);
@@ -294,58 +343,54 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
         note(line);
       }
       result.horizons = range_map_horizons(result.range_map, shadow_scale);
-      result.tone = relief_tone(dataset, result.stereo_view, result.range_map, z_floor, result.horizons);
-      if (options.relief_specular) {
-        const SpecularFit fit = fit_relief_specular(dataset, result.stereo_view, result.range_map, result.tone, z_floor, result.horizons);
+      if (options.relief_specular != AutoChoice::never) {
+        const Plane tone = relief_tone(dataset, result.stereo_view, result.range_map, z_floor, result.horizons);
+        const SpecularFit fit = fit_relief_specular(dataset, result.stereo_view, result.range_map, tone, z_floor, result.horizons);
         specular = fit.lobe;
         std::snprintf(line, sizeof line, "relief specular: strength %.4g, gloss %.0f%s (the view's images explained with error %.4f, without it %.4f)",
                       fit.lobe.strength, fit.lobe.gloss, fit.lobe.strength > 0.0 ? "" : ", none", fit.error, fit.error_without);
         note(line);
-        // The tone of the images without their highlights, which the render adds apart from it.
-        if (specular.strength > 0.0) result.tone = relief_tone(dataset, result.stereo_view, result.range_map, z_floor, result.horizons, specular);
       }
-      result.tone_planes = {result.tone};
-      if (options.tone_planes != TonePlanes::never) {
-        std::vector<Plane> planes = relief_tone_planes(dataset, result.stereo_view, result.range_map, z_floor, result.horizons, specular);
-        const double deviation = tone_colour_deviation(planes);
-        const bool coloured = options.tone_planes == TonePlanes::always || deviation >= kToneColourVisible;
-        if (coloured) result.tone_planes = std::move(planes);
-        std::snprintf(line, sizeof line, "relief tone: colour deviation %.3f, %s", deviation,
-                      coloured ? "stored as R, G and B planes" : "stored grey");
-        note(line);
-      }
-    }
-    result.material.range = build_range_tiles(result.range_map, tiles, result.tone_planes);
-    result.material.range.shadow_scale = static_cast<float>(shadow_scale);
-    result.material.range.specular_strength = static_cast<float>(specular.strength);
-    result.material.range.specular_gloss = static_cast<float>(specular.gloss);
-    // The analysis goes on with the lobe as stored, as the render pass will draw it.
-    specular = {result.material.range.specular_strength, result.material.range.specular_gloss};
-    if (options.relief_tone && options.coloured_tone && result.tone_planes.size() == 1) {
-      result.material.range.tone_chroma =
-          relief_tone_chroma(dataset, result.stereo_view, result.range_map, relight_floor(result.material), result.tone, result.horizons, specular);
+      // The tone of the images without their highlights, which the render adds apart from it.
+      relief_stage(specular, tiles, shadow_scale);
+    } else {
+      result.material.range = build_range_tiles(result.range_map, tiles, {});
     }
   }
 
   {
     StageClock clock(result, "subspace models");
+    const double with_lobe = subspace_stage();
+    // Automatic: a fitted lobe stays where the subspace models look clearly nearer the measurement with
+    // it (by kLevelChoiceMargin, as a level count must). It explains the stereo view's images better on
+    // fabric and on coast_sand_rocks, but only fabric's renders look nearer with it (docs/design.md 5.2).
+    if (options.relief_specular == AutoChoice::automatic && specular.strength > 0.0) {
+      Material with = result.material;
+      auto with_tone = result.tone;
+      auto with_planes = result.tone_planes;
+      auto with_notes = subspace_notes;
+      relief_stage({}, tiles, shadow_scale);
+      const double without_lobe = subspace_stage();
+      const bool keep = with_lobe < without_lobe * (1.0 - kLevelChoiceMargin);
+      std::snprintf(line, sizeof line, "relief specular: %s (the subspace models' mean texture distance %.4f with it, %.4f without)",
+                    keep ? "kept" : "left out", with_lobe, without_lobe);
+      note(line);
+      if (keep) {
+        result.material = std::move(with);
+        result.tone = std::move(with_tone);
+        result.tone_planes = std::move(with_planes);
+        subspace_notes = std::move(with_notes);
+      }
+    }
     const auto& representatives = result.segmentation.representatives;
-    std::vector<std::vector<std::string>> notes(representatives.size());
-    result.material.subspaces.resize(representatives.size());
-    Progress progress("subspace models", representatives.size(), options.progress);
-    const double z_floor = relight_floor(result.material);  // the render pass's, from the light set
-    detail::parallel_for(representatives.size(), options.threads, [&](std::size_t s) {
-      result.material.subspaces[s] = fit_subspace(dataset, representatives[s], result.range_map, result.horizons, result.tone_planes,
-                                                    result.material.range.tone_chroma, specular, z_floor, options, notes[s]);
-      progress.advance();
-    });
-    for (std::size_t s = 0; s < notes.size(); ++s) {
-      for (const std::string& n : notes[s]) {
+    for (std::size_t s = 0; s < subspace_notes.size(); ++s) {
+      for (const std::string& n : subspace_notes[s]) {
         note("subspace " + std::to_string(s) + " (light " + std::to_string(representatives[s].light) + ", view " +
              std::to_string(representatives[s].view) + ") " + n);
       }
     }
   }
+  specular = stored_lobe(result.material);
 
   result.material.subspace_index = result.segmentation.index;
   if (options.pair_gains) {
@@ -376,7 +421,8 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
       {"selection_draws", std::to_string(options.selection_draws)},
       {"deshade_floor", std::to_string(options.deshade_floor)},
       {"pair_gains", options.pair_gains ? "yes" : "no"},
-      {"relief_specular", options.relief_specular ? "fitted" : "no"},
+      {"relief_specular", options.relief_specular == AutoChoice::automatic ? "where the models look nearer with it"
+                          : options.relief_specular == AutoChoice::always  ? "fitted" : "no"},
       {"stereo_view", std::to_string(result.stereo_view)},
       {"tile_size", std::to_string(material.range.tile_size)},
       {"edge_colours", std::to_string(material.range.edge_colours)},

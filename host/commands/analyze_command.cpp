@@ -84,13 +84,12 @@ void register_analyze_command(CLI::App& app) {
   command->add_flag("!--no-relief-tone", a.relief_tone,
                     "For comparison: leave out the relief tone, the photometric-stereo albedo stored with the range tiles "
                     "that puts the creases' dark colour where the range map puts the creases");
-  // The one model opt-in; everything else the analysis chooses per material or per subspace by the
-  // texture measure (docs/design.md 5.2).
-  command->add_flag("--specular", a.relief_specular,
-                    "Opt-in: add the relief's specular lobe, highlights where the range map's facets turn to the half "
-                    "vector of light and view, fitted to the photometric-stereo view's images. Measured at 256^2, fidelity seed 1 (mean s, five pairs / 16 "
-                    "spread): fabric's glossy threads 0.55 -> 0.47 / 0.50 -> 0.42; coast_sand_rocks 0.69 -> 0.83 / 1.01 -> 1.02 "
-                    "(highlights its moss does not have); leather gets no lobe");
+  command->add_flag_callback(
+      "--specular", [&a] { a.relief_specular = AutoChoice::always; },
+      "Opt-in: keep the relief's specular lobe wherever it is fitted (highlights where the range map's facets turn "
+      "to the half vector of light and view). By default it is kept only where the subspace models look nearer "
+      "the measurement with it: fabric's glossy threads, not coast_sand_rocks' moss, whose mean s at 256^2 it would "
+      "raise from 0.69 to 0.83");
   command->add_flag("!--no-pair-gains", a.pair_gains,
                     "For comparison: leave out the pair gains, per measured light and view the colour gains that give the "
                     "pair its measured mean colour, which its subspace image (the representative pair's) does not have");

@@ -56,7 +56,9 @@ const std::vector<ModelVariant>& model_variants() {
        "relief tone (R, G, B planes where its colour is not grey), 128-texel tiles with feathered cuts, 6-bit heights, "
        "4-bit tone; clamp, levels and noise gains chosen per subspace",
        [](AnalysisOptions&) {}},
-      {"specular", "the default with the relief's specular lobe (opt-in --specular)", [](AnalysisOptions& o) { o.relief_specular = true; }},
+      {"specular", "the default with the relief's specular lobe wherever it is fitted (--specular)",
+       [](AnalysisOptions& o) { o.relief_specular = AutoChoice::always; }},
+      {"no_specular", "the default without the relief's specular lobe", [](AnalysisOptions& o) { o.relief_specular = AutoChoice::never; }},
       {"deshade", "the default with the relit range map divided out (floor 0.3)", [](AnalysisOptions& o) { o.deshade_floor = 0.3; }},
       {"no_pair_gains", "the default without the per-pair colour gains", [](AnalysisOptions& o) { o.pair_gains = false; }},
       {"no_noise_gains", "the default with every subspace's fitted sigma", [](AnalysisOptions& o) { o.noise_gains = {1.0}; }},

@@ -121,18 +121,21 @@ void check_fidelity_ranking(const std::string& name) {
   if (name == "fabric") {
     // Its threads are blue and white: the analysis gives the tone a plane per colour channel.
     CHECK_THAT(run("info " + fitted_path.string()).output, Catch::Contains("tone colour:  per texel (R, G and B planes)"));
-    // Its threads are glossy: the relief's specular lobe (opt-in) puts their highlights on the thread
-    // tops, where the CAR could only scatter them.
-    const fs::path glossy = folder / "specular.cbtf";
-    REQUIRE(run("analyze " + btf.string() + " --specular --out " + glossy.string()).status == 0);
-    CHECK_THAT(run("info " + glossy.string()).output, Catch::Contains("highlights:   a specular lobe on the relief"));
-    CHECK_THAT(run("info " + fitted_path.string()).output, Catch::Contains("highlights:   none"));
-    const double glossy_rel = fidelity_of(glossy, btf, folder / "specular");
-    INFO(name << ": fitted rel " << fitted_rel << ", with the specular lobe " << glossy_rel);
-    CHECK(glossy_rel < fitted_rel);
+    // Its threads are glossy: the analysis keeps the relief's specular lobe, which puts their highlights
+    // on the thread tops where the CAR could only scatter them, and the model without it looks further.
+    CHECK_THAT(run("info " + fitted_path.string()).output, Catch::Contains("highlights:   a specular lobe on the relief"));
+    Material dull = fitted;
+    dull.range.specular_strength = 0.0f;
+    const fs::path dull_path = folder / "without_highlights.cbtf";
+    REQUIRE(write_material_file(dull_path.string(), dull).ok());
+    const double dull_rel = fidelity_of(dull_path, btf, folder / "without_highlights");
+    INFO(name << ": fitted rel " << fitted_rel << ", without its highlights " << dull_rel);
+    CHECK(dull_rel > fitted_rel);
   } else {
-    // Creases that darken every channel alike: the analysis keeps the tone grey.
-    CHECK_THAT(run("info " + fitted_path.string()).output, Catch::Contains("tone colour:  grey"));
+    // Creases that darken every channel alike: the analysis keeps the tone grey. Leather's images have no
+    // highlights; coast_sand_rocks' stereo view is explained better with a lobe, but its models do not
+    // look nearer with it, and the analysis leaves it out.
+    CHECK_THAT(run("info " + fitted_path.string()).output, Catch::Contains("tone colour:  grey") && Catch::Contains("highlights:   none"));
   }
   fs::remove_all(folder);
 }

@@ -95,11 +95,11 @@ struct AnalysisOptions {
   // (model/pair_gains.hpp, Material::pair_gains).
   bool pair_gains = true;
   // With the relief tone: fit the relief's specular lobe (model/relief_specular.hpp) to the
-  // photometric-stereo view's images, and keep it where it explains them better. Opt-in: at 256^2
-  // (fidelity seeds 1-3) it lowers fabric's mean rel from 0.416 to 0.393 (0.353 to 0.322 with tone
-  // planes) but raises coast_sand_rocks' from 0.155 to 0.194 (its model's contrast then exceeds the
-  // measurement's); leather gets none.
-  bool relief_specular = false;
+  // photometric-stereo view's images, where it explains them better; automatic: keep it where the
+  // subspace models look nearer the measurement with it by kLevelChoiceMargin (fabric's glossy threads:
+  // mean s at 256^2 0.55 -> 0.47; coast_sand_rocks, whose images it also explains, would rise from 0.69
+  // to 0.83, and its models are only 1% nearer; docs/design.md 5.2); always: keep it wherever fitted.
+  AutoChoice relief_specular = AutoChoice::automatic;
   double deshade_floor = 0.0;        // > 0: divide the relit range map out before fitting, floored here (model/deshade.hpp)
   RangeTileOptions tiles;            // its seed is ignored: the tiles follow segmentation.seed
   unsigned threads = 0;              // 0: all hardware threads
