@@ -18,7 +18,12 @@
 namespace carbtf {
 
 const char* color_encoding_name(ColorEncoding encoding) {
-  return encoding == ColorEncoding::srgb8 ? "8-bit sRGB (linearised on load)" : "linear float (stored as half)";
+  switch (encoding) {
+    case ColorEncoding::srgb8: return "8-bit sRGB (linearised on load)";
+    case ColorEncoding::linear_half: return "linear float (stored as half)";
+    case ColorEncoding::decoded: return "linear float (decompressed per image on access)";
+  }
+  return "unknown";
 }
 
 float srgb_to_linear(float encoded) {
@@ -106,6 +111,17 @@ BtfDataset::BtfDataset(std::vector<Direction> lights, std::vector<Direction> vie
   }
 }
 
+BtfDataset::BtfDataset(std::vector<Direction> lights, std::vector<Direction> views, std::uint32_t width,
+                       std::uint32_t height, std::shared_ptr<const ImageDecoder> decoder)
+    : lights_(std::move(lights)),
+      views_(std::move(views)),
+      width_(width),
+      height_(height),
+      encoding_(ColorEncoding::decoded),
+      decoder_(std::move(decoder)) {
+  if (!decoder_) throw std::invalid_argument("BtfDataset: no image decoder");
+}
+
 std::size_t BtfDataset::slot(LightView pair) const {
   if (pair.light >= lights_.size() || pair.view >= views_.size()) throw std::out_of_range("BTF pair out of range");
   return std::size_t{pair.light} * views_.size() + pair.view;
@@ -113,7 +129,12 @@ std::size_t BtfDataset::slot(LightView pair) const {
 
 bool BtfDataset::has_image(LightView pair) const {
   const std::size_t s = slot(pair);
-  return encoding_ == ColorEncoding::srgb8 ? !srgb_[s].empty() : !half_[s].empty();
+  switch (encoding_) {
+    case ColorEncoding::srgb8: return !srgb_[s].empty();
+    case ColorEncoding::linear_half: return !half_[s].empty();
+    case ColorEncoding::decoded: return true;
+  }
+  return false;
 }
 
 std::vector<LightView> BtfDataset::pairs_where_present(bool present) const {
@@ -143,10 +164,18 @@ void BtfDataset::set_linear(LightView pair, std::span<const float> rgb) {
   half_[slot(pair)] = std::move(halves);
 }
 
+void BtfDataset::set_linear_half(LightView pair, std::vector<std::uint16_t> halves) {
+  if (encoding_ != ColorEncoding::linear_half) throw std::invalid_argument("set_linear_half on a dataset not of halves");
+  if (halves.size() != pixel_count() * 3) throw std::invalid_argument("image size does not match the dataset");
+  half_[slot(pair)] = std::move(halves);
+}
+
 void BtfDataset::linear_rgb(LightView pair, std::span<float> out) const {
   const std::size_t s = slot(pair);
   if (out.size() < pixel_count() * 3) throw std::invalid_argument("output span too small for the image");
-  if (encoding_ == ColorEncoding::srgb8) {
+  if (encoding_ == ColorEncoding::decoded) {
+    decoder_->decode(pair, out.first(pixel_count() * 3));
+  } else if (encoding_ == ColorEncoding::srgb8) {
     const auto& pixels = srgb_[s];
     if (pixels.empty()) throw std::out_of_range("BTF image missing for this light/view pair");
     const auto& table = srgb8_table();
@@ -163,7 +192,7 @@ void BtfDataset::linear_rgb(LightView pair, std::span<float> out) const {
 }
 
 std::size_t BtfDataset::storage_bytes() const {
-  std::size_t bytes = 0;
+  std::size_t bytes = decoder_ ? decoder_->storage_bytes() : 0;
   for (const auto& image : srgb_) bytes += image.size();
   for (const auto& image : half_) bytes += image.size() * sizeof(std::uint16_t);
   return bytes;

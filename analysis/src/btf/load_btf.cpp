@@ -17,8 +17,9 @@ BtfDataset load_btf(const std::filesystem::path& path, const BtfLoadOptions& opt
   const std::string extension = detail::lower_extension(path);
   if (extension == ".zip") return read_ubo2003_zip(path, options, warnings);
   if (extension == ".csv") return read_manifest(path, options, warnings);
-  throw InputError(path, "not a BTF dataset: expected a UBO2003 folder or .zip, a manifest .csv, or a "
-                         "photometric-stereo folder");
+  if (extension == ".btf") return read_ubo2014_btf(path, options, warnings);
+  throw InputError(path, "not a BTF dataset: expected a UBO2003 folder or .zip, a manifest .csv, a "
+                         "photometric-stereo folder, or a UBO2014 .btf file");
 }
 
 }  // namespace carbtf

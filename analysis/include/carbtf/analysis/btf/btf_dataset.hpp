@@ -1,13 +1,15 @@
 // A measured BTF: one RGB image per (light direction, view direction) pair, over any direction sets.
 //
 // Pixels are kept as the source stored them, to fit a full 81 x 81 x 256^2 material in about 1.3 GB:
-// 8-bit sRGB for JPEG/PNG sources, IEEE half for linear (EXR) sources. The model always sees linear
-// float RGB: linear_rgb() converts on access. Images are row-major, row 0 at the top, RGB interleaved.
+// 8-bit sRGB for JPEG/PNG sources, IEEE half for linear (EXR, UBO2014 raw) sources. A compressed source
+// (UBO2014 DFMF, 151 x 151 x 400^2: 22 GB as half) is not expanded at all: an ImageDecoder rebuilds each
+// image when it is asked for. The model always sees linear float RGB: linear_rgb() converts on access. Images are row-major, row 0 at the top, RGB interleaved.
 // Pairs may be missing (partial datasets). Thread safety: concurrent reads are safe; set_* calls on
 // different pairs may run concurrently, on the same pair they must not.
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <utility>
@@ -20,7 +22,8 @@ namespace carbtf {
 
 enum class ColorEncoding {
   srgb8,        // 8-bit, sRGB transfer function (JPEG, PNG)
-  linear_half,  // linear light, 16-bit float (EXR)
+  linear_half,  // linear light, 16-bit float (EXR, UBO2014 raw)
+  decoded,      // linear light, rebuilt per image from a compressed file (UBO2014 DFMF)
 };
 const char* color_encoding_name(ColorEncoding encoding);
 
@@ -30,11 +33,24 @@ struct LightView {
   bool operator==(const LightView&) const = default;
 };
 
+// Rebuilds images on demand from a compressed file held in memory. decode() is called from several
+// threads at once; it throws InputError when the file's data decodes to a value that is not finite.
+class ImageDecoder {
+ public:
+  virtual ~ImageDecoder() = default;
+  // Every pair of the table, width * height * 3 floats of linear RGB.
+  virtual void decode(LightView pair, std::span<float> linear_rgb) const = 0;
+  virtual std::size_t storage_bytes() const = 0;
+};
+
 class BtfDataset {
  public:
   BtfDataset() = default;
   BtfDataset(std::vector<Direction> lights, std::vector<Direction> views, std::uint32_t width, std::uint32_t height,
              ColorEncoding encoding);
+  // A dataset whose every image is rebuilt by `decoder` (encoding `decoded`; the set_* calls refuse).
+  BtfDataset(std::vector<Direction> lights, std::vector<Direction> views, std::uint32_t width, std::uint32_t height,
+             std::shared_ptr<const ImageDecoder> decoder);
 
   const std::vector<Direction>& lights() const { return lights_; }
   const std::vector<Direction>& views() const { return views_; }
@@ -51,6 +67,8 @@ class BtfDataset {
   // (linear_half datasets; converted to half). Throws std::invalid_argument on a size mismatch.
   void set_srgb8(LightView pair, std::vector<std::uint8_t> pixels);
   void set_linear(LightView pair, std::span<const float> rgb);
+  // Stores an image of IEEE half bit patterns as they are (linear_half datasets).
+  void set_linear_half(LightView pair, std::vector<std::uint16_t> halves);
 
   // Linear RGB of a stored image into `out` (width * height * 3 floats). Throws std::out_of_range if
   // the pair is missing.
@@ -75,6 +93,7 @@ class BtfDataset {
   ColorEncoding encoding_ = ColorEncoding::srgb8;
   std::vector<std::vector<std::uint8_t>> srgb_;    // per slot, empty when missing
   std::vector<std::vector<std::uint16_t>> half_;   // per slot, empty when missing
+  std::shared_ptr<const ImageDecoder> decoder_;    // every slot, when set
 };
 
 // The largest direction sets a dataset may have, and how sparse a large light x view table may be. The

@@ -18,7 +18,8 @@ struct BtfLoadOptions {
 // Loads whatever `path` is:
 //   - a folder in the UBO2003 layout (flat, or per-view folders tvTTT_pvPPP), or a .zip of one;
 //   - a manifest .csv (path,theta_i,phi_i,theta_v,phi_v in degrees) for any other direction set;
-//   - a photometric-stereo folder: one that holds light_directions.txt (see read_photometric_stereo).
+//   - a photometric-stereo folder: one that holds light_directions.txt (see read_photometric_stereo);
+//   - a Bonn UBO2014 .btf file, DFMF or raw (see read_ubo2014_btf).
 // Missing (light, view) pairs are allowed and reported in `warnings`.
 BtfDataset load_btf(const std::filesystem::path& path, const BtfLoadOptions& options,
                     std::vector<std::string>& warnings);
@@ -39,5 +40,11 @@ BtfDataset read_manifest(const std::filesystem::path& manifest, const BtfLoadOpt
 // divided by it), mask.png (non-zero where the object is).
 BtfDataset read_photometric_stereo(const std::filesystem::path& folder, const BtfLoadOptions& options,
                                    std::vector<std::string>& warnings);
+
+// A Bonn UBO2014 .btf file (analysis/btf/ubo2014_format.hpp). DFMF files give a dataset that rebuilds
+// each image on access from the factors (encoding `decoded`); raw (BDI) files are read into half-float
+// images. Texels a sparse BDI does not store are 0 and outside the dataset's mask.
+BtfDataset read_ubo2014_btf(const std::filesystem::path& path, const BtfLoadOptions& options,
+                            std::vector<std::string>& warnings);
 
 }  // namespace carbtf
