@@ -58,7 +58,7 @@ void register_analyze_command(CLI::App& app) {
   auto options = std::make_shared<AnalyzeCommandOptions>();
   auto* command = app.add_subcommand("analyze", "Fit the compact BTF model (segmentation, range map, colour PCA, pyramid, CAR per band) "
                                                 "and write a .cbtf material file");
-  command->add_option("dataset", options->dataset, "A UBO2003 folder or .zip, or a manifest .csv")->required();
+  command->add_option("dataset", options->dataset, "A UBO2003 folder or .zip, a manifest .csv, a photometric-stereo folder, or a Bonn UBO2014 .btf file (DFMF or raw)")->required();
   command->add_option("--out", options->out, "Material file to write (.cbtf)")->required();
   command->add_option("--report", options->report,
                       "Folder for the pictures and data: index_table.png, eigenvalues.png/.csv, subspace images, normals, range map, "

@@ -1,6 +1,5 @@
 // `carbtf bench ...`: benchmarks that print what they measured. Nothing here asserts a timing.
 #include <algorithm>
-#include <mutex>
 #include <chrono>
 #include <cstdio>
 #include <thread>
@@ -8,15 +7,9 @@
 
 #include <filesystem>
 
-#include "carbtf/analysis/btf/btf_reader.hpp"
-#include "carbtf/analysis/btf/ubo2003_writer.hpp"
 #include "carbtf/reference/noise.hpp"
-#include "carbtf/analysis/resource_usage.hpp"
-#include "carbtf/analysis/sample/height_field_renderer.hpp"
-#include "carbtf/analysis/sample/sample_materials.hpp"
 #include "carbtf/engine/synthesis/noise_generator.hpp"
 #include "cli/cli_support.hpp"
-#include "cli/owned_folder.hpp"
 #include "commands/commands.hpp"
 
 namespace carbtf::cli {
@@ -83,49 +76,6 @@ void run_noise_bench(const NoiseBenchOptions& options) {
   }
 }
 
-struct DataBenchOptions {
-  std::string material = "leather";
-  std::string out = "carbtf-bench-data";
-  bool keep = false;
-};
-
-double peak_rss_mib() { return static_cast<double>(peak_rss_bytes()) / 1048576.0; }
-
-// Rendering a sample material at two sizes, then loading the full 81 x 81 JPEG set of the larger.
-void run_data_bench(const DataBenchOptions& options) {
-  OwnedFolder out(options.out);
-  if (options.keep) out.keep();
-  std::printf("%-44s %10s\n", "step", "seconds");
-  for (const std::uint32_t size : {64u, 256u}) {
-    const auto start = std::chrono::steady_clock::now();
-    const Surface surface = make_sample_surface(options.material, size, 1);
-    Ubo2003Writer writer(out.claim("btf" + std::to_string(size)), ".jpg", false);
-    const auto& directions = ubo2003_directions();
-    RenderOptions render;
-    std::chrono::steady_clock::duration encoding{};
-    std::mutex mutex;
-    render_btf(surface, directions, directions, render, [&](std::uint32_t l, std::uint32_t v, std::span<const float> image) {
-      const auto encode_start = std::chrono::steady_clock::now();
-      writer.write(l, v, image, size, size);
-      std::lock_guard<std::mutex> lock(mutex);
-      encoding += std::chrono::steady_clock::now() - encode_start;
-    });
-    writer.finish();
-    const std::string label = "render + write " + options.material + " " + std::to_string(size) + "x" +
-                              std::to_string(size) + " (6561 JPEGs)";
-    std::printf("%-44s %10.2f  (of which JPEG encode + write %.2f thread-s)\n", label.c_str(), seconds_since(start),
-                std::chrono::duration<double>(encoding).count());
-  }
-  const double rss_before = peak_rss_mib();
-  const auto start = std::chrono::steady_clock::now();
-  std::vector<std::string> warnings;
-  const BtfDataset dataset = load_btf(out.root() / "btf256", {}, warnings);
-  const double load_seconds = seconds_since(start);
-  std::printf("%-44s %10.2f\n", "load 81x81 256x256 JPEGs", load_seconds);
-  std::printf("pixel storage %.0f MiB; process peak RSS %.0f MiB (%.0f MiB before loading)\n",
-              dataset.storage_bytes() / 1048576.0, peak_rss_mib(), rss_before);
-}
-
 }  // namespace
 
 void register_bench_command(CLI::App& app) {
@@ -140,14 +90,7 @@ void register_bench_command(CLI::App& app) {
   add_device_options(*noise, options->device);
   noise->callback([options] { run_noise_bench(*options); });
 
-  auto data_options = std::make_shared<DataBenchOptions>();
-  auto* data = bench->add_subcommand("data", "Sample rendering at 64 and 256, then load time and peak RSS of the "
-                                             "full 81x81 256x256 JPEG material");
-  data->add_option("--material", data_options->material, "Sample material to render")->capture_default_str();
-  data->add_option("--out", data_options->out, "Folder for the rendered images (created if missing; only what the bench creates there is removed)")->capture_default_str();
-  data->add_flag("--keep", data_options->keep, "Keep the rendered images instead of deleting them");
-  data->callback([data_options] { run_data_bench(*data_options); });
-
+  register_bench_data_command(*bench);
   register_bench_analyze_command(*bench);
   register_bench_synth_command(*bench);
   register_bench_fidelity_command(*bench);

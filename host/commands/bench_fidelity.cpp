@@ -166,7 +166,7 @@ void register_bench_fidelity_command(CLI::App& bench) {
   auto* command = bench.add_subcommand(
       "fidelity", "Error against size: the dataset analysed once per model option, each material scored by the calibrated "
                   "fidelity measure through the render pass (as `carbtf fidelity`), beside its file size; table, CSV and plot");
-  command->add_option("dataset", options->dataset, "A measured BTF (UBO2003 folder or zip, or a manifest)")->required();
+  command->add_option("dataset", options->dataset, "A measured BTF (UBO2003 folder or zip, a manifest, or a UBO2014 .btf file)")->required();
   std::string names;
   for (const ModelVariant& v : model_variants()) names += std::string("\n  ") + v.name + ": " + v.description;
   command->add_option("--variants", options->variants, "Model variants to compare (default: all):" + names)->delimiter(',');

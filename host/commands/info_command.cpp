@@ -178,7 +178,7 @@ void register_info_command(CLI::App& app) {
   auto path = std::make_shared<std::string>();
   auto* command = app.add_subcommand("info", "Summarise a BTF dataset (directions, image size, colour space, missing pairs) "
                                              "or a .cbtf material (model summary and size per chunk)");
-  command->add_option("path", *path, "A UBO2003 folder or .zip, a manifest .csv, a photometric-stereo folder, or a .cbtf material")
+  command->add_option("path", *path, "A UBO2003 folder or .zip, a manifest .csv, a photometric-stereo folder, a Bonn UBO2014 .btf file, or a .cbtf material")
       ->required();
   command->callback([path] { run_info(*path); });
 }

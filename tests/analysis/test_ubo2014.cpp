@@ -48,9 +48,10 @@ const BtfDataset& ubo2003_folder_dataset() {
       Ubo2003Writer writer(folder, ".exr", false);
       RenderOptions render;
       render.progress = false;
-      render_btf(surface, lights, views, render, [&](std::uint32_t l, std::uint32_t v, std::span<const float> image) {
-        writer.write(kLights[l], kViews[v], image, kSize, kSize);
-      });
+      render_btf(surface, lights, views, render,
+                 [&](std::uint32_t l, std::uint32_t v, std::span<const float> image) {
+                   writer.write(kLights[l], kViews[v], image, kSize, kSize);
+                 });
       writer.finish();
     }
     std::vector<std::string> warnings;  // the other 81 x 81 - 64 pairs are missing
@@ -130,15 +131,16 @@ struct Bytes {
   }
   fs::path save(const std::string& name) const {
     const fs::path path = test::scratch_folder("ubo2014_bytes") / name;
-    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(data.data()), static_cast<std::streamsize>(data.size()));
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(data.data()), static_cast<std::streamsize>(data.size()));
     return path;
   }
 };
 
 // Meta data of version 4 (291 bytes), then `views` views at theta 0.2 * (v + 1), phi 0.5, each with
 // lights at theta 0.3 * (l + 1), phi 1.0 * l, then width x height.
-Bytes common_header(std::string_view signature, std::uint32_t views, std::uint32_t lights, std::uint32_t width,
-                    std::uint32_t height, bool cosine_in_data = true) {
+Bytes common_header(std::string_view signature, std::uint32_t views, std::uint32_t lights,
+                    std::uint32_t width, std::uint32_t height, bool cosine_in_data = true) {
   Bytes b;
   b.put_text(std::string(signature));
   b.put(std::uint32_t{291});
@@ -169,7 +171,9 @@ Bytes common_header(std::string_view signature, std::uint32_t views, std::uint32
 }
 
 // The value a hand-made file stores for channel c of light l, view v, texel (x, y): every one distinct.
-float hand_value(int c, int l, int v, int x, int y) { return static_cast<float>(1 + c + 4 * l + 16 * v + 64 * x + 256 * y) / 1024.0f; }
+float hand_value(int c, int l, int v, int x, int y) {
+  return static_cast<float>(1 + c + 4 * l + 16 * v + 64 * x + 256 * y) / 1024.0f;
+}
 
 // A raw file of 2 views x 3 lights of 2 x 2 texels, one scan line per chunk.
 Bytes hand_bdi() {
@@ -265,7 +269,7 @@ TEST_CASE("UBO2014 files without the cosine in their data read as photographs", 
   for (const auto layout : {ubo2014::Layout::bdi, ubo2014::Layout::dfmf}) {
     options.layout = layout;
     const auto [difference, largest] = largest_difference(write_and_read(options, "cosine"));
-    CHECK(difference > 0.0f);                   // the values went through the division
+    CHECK(difference > 0.0f);                      // the values went through the division
     CHECK(difference <= largest * (1.0f / 1024));  // and back, within half precision
   }
 }
@@ -323,7 +327,8 @@ TEST_CASE("UBO2014 files laid out by hand decode in the format's order", "[ubo20
         for (int y = 0; y < 2; ++y) {
           for (int x = 0; x < 2; ++x) {
             for (int c = 0; c < 3; ++c) {
-              CHECK(rgb[(y * 2 + x) * 3 + c] == static_cast<float>(Imath::half(hand_value(c, int(l), int(v), x, y))));
+              CHECK(rgb[(y * 2 + x) * 3 + c] ==
+                    static_cast<float>(Imath::half(hand_value(c, int(l), int(v), x, y))));
             }
           }
         }

@@ -150,6 +150,19 @@ TEST_CASE("a FIFO or a folder given as a material is refused at once", "[cli][ho
   fs::remove_all(folder);
 }
 
+TEST_CASE("a UBO2014 .btf that is a FIFO or truncated is refused with one line", "[cli][hostile]") {
+  const fs::path folder = test::scratch_folder("hostile_btf");
+  const fs::path fifo = folder / "fifo.btf";
+  REQUIRE(mkfifo(fifo.c_str(), 0600) == 0);
+  check_refused(run("info " + fifo.string(), "timeout 30"), fifo.string() + ": is not a regular file");
+  const fs::path truncated = folder / "truncated.btf";
+  std::ofstream(truncated, std::ios::binary) << "!DFMF08FCR" << std::string(20, '\x01');
+  check_refused(run("analyze " + truncated.string() + " --out " + (folder / "m.cbtf").string()),
+                truncated.string() + ": meta data");
+  CHECK(!fs::exists(folder / "m.cbtf"));
+  fs::remove_all(folder);
+}
+
 TEST_CASE("bench analyze removes only what it created in its --out folder", "[cli][hostile]") {
   const fs::path folder = test::scratch_folder("hostile_bench");
   const fs::path out = folder / "mine";

@@ -19,11 +19,13 @@ static_assert(std::endian::native == std::endian::little, "the binary readers as
 
 class BoundedFile {
  public:
-  explicit BoundedFile(const std::filesystem::path& path) : path_(path), stream_(path, std::ios::binary) {
+  explicit BoundedFile(const std::filesystem::path& path) : path_(path) {
+    // Checked before opening: opening a FIFO would wait for a writer.
     std::error_code ec;
-    const auto size = std::filesystem::file_size(path, ec);
+    if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "is not a regular file");
+    size_ = std::filesystem::file_size(path, ec);
+    stream_.open(path, std::ios::binary);
     if (!stream_ || ec) throw InputError(path, "cannot be opened for reading");
-    size_ = size;
   }
 
   const std::filesystem::path& path() const { return path_; }
@@ -39,14 +41,16 @@ class BoundedFile {
   void require(std::uint64_t bytes, const std::string& field) const {
     if (bytes > remaining()) {
       fail(field, "needs " + std::to_string(bytes) + " bytes at offset " + std::to_string(position_) +
-                      " but the file ends after " + std::to_string(remaining()) + " more (truncated or corrupt)");
+                      " but the file ends after " + std::to_string(remaining()) +
+                      " more (truncated or corrupt)");
     }
   }
 
   void read(void* out, std::uint64_t bytes, const std::string& field) {
     require(bytes, field);
     if (bytes == 0) return;
-    if (!stream_.read(static_cast<char*>(out), static_cast<std::streamsize>(bytes))) fail(field, "read error");
+    if (!stream_.read(static_cast<char*>(out), static_cast<std::streamsize>(bytes)))
+      fail(field, "read error");
     position_ += bytes;
   }
 

@@ -28,10 +28,13 @@ inline std::optional<std::string> unsupported_model(std::int32_t model) {
     case ColourModel::ylog_uv:
     case ColourModel::ylog_ulog_vlog:
     case ColourModel::ylog_u_div_y_v_div_y:
-    case ColourModel::rgb_log: return std::nullopt;
-    case ColourModel::lab: return "colour model 2 (LAB) is not read by carbtf";
+    case ColourModel::rgb_log:
+      return std::nullopt;
+    case ColourModel::lab:
+      return "colour model 2 (LAB) is not read by carbtf";
     case ColourModel::spectral:
-    case ColourModel::spectral_linear: return "colour model " + std::to_string(model) + " is spectral; carbtf reads RGB";
+    case ColourModel::spectral_linear:
+      return "colour model " + std::to_string(model) + " is spectral; carbtf reads RGB";
   }
   return "colour model " + std::to_string(model) + " is not one of the UBO2014 models";
 }
@@ -44,8 +47,10 @@ inline std::array<float, 3> yuv_to_rgb(float y, float u, float v) {
 inline std::array<float, 3> to_rgb(const ColourTransform& t, std::array<float, 3> c) {
   const float e = kLogOffset;
   switch (t.model) {
-    case ColourModel::rgb: return c;
-    case ColourModel::yuv: return yuv_to_rgb(c[0], c[1], c[2]);
+    case ColourModel::rgb:
+      return c;
+    case ColourModel::yuv:
+      return yuv_to_rgb(c[0], c[1], c[2]);
     case ColourModel::pca: {
       std::array<float, 3> rgb = t.mean;
       for (int j = 0; j < 3; ++j) {
@@ -53,8 +58,10 @@ inline std::array<float, 3> to_rgb(const ColourTransform& t, std::array<float, 3
       }
       return rgb;
     }
-    case ColourModel::ycocg: return {c[0] + c[1] - c[2], c[0] + c[2], c[0] - c[1] - c[2]};
-    case ColourModel::ylog_uv: return yuv_to_rgb(std::exp(c[0]) - e, c[1], c[2]);
+    case ColourModel::ycocg:
+      return {c[0] + c[1] - c[2], c[0] + c[2], c[0] - c[1] - c[2]};
+    case ColourModel::ylog_uv:
+      return yuv_to_rgb(std::exp(c[0]) - e, c[1], c[2]);
     case ColourModel::ylog_ulog_vlog: {
       auto signed_exp = [&](float x) { return std::copysign(std::exp(std::abs(x) + std::log(e)), x); };
       return yuv_to_rgb(std::exp(c[0]) - e, signed_exp(c[1]), signed_exp(c[2]));
@@ -63,8 +70,10 @@ inline std::array<float, 3> to_rgb(const ColourTransform& t, std::array<float, 3
       const float y = std::exp(c[0]) - e;
       return yuv_to_rgb(y, c[1] * (y + e), c[2] * (y + e));
     }
-    case ColourModel::rgb_log: return {std::exp(c[0]) - e, std::exp(c[1]) - e, std::exp(c[2]) - e};
-    default: return c;  // refused when the header is read
+    case ColourModel::rgb_log:
+      return {std::exp(c[0]) - e, std::exp(c[1]) - e, std::exp(c[2]) - e};
+    default:
+      return c;  // refused when the header is read
   }
 }
 

@@ -37,12 +37,16 @@ struct Header {
   std::size_t texels() const { return std::size_t{width} * height; }
 };
 
-std::string mib(std::uint64_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB"; }
+std::string mib(std::uint64_t bytes) {
+  return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB";
+}
 
 std::uint64_t physical_memory_bytes() {
   const long pages = sysconf(_SC_PHYS_PAGES);
   const long page_size = sysconf(_SC_PAGE_SIZE);
-  return pages > 0 && page_size > 0 ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page_size) : 0;
+  return pages > 0 && page_size > 0
+             ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page_size)
+             : 0;
 }
 
 void require_memory(const BoundedFile& file, std::uint64_t bytes, const std::string& what) {
@@ -61,11 +65,12 @@ ubo2014::Layout read_signature(BoundedFile& file) {
   for (const char* other : {"!FMF", "!PVF", "!BDI"}) {
     if (signature.starts_with(other)) {
       file.fail("signature", "a UBO BTF in a layout carbtf does not read (" + std::string(other + 1) +
-                                 "); carbtf reads \"" + std::string(ubo2014::kDfmfSignature) + "\" (DFMF) and \"" +
-                                 std::string(ubo2014::kBdiSignature) + "\" (raw)");
+                                 "); carbtf reads \"" + std::string(ubo2014::kDfmfSignature) +
+                                 "\" (DFMF) and \"" + std::string(ubo2014::kBdiSignature) + "\" (raw)");
     }
   }
-  file.fail("signature", "not a UBO2014 BTF file (it starts neither with \"" + std::string(ubo2014::kDfmfSignature) + "\" nor \"" +
+  file.fail("signature", "not a UBO2014 BTF file (it starts neither with \"" +
+                             std::string(ubo2014::kDfmfSignature) + "\" nor \"" +
                              std::string(ubo2014::kBdiSignature) + "\")");
 }
 
@@ -73,19 +78,24 @@ void read_meta_data(BoundedFile& file, Header& header) {
   const std::uint64_t start = file.position();
   const auto block_size = file.value<std::uint32_t>("meta data size");
   const auto version = file.value<std::uint32_t>("meta data version");
-  if (version < 1 || version > 4) file.fail("meta data version", std::to_string(version) + " is not one of 1-4");
+  if (version < 1 || version > 4)
+    file.fail("meta data version", std::to_string(version) + " is not one of 1-4");
   file.skip(3 * 80 + 4 + 3 * 4, "meta data (setup, sensor, light source, scale)");
   header.cosine_in_data = version > 1 && file.value<std::uint32_t>("meta data cosine flag") != 0;
   if (version > 2) file.skip(file.value<std::uint32_t>("meta data XML size"), "meta data XML");
   std::uint32_t channels = 3;
   if (version > 3) {
     channels = file.value<std::uint32_t>("meta data channel count");
-    if (channels > ubo2014::kMaxChannels) file.fail("meta data channel count", std::to_string(channels) + " is over the limit of " + std::to_string(ubo2014::kMaxChannels));
+    if (channels > ubo2014::kMaxChannels)
+      file.fail("meta data channel count",
+                std::to_string(channels) + " is over the limit of " + std::to_string(ubo2014::kMaxChannels));
     for (std::uint32_t c = 0; c < channels; ++c) {
-      file.skip(file.value<std::uint32_t>("meta data channel name size"), "meta data channel " + std::to_string(c) + " name");
+      file.skip(file.value<std::uint32_t>("meta data channel name size"),
+                "meta data channel " + std::to_string(c) + " name");
     }
   }
-  if (channels != 3) file.fail("meta data channel count", std::to_string(channels) + " channels; carbtf reads RGB BTFs (3)");
+  if (channels != 3)
+    file.fail("meta data channel count", std::to_string(channels) + " channels; carbtf reads RGB BTFs (3)");
   if (file.position() - start != block_size) {
     file.fail("meta data size", "declares " + std::to_string(block_size) + " bytes but its fields take " +
                                     std::to_string(file.position() - start));
@@ -97,9 +107,11 @@ Direction read_direction(BoundedFile& file, const std::string& field) {
   const auto phi = file.value<float>(field + " phi");
   if (!std::isfinite(theta) || !std::isfinite(phi)) file.fail(field, "angle is not a finite number");
   if (theta < 0 || theta >= std::numbers::pi_v<float> / 2) {
-    file.fail(field, "theta " + std::to_string(theta) + " rad is not in [0, pi/2): not a direction over the sample");
+    file.fail(field,
+              "theta " + std::to_string(theta) + " rad is not in [0, pi/2): not a direction over the sample");
   }
-  return {theta, std::fmod(std::fmod(static_cast<double>(phi), 2 * std::numbers::pi) + 2 * std::numbers::pi, 2 * std::numbers::pi)};
+  return {theta, std::fmod(std::fmod(static_cast<double>(phi), 2 * std::numbers::pi) + 2 * std::numbers::pi,
+                           2 * std::numbers::pi)};
 }
 
 void read_directions(BoundedFile& file, Header& header, std::vector<std::string>& warnings) {
@@ -132,7 +144,8 @@ void read_directions(BoundedFile& file, Header& header, std::vector<std::string>
     }
   }
   if (lights_differ) {
-    warnings.push_back(file.path().string() + ": the views list different light directions; carbtf uses view 0's, as btflib does");
+    warnings.push_back(file.path().string() +
+                       ": the views list different light directions; carbtf uses view 0's, as btflib does");
   }
 }
 
@@ -140,17 +153,22 @@ void read_extent(BoundedFile& file, Header& header) {
   header.width = file.value<std::uint32_t>("width");
   header.height = file.value<std::uint32_t>("height");
   for (const auto& [side, name] : {std::pair{header.width, "width"}, std::pair{header.height, "height"}}) {
-    if (side == 0 || side > ubo2014::kMaxSide) file.fail(name, std::to_string(side) + " texels is not in 1-" + std::to_string(ubo2014::kMaxSide));
+    if (side == 0 || side > ubo2014::kMaxSide)
+      file.fail(name, std::to_string(side) + " texels is not in 1-" + std::to_string(ubo2014::kMaxSide));
   }
 }
 
 void skip_rotations(BoundedFile& file) {
   const auto rotations = file.value<std::uint32_t>("rotation count");
-  if (rotations > ubo2014::kMaxRotations) file.fail("rotation count", std::to_string(rotations) + " is over the limit of " + std::to_string(ubo2014::kMaxRotations));
+  if (rotations > ubo2014::kMaxRotations)
+    file.fail("rotation count",
+              std::to_string(rotations) + " is over the limit of " + std::to_string(ubo2014::kMaxRotations));
   file.skip(std::uint64_t{rotations} * 9 * 4, "rotations");
 }
 
-bool half_is_finite(std::uint16_t bits) { return (bits & 0x7c00u) != 0x7c00u; }
+bool half_is_finite(std::uint16_t bits) {
+  return (bits & 0x7c00u) != 0x7c00u;
+}
 
 float light_cosine(const Header& header, std::size_t light) {
   return header.cosine_in_data ? 1.0f : static_cast<float>(std::cos(header.lights[light].theta));
@@ -165,7 +183,8 @@ struct ChannelFactors {
   std::vector<float> pair_rows;
 };
 
-void read_scalars(BoundedFile& file, std::uint8_t scalar_bytes, std::uint64_t count, float* out, const std::string& field) {
+void read_scalars(BoundedFile& file, std::uint8_t scalar_bytes, std::uint64_t count, float* out,
+                  const std::string& field) {
   constexpr std::uint64_t kBlock = 1u << 16;
   std::vector<std::uint8_t> block(std::min(count, kBlock) * scalar_bytes);
   for (std::uint64_t done = 0; done < count;) {
@@ -195,27 +214,32 @@ void read_scalars(BoundedFile& file, std::uint8_t scalar_bytes, std::uint64_t co
   }
 }
 
-ChannelFactors read_channel(BoundedFile& file, const Header& header, std::uint32_t channel, std::uint32_t max_components) {
+ChannelFactors read_channel(BoundedFile& file, const Header& header, std::uint32_t channel,
+                            std::uint32_t max_components) {
   const std::string name = "DFMF channel " + std::to_string(channel);
   const auto scalar_bytes = file.value<std::uint8_t>(name + " scalar size");
   if (scalar_bytes != 2 && scalar_bytes != 4 && scalar_bytes != 8) {
-    file.fail(name + " scalar size", std::to_string(scalar_bytes) + " bytes is none of 2 (half), 4 (float), 8 (double)");
+    file.fail(name + " scalar size",
+              std::to_string(scalar_bytes) + " bytes is none of 2 (half), 4 (float), 8 (double)");
   }
   const auto components = file.value<std::uint32_t>(name + " component count");
   const auto rows = file.value<std::uint32_t>(name + " row count");
   const auto columns = file.value<std::uint32_t>(name + " column count");
   const bool pairs_in_rows = rows == header.pairs() && columns == header.texels();
   if (!pairs_in_rows && !(rows == header.texels() && columns == header.pairs())) {
-    file.fail(name + " rows and columns", std::to_string(rows) + " x " + std::to_string(columns) + " do not match the tables: " +
-                                              std::to_string(header.pairs()) + " light/view pairs and " +
-                                              std::to_string(header.texels()) + " texels");
+    file.fail(name + " rows and columns", std::to_string(rows) + " x " + std::to_string(columns) +
+                                              " do not match the tables: " + std::to_string(header.pairs()) +
+                                              " light/view pairs and " + std::to_string(header.texels()) +
+                                              " texels");
   }
   if (components == 0 || components > max_components) {
-    file.fail(name + " component count", std::to_string(components) + " is not in 1-" + std::to_string(max_components) + " (the header's count)");
+    file.fail(name + " component count", std::to_string(components) + " is not in 1-" +
+                                             std::to_string(max_components) + " (the header's count)");
   }
   if (components > std::min(rows, columns)) {
-    file.fail(name + " component count", std::to_string(components) + " components of a " + std::to_string(rows) + " x " +
-                                             std::to_string(columns) + " matrix");
+    file.fail(name + " component count", std::to_string(components) + " components of a " +
+                                             std::to_string(rows) + " x " + std::to_string(columns) +
+                                             " matrix");
   }
   const std::uint64_t values = std::uint64_t{components} * (1 + std::uint64_t{rows} + columns);
   file.require(values * scalar_bytes, name + " factors");
@@ -235,7 +259,8 @@ ChannelFactors read_channel(BoundedFile& file, const Header& header, std::uint32
 
 class DfmfDecoder final : public ImageDecoder {
  public:
-  DfmfDecoder(std::string file, Header header, ubo2014::ColourTransform colour, std::array<ChannelFactors, 3> channels)
+  DfmfDecoder(std::string file, Header header, ubo2014::ColourTransform colour,
+              std::array<ChannelFactors, 3> channels)
       : file_(std::move(file)), header_(std::move(header)), colour_(colour), channels_(std::move(channels)) {}
 
   void decode(LightView pair, std::span<float> rgb) const override {
@@ -256,9 +281,10 @@ class DfmfDecoder final : public ImageDecoder {
       for (std::size_t c = 0; c < 3; ++c) {
         const float v = value[c] * cosine;
         if (!std::isfinite(v)) {
-          throw InputError(file_, "light " + std::to_string(pair.light) + ", view " + std::to_string(pair.view) + ", texel (" +
-                                      std::to_string(t % header_.width) + ", " + std::to_string(t / header_.width) +
-                                      ") decodes to a value that is not finite");
+          throw InputError(file_,
+                           "light " + std::to_string(pair.light) + ", view " + std::to_string(pair.view) +
+                               ", texel (" + std::to_string(t % header_.width) + ", " +
+                               std::to_string(t / header_.width) + ") decodes to a value that is not finite");
         }
         rgb[t * 3 + c] = std::max(v, 0.0f);
       }
@@ -288,13 +314,16 @@ BtfDataset read_dfmf(BoundedFile& file, Header header, std::vector<std::string>&
   colour.model = static_cast<ubo2014::ColourModel>(model);
   file.read(colour.mean.data(), sizeof colour.mean, "DFMF colour mean");
   file.read(colour.matrix.data(), sizeof colour.matrix, "DFMF colour matrix");
-  for (float v : colour.mean) if (!std::isfinite(v)) file.fail("DFMF colour mean", "is not finite");
-  for (float v : colour.matrix) if (!std::isfinite(v)) file.fail("DFMF colour matrix", "is not finite");
+  for (float v : colour.mean)
+    if (!std::isfinite(v)) file.fail("DFMF colour mean", "is not finite");
+  for (float v : colour.matrix)
+    if (!std::isfinite(v)) file.fail("DFMF colour matrix", "is not finite");
 
   std::array<ChannelFactors, 3> channels;
   for (std::uint32_t c = 0; c < 3; ++c) channels[c] = read_channel(file, header, c, max_components);
   if (file.remaining() != 0) {
-    warnings.push_back(file.path().string() + ": " + std::to_string(file.remaining()) + " bytes after the DFMF factors are ignored");
+    warnings.push_back(file.path().string() + ": " + std::to_string(file.remaining()) +
+                       " bytes after the DFMF factors are ignored");
   }
   std::uint32_t components = 0;
   for (const auto& f : channels) components = std::max(components, f.components);
@@ -302,24 +331,30 @@ BtfDataset read_dfmf(BoundedFile& file, Header header, std::vector<std::string>&
   const std::uint32_t height = header.height;
   std::vector<Direction> lights = header.lights;
   std::vector<Direction> views = header.views;
-  auto decoder = std::make_shared<DfmfDecoder>(file.path().string(), std::move(header), colour, std::move(channels));
+  auto decoder =
+      std::make_shared<DfmfDecoder>(file.path().string(), std::move(header), colour, std::move(channels));
   BtfDataset dataset(std::move(lights), std::move(views), width, height, std::move(decoder));
-  dataset.source = "UBO2014 DFMF file " + file.path().string() + " (" + std::to_string(components) + " components, colour model " +
-                   std::to_string(model) + ")";
+  dataset.source = "UBO2014 DFMF file " + file.path().string() + " (" + std::to_string(components) +
+                   " components, colour model " + std::to_string(model) + ")";
   return dataset;
 }
 
 // ---- BDI (raw) ----
 
-BtfDataset read_bdi(BoundedFile& file, Header header, const BtfLoadOptions& options, std::vector<std::string>& warnings) {
+BtfDataset read_bdi(BoundedFile& file, Header header, const BtfLoadOptions& options,
+                    std::vector<std::string>& warnings) {
   read_extent(file, header);
   const auto scan_lines = file.value<std::uint32_t>("BDI scan lines per chunk");
   if (scan_lines == 0 || scan_lines > header.height) {
-    file.fail("BDI scan lines per chunk", std::to_string(scan_lines) + " is not in 1-" + std::to_string(header.height) + " (the height)");
+    file.fail("BDI scan lines per chunk",
+              std::to_string(scan_lines) + " is not in 1-" + std::to_string(header.height) + " (the height)");
   }
   const auto compression = file.value<std::uint8_t>("BDI compression");
-  if (compression == 1) file.fail("BDI compression", "bzip2-compressed chunks (1) are not read by carbtf; use a raw (0, 2) or DFMF file");
-  if (compression != 0 && compression != 2) file.fail("BDI compression", std::to_string(compression) + " is none of 0 (full), 2 (sparse)");
+  if (compression == 1)
+    file.fail("BDI compression",
+              "bzip2-compressed chunks (1) are not read by carbtf; use a raw (0, 2) or DFMF file");
+  if (compression != 0 && compression != 2)
+    file.fail("BDI compression", std::to_string(compression) + " is none of 0 (full), 2 (sparse)");
   file.require(header.texels(), "BDI mask");
   std::vector<std::uint8_t> mask(header.texels());
   file.read(mask.data(), mask.size(), "BDI mask");
@@ -331,8 +366,9 @@ BtfDataset read_bdi(BoundedFile& file, Header header, const BtfLoadOptions& opti
     if (compression == 0 || mask[t] != 0) stored.push_back(t);
   }
   if (stored.size() * ubo2014::kMinStoredShareDenominator < header.texels()) {
-    file.fail("BDI mask", "stores " + std::to_string(stored.size()) + " of " + std::to_string(header.texels()) +
-                              " texels; carbtf needs at least 1 in " + std::to_string(ubo2014::kMinStoredShareDenominator));
+    file.fail("BDI mask", "stores " + std::to_string(stored.size()) + " of " +
+                              std::to_string(header.texels()) + " texels; carbtf needs at least 1 in " +
+                              std::to_string(ubo2014::kMinStoredShareDenominator));
   }
   const std::uint64_t abrdf_values = header.pairs() * 3;
   const std::uint64_t per_chunk = std::uint64_t{header.width} * scan_lines;
@@ -341,7 +377,8 @@ BtfDataset read_bdi(BoundedFile& file, Header header, const BtfLoadOptions& opti
   const std::uint64_t image_bytes = header.pairs() * header.texels() * 3 * 2;
   require_memory(file, image_bytes, "BDI images");
 
-  std::vector<std::vector<std::uint16_t>> images(header.pairs(), std::vector<std::uint16_t>(header.texels() * 3, 0));
+  std::vector<std::vector<std::uint16_t>> images(header.pairs(),
+                                                 std::vector<std::uint16_t>(header.texels() * 3, 0));
   std::vector<std::uint16_t> chunk;
   Progress progress("reading " + std::to_string(chunks) + " BDI chunks", chunks, options.progress);
   for (std::uint64_t k = 0; k < chunks; ++k) {
@@ -350,8 +387,9 @@ BtfDataset read_bdi(BoundedFile& file, Header header, const BtfLoadOptions& opti
     const std::string name = "BDI chunk " + std::to_string(k);
     const auto bytes = file.value<std::uint32_t>(name + " size");
     if (bytes != count * abrdf_values * 2) {
-      file.fail(name + " size", std::to_string(bytes) + " bytes where its " + std::to_string(count) + " texels of " +
-                                    std::to_string(header.pairs()) + " light/view pairs take " + std::to_string(count * abrdf_values * 2));
+      file.fail(name + " size", std::to_string(bytes) + " bytes where its " + std::to_string(count) +
+                                    " texels of " + std::to_string(header.pairs()) +
+                                    " light/view pairs take " + std::to_string(count * abrdf_values * 2));
     }
     chunk.resize(count * abrdf_values);
     file.read(chunk.data(), bytes, name);
@@ -366,8 +404,8 @@ BtfDataset read_bdi(BoundedFile& file, Header header, const BtfLoadOptions& opti
           for (int c = 0; c < 3; ++c) {
             if (!half_is_finite(value[c])) {
               file.fail(name, "light " + std::to_string(l) + ", view " + std::to_string(v) + ", texel (" +
-                                  std::to_string(texel % header.width) + ", " + std::to_string(texel / header.width) +
-                                  ") is not a finite number");
+                                  std::to_string(texel % header.width) + ", " +
+                                  std::to_string(texel / header.width) + ") is not a finite number");
             }
             std::uint16_t bits = (value[c] & 0x8000u) ? 0 : value[c];  // negative: 0
             if (cosine != 1.0f && bits != 0) {
@@ -383,7 +421,8 @@ BtfDataset read_bdi(BoundedFile& file, Header header, const BtfLoadOptions& opti
     progress.advance();
   }
   if (file.remaining() != 0) {
-    warnings.push_back(file.path().string() + ": " + std::to_string(file.remaining()) + " bytes after the BDI chunks are ignored");
+    warnings.push_back(file.path().string() + ": " + std::to_string(file.remaining()) +
+                       " bytes after the BDI chunks are ignored");
   }
   BtfDataset dataset(header.lights, header.views, header.width, header.height, ColorEncoding::linear_half);
   for (std::uint32_t l = 0; l < header.lights.size(); ++l) {
@@ -401,14 +440,15 @@ BtfDataset read_bdi(BoundedFile& file, Header header, const BtfLoadOptions& opti
 
 }  // namespace
 
-BtfDataset read_ubo2014_btf(const std::filesystem::path& path, const BtfLoadOptions& options, std::vector<std::string>& warnings) {
+BtfDataset read_ubo2014_btf(const std::filesystem::path& path, const BtfLoadOptions& options,
+                            std::vector<std::string>& warnings) {
   BoundedFile file(path);
   Header header;
   header.layout = read_signature(file);
   read_meta_data(file, header);
   read_directions(file, header, warnings);
   return header.layout == ubo2014::Layout::dfmf ? read_dfmf(file, std::move(header), warnings)
-                                       : read_bdi(file, std::move(header), options, warnings);
+                                                : read_bdi(file, std::move(header), options, warnings);
 }
 
 }  // namespace carbtf

@@ -1,36 +1,65 @@
 #include "carbtf/analysis/btf/ubo2014_writer.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <Imath/half.h>
 
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cmath>
-#include <fstream>
+#include <cstring>
 #include <random>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "carbtf/engine/file_output.hpp"
 #include "ubo2014_colour.hpp"
 
 namespace carbtf {
 
 namespace {
 
-
+// Writes beside the target, flushes to the disk and renames over it when done, as every carbtf output
+// (carbtf/engine/file_output.hpp): a failed write leaves the target as it was and no temporary behind;
+// a target that is not a regular file is refused; a symbolic link to one is written through and kept,
+// and a replaced file keeps its permission bits. Streamed, for files of gigabytes.
 class BinaryOut {
  public:
-  explicit BinaryOut(const std::filesystem::path& path) : path_(path), stream_(path, std::ios::binary | std::ios::trunc) {
-    if (!stream_) throw std::runtime_error(path.string() + ": cannot be created");
+  explicit BinaryOut(const std::filesystem::path& path) : path_(path) {
+    if (const Status status = check_output_file(path.string()); !status.ok())
+      throw std::runtime_error(status.message());
+    std::error_code ec;
+    target_ = std::filesystem::is_symlink(path, ec) ? std::filesystem::canonical(path) : path;
+    temporary_ = target_.string() + ".carbtf-" + std::to_string(getpid()) + ".tmp";
+    fd_ = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    if (fd_ < 0) fail("cannot be created");
+    if (std::filesystem::exists(target_, ec)) {
+      std::filesystem::permissions(temporary_, std::filesystem::status(target_).permissions(), ec);
+    }
   }
+  ~BinaryOut() {
+    if (fd_ >= 0) ::close(fd_);
+    if (!finished_) ::unlink(temporary_.c_str());
+  }
+  BinaryOut(const BinaryOut&) = delete;
+  BinaryOut& operator=(const BinaryOut&) = delete;
+
   template <class T>
   void value(T v) {
     bytes(&v, sizeof v);
   }
   void bytes(const void* data, std::size_t size) {
-    if (!stream_.write(static_cast<const char*>(data), static_cast<std::streamsize>(size))) {
-      throw std::runtime_error(path_.string() + ": write failed (disk full?)");
+    const auto* at = static_cast<const char*>(data);
+    while (size > 0) {
+      const ssize_t written = ::write(fd_, at, std::min<std::size_t>(size, 1u << 30));
+      if (written < 0 && errno == EINTR) continue;
+      if (written <= 0) fail("write failed");
+      at += written;
+      size -= static_cast<std::size_t>(written);
     }
   }
   void text(const std::string& s, std::size_t size) {
@@ -45,17 +74,30 @@ class BinaryOut {
     bytes(halves.data(), count * 2);
   }
   void finish() {
-    stream_.flush();
-    if (!stream_) throw std::runtime_error(path_.string() + ": write failed (disk full?)");
+    if (::fsync(fd_) != 0) fail("flush to the disk failed");
+    const int fd = fd_;
+    fd_ = -1;
+    if (::close(fd) != 0) fail("close failed");
+    if (::rename(temporary_.c_str(), target_.c_str()) != 0) fail("cannot replace it");
+    finished_ = true;
   }
 
  private:
+  [[noreturn]] void fail(const std::string& what) const {
+    throw std::runtime_error(path_.string() + ": " + what + " (" + std::strerror(errno) + ")");
+  }
+
   std::filesystem::path path_;
-  std::ofstream stream_;
+  std::filesystem::path target_;
+  std::filesystem::path temporary_;
+  int fd_ = -1;
+  bool finished_ = false;
 };
 
 void write_header(BinaryOut& out, const BtfDataset& dataset, const Ubo2014WriteOptions& options) {
-  out.bytes((options.layout == ubo2014::Layout::dfmf ? ubo2014::kDfmfSignature : ubo2014::kBdiSignature).data(), 10);
+  out.bytes(
+      (options.layout == ubo2014::Layout::dfmf ? ubo2014::kDfmfSignature : ubo2014::kBdiSignature).data(),
+      10);
   const std::uint32_t meta_size = 4 + 4 + 3 * 80 + 4 + 3 * 4 + 4 + 4 + 4 + 3 * (4 + 1);
   out.value(meta_size);
   out.value(std::uint32_t{4});
@@ -87,9 +129,11 @@ void write_header(BinaryOut& out, const BtfDataset& dataset, const Ubo2014WriteO
 
 // A pair's image as the file stores it: linear RGB, divided by the light's cosine where the flag says
 // the data lacks it.
-void stored_image(const BtfDataset& dataset, const Ubo2014WriteOptions& options, LightView pair, std::vector<float>& rgb) {
+void stored_image(const BtfDataset& dataset, const Ubo2014WriteOptions& options, LightView pair,
+                  std::vector<float>& rgb) {
   rgb.resize(dataset.pixel_count() * 3);
-  if (!dataset.has_image(pair)) throw std::invalid_argument("write_ubo2014_btf: the dataset misses a light/view pair");
+  if (!dataset.has_image(pair))
+    throw std::invalid_argument("write_ubo2014_btf: the dataset misses a light/view pair");
   dataset.linear_rgb(pair, rgb);
   if (!options.cosine_in_data) {
     const float cosine = static_cast<float>(std::cos(dataset.lights()[pair.light].theta));
@@ -108,8 +152,8 @@ std::vector<LightView> pairs_in_file_order(const BtfDataset& dataset) {  // ligh
 // ---- DFMF ----
 
 struct Decorrelation {
-  ubo2014::ColourTransform inverse;       // what the file records (channels to RGB)
-  Eigen::Matrix3f forward;       // RGB (minus mean) to channels
+  ubo2014::ColourTransform inverse;  // what the file records (channels to RGB)
+  Eigen::Matrix3f forward;           // RGB (minus mean) to channels
   Eigen::Vector3f mean = Eigen::Vector3f::Zero();
 };
 
@@ -117,7 +161,9 @@ Decorrelation decorrelation(const BtfDataset& dataset, const Ubo2014WriteOptions
   Decorrelation d;
   d.inverse.model = options.colour_model;
   switch (options.colour_model) {
-    case ubo2014::ColourModel::rgb: d.forward.setIdentity(); break;
+    case ubo2014::ColourModel::rgb:
+      d.forward.setIdentity();
+      break;
     case ubo2014::ColourModel::yuv: {
       Eigen::Matrix3f to_rgb;
       for (int i = 0; i < 3; ++i) {
@@ -154,18 +200,20 @@ Decorrelation decorrelation(const BtfDataset& dataset, const Ubo2014WriteOptions
       d.mean = mean.cast<float>();
       break;
     }
-    default: throw std::invalid_argument("write_ubo2014_btf: carbtf writes colour models rgb, yuv and pca only");
+    default:
+      throw std::invalid_argument("write_ubo2014_btf: carbtf writes colour models rgb, yuv and pca only");
   }
   return d;
 }
 
 // One channel's values of a pair's image, decorrelated: out[c][t].
-void channel_rows(const BtfDataset& dataset, const Ubo2014WriteOptions& options, const Decorrelation& d, LightView pair,
-                  std::vector<float>& rgb, std::array<std::vector<float>, 3>& out) {
+void channel_rows(const BtfDataset& dataset, const Ubo2014WriteOptions& options, const Decorrelation& d,
+                  LightView pair, std::vector<float>& rgb, std::array<std::vector<float>, 3>& out) {
   stored_image(dataset, options, pair, rgb);
   for (auto& channel : out) channel.resize(dataset.pixel_count());
   for (std::size_t t = 0; t < dataset.pixel_count(); ++t) {
-    const Eigen::Vector3f c = d.forward * (Eigen::Vector3f(rgb[t * 3], rgb[t * 3 + 1], rgb[t * 3 + 2]) - d.mean);
+    const Eigen::Vector3f c =
+        d.forward * (Eigen::Vector3f(rgb[t * 3], rgb[t * 3 + 1], rgb[t * 3 + 2]) - d.mean);
     for (int i = 0; i < 3; ++i) out[i][t] = c[i];
   }
 }
@@ -177,11 +225,14 @@ struct Factors {  // row-major
   std::vector<float> texel_rows;  // texels x components (S x V)
 };
 
-std::array<Factors, 3> exact_factors(const BtfDataset& dataset, const Ubo2014WriteOptions& options, const Decorrelation& d) {
+std::array<Factors, 3> exact_factors(const BtfDataset& dataset, const Ubo2014WriteOptions& options,
+                                     const Decorrelation& d) {
   const auto pairs = pairs_in_file_order(dataset);
   const std::size_t n = pairs.size();
   const std::size_t texels = dataset.pixel_count();
-  if (n > texels) throw std::invalid_argument("write_ubo2014_btf: exact DFMF needs at least as many texels as light/view pairs");
+  if (n > texels)
+    throw std::invalid_argument(
+        "write_ubo2014_btf: exact DFMF needs at least as many texels as light/view pairs");
   std::array<Factors, 3> f;
   for (auto& channel : f) {
     channel.components = static_cast<std::uint32_t>(n);
@@ -203,7 +254,8 @@ std::array<Factors, 3> exact_factors(const BtfDataset& dataset, const Ubo2014Wri
 
 // A randomised range finder (Halko, Martinsson & Tropp 2011) with 8 extra columns and no power
 // iteration: a BTF's spectrum falls fast. Two passes over the images; the data matrix is never held.
-std::array<Factors, 3> truncated_factors(const BtfDataset& dataset, const Ubo2014WriteOptions& options, const Decorrelation& d) {
+std::array<Factors, 3> truncated_factors(const BtfDataset& dataset, const Ubo2014WriteOptions& options,
+                                         const Decorrelation& d) {
   const auto pairs = pairs_in_file_order(dataset);
   const Eigen::Index n = static_cast<Eigen::Index>(pairs.size());
   const Eigen::Index texels = static_cast<Eigen::Index>(dataset.pixel_count());
@@ -234,7 +286,8 @@ std::array<Factors, 3> truncated_factors(const BtfDataset& dataset, const Ubo201
   for (Eigen::Index p = 0; p < n; ++p) {
     channel_rows(dataset, options, d, pairs[static_cast<std::size_t>(p)], rgb, rows);
     for (int c = 0; c < 3; ++c) {
-      b[c].noalias() += q[c].row(p).transpose() * Eigen::Map<const Eigen::RowVectorXf>(rows[c].data(), texels).cast<double>();
+      b[c].noalias() += q[c].row(p).transpose() *
+                        Eigen::Map<const Eigen::RowVectorXf>(rows[c].data(), texels).cast<double>();
     }
   }
   std::array<Factors, 3> f;
@@ -244,7 +297,8 @@ std::array<Factors, 3> truncated_factors(const BtfDataset& dataset, const Ubo201
     const Eigen::MatrixXd sxv = svd.matrixV().leftCols(k) * svd.singularValues().head(k).asDiagonal();
     f[c].components = static_cast<std::uint32_t>(k);
     f[c].singular.resize(static_cast<std::size_t>(k));
-    for (Eigen::Index i = 0; i < k; ++i) f[c].singular[static_cast<std::size_t>(i)] = static_cast<float>(svd.singularValues()[i]);
+    for (Eigen::Index i = 0; i < k; ++i)
+      f[c].singular[static_cast<std::size_t>(i)] = static_cast<float>(svd.singularValues()[i]);
     const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> u_rows = u.cast<float>();
     const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> sxv_rows = sxv.cast<float>();
     f[c].pair_rows.assign(u_rows.data(), u_rows.data() + u_rows.size());
@@ -254,7 +308,8 @@ std::array<Factors, 3> truncated_factors(const BtfDataset& dataset, const Ubo201
 }
 
 void write_dfmf(BinaryOut& out, const BtfDataset& dataset, const Ubo2014WriteOptions& options) {
-  if (options.scalar_bytes != 2 && options.scalar_bytes != 4) throw std::invalid_argument("write_ubo2014_btf: scalars of 2 or 4 bytes");
+  if (options.scalar_bytes != 2 && options.scalar_bytes != 4)
+    throw std::invalid_argument("write_ubo2014_btf: scalars of 2 or 4 bytes");
   out.value(std::uint32_t{0});  // no rotations
   const Decorrelation d = decorrelation(dataset, options);
   const std::array<Factors, 3> factors =
@@ -278,7 +333,8 @@ void write_dfmf(BinaryOut& out, const BtfDataset& dataset, const Ubo2014WriteOpt
 // ---- BDI ----
 
 void write_bdi(BinaryOut& out, const BtfDataset& dataset, const Ubo2014WriteOptions& options) {
-  const std::uint32_t scan_lines = std::clamp<std::uint32_t>(options.scan_lines_per_chunk, 1, dataset.height());
+  const std::uint32_t scan_lines =
+      std::clamp<std::uint32_t>(options.scan_lines_per_chunk, 1, dataset.height());
   const bool sparse = options.sparse && !dataset.mask.empty();
   out.value(scan_lines);
   out.value(std::uint8_t{sparse ? std::uint8_t{2} : std::uint8_t{0}});
@@ -296,7 +352,8 @@ void write_bdi(BinaryOut& out, const BtfDataset& dataset, const Ubo2014WriteOpti
   const std::size_t abrdf_values = pairs.size() * 3;
   const std::size_t per_chunk = std::size_t{dataset.width()} * scan_lines;
   // Whole chunks at a time, as many as fit 256 MiB of halves: each image is decoded once per group.
-  const std::size_t chunks_per_group = std::max<std::size_t>(1, (std::size_t{128} << 20) / (per_chunk * abrdf_values));
+  const std::size_t chunks_per_group =
+      std::max<std::size_t>(1, (std::size_t{128} << 20) / (per_chunk * abrdf_values));
   std::vector<float> rgb;
   std::vector<std::uint16_t> group;
   for (std::size_t first = 0; first < stored.size(); first += chunks_per_group * per_chunk) {
@@ -305,7 +362,9 @@ void write_bdi(BinaryOut& out, const BtfDataset& dataset, const Ubo2014WriteOpti
     for (std::size_t p = 0; p < pairs.size(); ++p) {
       stored_image(dataset, options, pairs[p], rgb);
       for (std::size_t a = 0; a < count; ++a) {
-        for (int c = 0; c < 3; ++c) group[a * abrdf_values + p * 3 + c] = Imath::half(rgb[std::size_t{stored[first + a]} * 3 + c]).bits();
+        for (int c = 0; c < 3; ++c)
+          group[a * abrdf_values + p * 3 + c] =
+              Imath::half(rgb[std::size_t{stored[first + a]} * 3 + c]).bits();
       }
     }
     for (std::size_t a = 0; a < count; a += per_chunk) {
@@ -318,7 +377,8 @@ void write_bdi(BinaryOut& out, const BtfDataset& dataset, const Ubo2014WriteOpti
 
 }  // namespace
 
-void write_ubo2014_btf(const std::filesystem::path& path, const BtfDataset& dataset, const Ubo2014WriteOptions& options) {
+void write_ubo2014_btf(const std::filesystem::path& path, const BtfDataset& dataset,
+                       const Ubo2014WriteOptions& options) {
   BinaryOut out(path);
   write_header(out, dataset, options);
   if (options.layout == ubo2014::Layout::dfmf) {

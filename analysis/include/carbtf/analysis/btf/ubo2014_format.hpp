@@ -59,8 +59,8 @@ enum class ColourModel : std::int32_t {
 inline constexpr float kLogOffset = 1e-5f;
 
 // Limits carbtf sets on what a file may declare, checked before anything is allocated.
-inline constexpr std::uint32_t kMaxSide = 16384;      // texels per side
-inline constexpr std::uint32_t kMaxChannels = 64;     // declared (carbtf reads 3: RGB)
+inline constexpr std::uint32_t kMaxSide = 16384;   // texels per side
+inline constexpr std::uint32_t kMaxChannels = 64;  // declared (carbtf reads 3: RGB)
 inline constexpr std::uint32_t kMaxRotations = 1u << 20;
 // A sparse BDI must store at least this share of its texels (1 in 4): the images are allocated in
 // full, so a file of a few stored texels must not ask for gigabytes.
