@@ -1,5 +1,5 @@
 # cmake -DSOURCE_DIR=... -DWORK_DIR=... -DFILTER=... -DENGINE_FILTER=... [-DBUILT=ON] -P run_sanitized_tests.cmake
-# Builds the parsers' tests (analysis_parser_tests: test_btf_io.cpp; engine_parser_tests:
+# Builds the parsers' tests (analysis_parser_tests: test_btf_io.cpp, test_ubo2014_files.cpp; engine_parser_tests:
 # test_material_file.cpp) with AddressSanitizer + UndefinedBehaviorSanitizer in their own
 # tree and runs the ones matching FILTER (analysis: the BTF readers) and ENGINE_FILTER (engine: the
 # material-file reader), the parsers of outside input. The tree is clang's with CARBTF_FUZZ=ON, so
