@@ -46,7 +46,8 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
     if (app.get_subcommands().empty()) {
       std::string commands;
-      for (const CLI::App* command : app.get_subcommands({})) commands += (commands.empty() ? "" : ", ") + command->get_name();
+      for (const CLI::App* command : app.get_subcommands({}))
+        commands += (commands.empty() ? "" : ", ") + command->get_name();
       std::cerr << "carbtf: error: no command given; commands are " << commands << " (see carbtf --help)\n";
       return 2;
     }

@@ -26,12 +26,13 @@ build_dir="${1:-$repo_root/build}"
 #   libtinyobjloader-dev                            OBJ meshes for `carbtf render --mesh file.obj` (host/)
 #   catch2                                          tests
 #   clang libclang-rt-14-dev                        libFuzzer and the sanitized test tree (tests/fuzz)
+#   clang-format                                    the format test (tests/format): every C/C++ file clean
 packages=(
   build-essential cmake pkg-config ninja-build
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
   libeigen3-dev libopenimageio-dev libimath-dev libzip-dev zlib1g-dev nlohmann-json3-dev
   libcli11-dev libglm-dev libtinyobjloader-dev
-  catch2 clang libclang-rt-14-dev
+  catch2 clang libclang-rt-14-dev clang-format
 )
 
 missing=()

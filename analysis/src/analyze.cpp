@@ -18,17 +18,18 @@
 #include "carbtf/analysis/model/relief_tone.hpp"
 #include "carbtf/analysis/progress.hpp"
 #include "carbtf/analysis/quality/texture_distributions.hpp"
-#include "carbtf/reference/subspace_synthesis.hpp"
 #include "carbtf/analysis/range/surface_integration.hpp"
 #include "carbtf/analysis/resource_usage.hpp"
 #include "carbtf/reference/parallel_for.hpp"
+#include "carbtf/reference/subspace_synthesis.hpp"
 
 namespace carbtf {
 namespace {
 
 class StageClock {
  public:
-  StageClock(AnalysisResult& result, std::string name) : result_(result), name_(std::move(name)), start_(std::chrono::steady_clock::now()) {}
+  StageClock(AnalysisResult& result, std::string name)
+      : result_(result), name_(std::move(name)), start_(std::chrono::steady_clock::now()) {}
   ~StageClock() {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     result_.stages.push_back({name_, seconds, peak_rss_bytes()});
@@ -48,7 +49,9 @@ std::string join_numbers(const std::vector<double>& values) {
   return text.str();
 }
 
-MaterialDirection to_material(const Direction& d) { return {static_cast<float>(d.theta), static_cast<float>(d.phi)}; }
+MaterialDirection to_material(const Direction& d) {
+  return {static_cast<float>(d.theta), static_cast<float>(d.phi)};
+}
 
 // Significant bits kept of each colour and band number (mean, transform, band mean, std, sigma): a
 // relative change of at most 2^-13, far below an 8-bit output step (2^-8) and the numbers' own
@@ -59,8 +62,10 @@ constexpr int kStoredSignificantBits = 12;
 float to_stored_precision(float value) {
   if (value == 0.0f || !std::isfinite(value)) return value;
   int exponent = 0;
-  const double fraction = std::frexp(static_cast<double>(value), &exponent);  // value = fraction 2^exponent, |fraction| in [0.5, 1)
-  return static_cast<float>(std::ldexp(std::round(std::ldexp(fraction, kStoredSignificantBits)), exponent - kStoredSignificantBits));
+  const double fraction = std::frexp(static_cast<double>(value),
+                                     &exponent);  // value = fraction 2^exponent, |fraction| in [0.5, 1)
+  return static_cast<float>(std::ldexp(std::round(std::ldexp(fraction, kStoredSignificantBits)),
+                                       exponent - kStoredSignificantBits));
 }
 
 void round_to_stored_precision(SubspaceModel& model) {
@@ -75,8 +80,8 @@ void round_to_stored_precision(SubspaceModel& model) {
 
 // The model of prepared channels (the smooth texture the CAR is to reproduce) on a pyramid of `levels`
 // levels; notes name the band they concern.
-SubspaceModel fit_channels(const std::vector<Plane>& channels, LightView pair, std::uint32_t levels, const AnalysisOptions& options,
-                           std::vector<std::string>& notes) {
+SubspaceModel fit_channels(const std::vector<Plane>& channels, LightView pair, std::uint32_t levels,
+                           const AnalysisOptions& options, std::vector<std::string>& notes) {
   const ColourPca pca = fit_colour_pca(channels);
   const std::vector<Plane> bands = to_bands(pca, channels);
   SubspaceModel model;
@@ -96,7 +101,9 @@ SubspaceModel fit_channels(const std::vector<Plane>& channels, LightView pair, s
     for (std::uint32_t channel = 0; channel < 3; ++channel) {
       const CarFit fit = fit_car_band(pyramids[channel][level], options.car);
       model.bands.push_back(fit.model);
-      if (!fit.note.empty()) notes.push_back("level " + std::to_string(level) + " band " + std::to_string(channel) + ": " + fit.note);
+      if (!fit.note.empty())
+        notes.push_back("level " + std::to_string(level) + " band " + std::to_string(channel) + ": " +
+                        fit.note);
     }
   }
   if (options.calibrate_collapse) calibrate_collapse_variance(model, bands, pyramids);
@@ -105,23 +112,28 @@ SubspaceModel fit_channels(const std::vector<Plane>& channels, LightView pair, s
 }
 
 // The model of one subspace image; notes name the band they concern.
-SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plane& range_map, std::span<const float> horizons,
-                           std::span<const Plane> tone, const std::array<float, 3>& chroma, const SpecularLobe& specular, double light_z_floor,
-                           const AnalysisOptions& options, std::vector<std::string>& notes, double& chosen_distance) {
+SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plane& range_map,
+                           std::span<const float> horizons, std::span<const Plane> tone,
+                           const std::array<float, 3>& chroma, const SpecularLobe& specular,
+                           double light_z_floor, const AnalysisOptions& options,
+                           std::vector<std::string>& notes, double& chosen_distance) {
   chosen_distance = 0.0;  // no candidates scored
   const std::uint32_t width = dataset.width(), height = dataset.height();
   std::vector<float> rgb(dataset.pixel_count() * 3);
   dataset.linear_rgb(pair, rgb);
   std::vector<Plane> channels(3, Plane(height, width));
   for (std::size_t p = 0; p < dataset.pixel_count(); ++p) {
-    for (int k = 0; k < 3; ++k) channels[static_cast<std::size_t>(k)](static_cast<Eigen::Index>(p / width), static_cast<Eigen::Index>(p % width)) = rgb[p * 3 + k];
+    for (int k = 0; k < 3; ++k)
+      channels[static_cast<std::size_t>(k)](static_cast<Eigen::Index>(p / width),
+                                            static_cast<Eigen::Index>(p % width)) = rgb[p * 3 + k];
   }
   const bool toned = !tone.empty();
   if (toned || options.deshade_floor > 0.0) {
     undo_parallax(channels, range_map, dataset.views()[pair.view].vector(), kAnalysisParallaxScale);
   }
   // The highlights the render pass adds on its own are no part of the smooth texture.
-  const Plane highlight = lobe_of(specular, range_map, dataset.lights()[pair.light].vector(), dataset.views()[pair.view].vector(), horizons);
+  const Plane highlight = lobe_of(specular, range_map, dataset.lights()[pair.light].vector(),
+                                  dataset.views()[pair.view].vector(), horizons);
   if (specular.strength > 0.0) {
     for (Plane& channel : channels) channel -= highlight;
   }
@@ -145,17 +157,20 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
   // composes it (smooth texture x its share of the tone x relit factor), is nearest the measured image
   // by the texture measure (texture_distributions.hpp) wins.
   const DistributionStatistics measured = distribution_statistics(rgb, width, height);
-  const std::vector<double> weights = options.tone_weights.empty() ? std::vector<double>{1.0} : options.tone_weights;
+  const std::vector<double> weights =
+      options.tone_weights.empty() ? std::vector<double>{1.0} : options.tone_weights;
   std::vector<std::uint32_t> level_counts{options.pyramid_levels};
   for (const std::uint32_t levels : options.other_level_counts) {
-    if (std::find(level_counts.begin(), level_counts.end(), levels) == level_counts.end()) level_counts.push_back(levels);
+    if (std::find(level_counts.begin(), level_counts.end(), levels) == level_counts.end())
+      level_counts.push_back(levels);
   }
   std::optional<SubspaceModel> best;
   double best_score = 0.0, best_distance = 0.0, best_clamp = 0.0;
   std::vector<Plane> best_share;
   std::vector<std::string> best_notes;
   const std::size_t candidates = weights.size() * options.remainder_clamps.size() * level_counts.size();
-  const std::uint32_t draws = candidates > 1 ? options.selection_draws : 1;  // one candidate needs no choosing
+  const std::uint32_t draws =
+      candidates > 1 ? options.selection_draws : 1;  // one candidate needs no choosing
   // The mean distance over `draws` draws of a candidate's model image, as the render pass composes it
   // (smooth texture x its share of the tone x relit factor, plus the highlights). Draw d of every
   // candidate uses the same noise, so only the model differs between candidates.
@@ -172,9 +187,12 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
       reference::synthesize_subspace(single, 0, block, image);
       apply_relief(image, share, relit);
       if (specular.strength > 0.0) {
-        for (std::size_t p = 0; p < image.size(); ++p) image[p] += static_cast<float>(highlight(static_cast<Eigen::Index>(p / 3 / width), static_cast<Eigen::Index>(p / 3 % width)));
+        for (std::size_t p = 0; p < image.size(); ++p)
+          image[p] += static_cast<float>(
+              highlight(static_cast<Eigen::Index>(p / 3 / width), static_cast<Eigen::Index>(p / 3 % width)));
       }
-      distance += distribution_distance(distribution_statistics(image, width, height), measured).total / draws;
+      distance +=
+          distribution_distance(distribution_statistics(image, width, height), measured).total / draws;
     }
     return distance;
   };
@@ -193,7 +211,8 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
         // followed the noise stream), so a candidate scores the mean over several draws.
         const double distance = distance_of(candidate, share);
         // Another level count has to be clearly nearer: within one draw's noise the default stays.
-        const double score = levels == options.pyramid_levels ? distance : distance * (1.0 + kLevelChoiceMargin);
+        const double score =
+            levels == options.pyramid_levels ? distance : distance * (1.0 + kLevelChoiceMargin);
         if (!best || score < best_score) {
           best = std::move(candidate);
           best_score = score;
@@ -230,8 +249,10 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
   notes = std::move(best_notes);
   char line[240];
   std::snprintf(line, sizeof line,
-                "tone weight %.2g, remainder clamp %.2g, %u pyramid levels, noise gain %.2g, chroma gain %.2g chosen of %zu candidates (texture distance %.3f, mean of %u draws)",
-                static_cast<double>(best->tone_weight), best_clamp, best->levels, best_gain, best_chroma_gain, candidates + gain_candidates, best_distance, draws);
+                "tone weight %.2g, remainder clamp %.2g, %u pyramid levels, noise gain %.2g, chroma gain "
+                "%.2g chosen of %zu candidates (texture distance %.3f, mean of %u draws)",
+                static_cast<double>(best->tone_weight), best_clamp, best->levels, best_gain, best_chroma_gain,
+                candidates + gain_candidates, best_distance, draws);
   notes.emplace_back(line);
   chosen_distance = best_distance;
   return *best;
@@ -244,12 +265,16 @@ SpecularLobe stored_lobe(const Material& material) {
 
 }  // namespace
 
-AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& options, const std::function<void(const std::string&)>& log) {
-  if (options.pyramid_levels < 1 || options.pyramid_levels > 6) throw std::invalid_argument("pyramid levels must be within 1..6");
+AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& options,
+                           const std::function<void(const std::string&)>& log) {
+  if (options.pyramid_levels < 1 || options.pyramid_levels > 6)
+    throw std::invalid_argument("pyramid levels must be within 1..6");
   for (const std::uint32_t levels : options.other_level_counts) {
-    if (levels < 1 || levels > 6) throw std::invalid_argument("other pyramid level counts must be within 1..6");
+    if (levels < 1 || levels > 6)
+      throw std::invalid_argument("other pyramid level counts must be within 1..6");
   }
-  if (options.selection_draws < 1 || options.selection_draws > 16) throw std::invalid_argument("selection draws must be within 1..16");
+  if (options.selection_draws < 1 || options.selection_draws > 16)
+    throw std::invalid_argument("selection draws must be within 1..16");
   if (dataset.present_pairs().empty()) throw std::invalid_argument("the dataset holds no images");
   AnalysisResult result;
   auto note = [&](const std::string& line) {
@@ -269,27 +294,33 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
 
   {
     StageClock clock(result, "photometric stereo");
-    result.stereo_view = options.stereo_view >= 0 ? static_cast<std::uint32_t>(options.stereo_view) : top_view(dataset);
-    if (result.stereo_view >= dataset.views().size()) throw std::invalid_argument("the stereo view index is out of range");
+    result.stereo_view =
+        options.stereo_view >= 0 ? static_cast<std::uint32_t>(options.stereo_view) : top_view(dataset);
+    if (result.stereo_view >= dataset.views().size())
+      throw std::invalid_argument("the stereo view index is out of range");
     PhotometricStereoOptions stereo = options.stereo;
     stereo.threads = options.threads;
     result.normals = photometric_stereo(dataset, result.stereo_view, stereo);
   }
   const auto valid = std::count(result.normals.valid.begin(), result.normals.valid.end(), 1);
   char line[160];
-  std::snprintf(line, sizeof line, "photometric stereo: view %u, normals for %.1f%% of pixels", result.stereo_view,
-                100.0 * static_cast<double>(valid) / static_cast<double>(std::max<std::size_t>(1, result.normals.valid.size())));
+  std::snprintf(line, sizeof line, "photometric stereo: view %u, normals for %.1f%% of pixels",
+                result.stereo_view,
+                100.0 * static_cast<double>(valid) /
+                    static_cast<double>(std::max<std::size_t>(1, result.normals.valid.size())));
   note(line);
 
   for (const Direction& d : dataset.lights()) result.material.lights.push_back(to_material(d));
   for (const Direction& d : dataset.views()) result.material.views.push_back(to_material(d));
   const double z_floor = relight_floor(result.material);  // the render pass's, from the light set
   // The tone, its planes and the range tiles, for the highlights `lobe` (none: strength 0).
-  const auto relief_stage = [&](const SpecularLobe& lobe, const RangeTileOptions& tiles, double shadow_scale) {
+  const auto relief_stage = [&](const SpecularLobe& lobe, const RangeTileOptions& tiles,
+                                double shadow_scale) {
     result.tone = relief_tone(dataset, result.stereo_view, result.range_map, z_floor, result.horizons, lobe);
     result.tone_planes = {result.tone};
     if (options.tone_planes != TonePlanes::never) {
-      std::vector<Plane> planes = relief_tone_planes(dataset, result.stereo_view, result.range_map, z_floor, result.horizons, lobe);
+      std::vector<Plane> planes =
+          relief_tone_planes(dataset, result.stereo_view, result.range_map, z_floor, result.horizons, lobe);
       const double deviation = tone_colour_deviation(planes);
       const bool coloured = options.tone_planes == TonePlanes::always || deviation >= kToneColourVisible;
       if (coloured) result.tone_planes = std::move(planes);
@@ -302,8 +333,9 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
     result.material.range.specular_strength = static_cast<float>(lobe.strength);
     result.material.range.specular_gloss = static_cast<float>(lobe.gloss);
     if (options.coloured_tone && result.tone_planes.size() == 1) {
-      result.material.range.tone_chroma = relief_tone_chroma(dataset, result.stereo_view, result.range_map, z_floor, result.tone,
-                                                             result.horizons, stored_lobe(result.material));
+      result.material.range.tone_chroma =
+          relief_tone_chroma(dataset, result.stereo_view, result.range_map, z_floor, result.tone,
+                             result.horizons, stored_lobe(result.material));
     }
   };
   // The subspace models over the relief in result.material.range; their mean texture distance.
@@ -317,8 +349,9 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
     // The analysis goes on with the lobe as stored, as the render pass will draw it.
     const SpecularLobe lobe = stored_lobe(result.material);
     detail::parallel_for(representatives.size(), options.threads, [&](std::size_t s) {
-      result.material.subspaces[s] = fit_subspace(dataset, representatives[s], result.range_map, result.horizons, result.tone_planes,
-                                                    result.material.range.tone_chroma, lobe, z_floor, options, subspace_notes[s], distances[s]);
+      result.material.subspaces[s] = fit_subspace(
+          dataset, representatives[s], result.range_map, result.horizons, result.tone_planes,
+          result.material.range.tone_chroma, lobe, z_floor, options, subspace_notes[s], distances[s]);
       progress.advance();
     });
     double mean = 0.0;
@@ -338,17 +371,24 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
       if (options.relief_shadows == AutoChoice::automatic) {
         const ShadowFit fit = fit_shadow_scale(dataset, result.stereo_view, result.range_map, z_floor);
         shadow_scale = fit.scale;
-        std::snprintf(line, sizeof line, "relief shadows: scale %.2f%s (the view's images explained with error %.4f, without shadows %.4f)",
+        std::snprintf(line, sizeof line,
+                      "relief shadows: scale %.2f%s (the view's images explained with error %.4f, without "
+                      "shadows %.4f)",
                       fit.scale, fit.scale > 0.0 ? "" : ", none", fit.error, fit.error_without);
         note(line);
       }
       result.horizons = range_map_horizons(result.range_map, shadow_scale);
       if (options.relief_specular != AutoChoice::never) {
-        const Plane tone = relief_tone(dataset, result.stereo_view, result.range_map, z_floor, result.horizons);
-        const SpecularFit fit = fit_relief_specular(dataset, result.stereo_view, result.range_map, tone, z_floor, result.horizons);
+        const Plane tone =
+            relief_tone(dataset, result.stereo_view, result.range_map, z_floor, result.horizons);
+        const SpecularFit fit = fit_relief_specular(dataset, result.stereo_view, result.range_map, tone,
+                                                    z_floor, result.horizons);
         specular = fit.lobe;
-        std::snprintf(line, sizeof line, "relief specular: strength %.4g, gloss %.0f%s (the view's images explained with error %.4f, without it %.4f)",
-                      fit.lobe.strength, fit.lobe.gloss, fit.lobe.strength > 0.0 ? "" : ", none", fit.error, fit.error_without);
+        std::snprintf(line, sizeof line,
+                      "relief specular: strength %.4g, gloss %.0f%s (the view's images explained with error "
+                      "%.4f, without it %.4f)",
+                      fit.lobe.strength, fit.lobe.gloss, fit.lobe.strength > 0.0 ? "" : ", none", fit.error,
+                      fit.error_without);
         note(line);
       }
       // The tone of the images without their highlights, which the render adds apart from it.
@@ -372,8 +412,10 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
       relief_stage({}, tiles, shadow_scale);
       const double without_lobe = subspace_stage();
       const bool keep = with_lobe < without_lobe * (1.0 - kLevelChoiceMargin);
-      std::snprintf(line, sizeof line, "relief specular: %s (the subspace models' mean texture distance %.4f with it, %.4f without)",
-                    keep ? "kept" : "left out", with_lobe, without_lobe);
+      std::snprintf(
+          line, sizeof line,
+          "relief specular: %s (the subspace models' mean texture distance %.4f with it, %.4f without)",
+          keep ? "kept" : "left out", with_lobe, without_lobe);
       note(line);
       if (keep) {
         result.material = std::move(with);
@@ -385,8 +427,8 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
     const auto& representatives = result.segmentation.representatives;
     for (std::size_t s = 0; s < subspace_notes.size(); ++s) {
       for (const std::string& n : subspace_notes[s]) {
-        note("subspace " + std::to_string(s) + " (light " + std::to_string(representatives[s].light) + ", view " +
-             std::to_string(representatives[s].view) + ") " + n);
+        note("subspace " + std::to_string(s) + " (light " + std::to_string(representatives[s].light) +
+             ", view " + std::to_string(representatives[s].view) + ") " + n);
       }
     }
   }
@@ -396,8 +438,9 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
   if (options.pair_gains) {
     StageClock clock(result, "pair gains");
     Progress progress("pair gains", dataset.lights().size(), options.progress);
-    result.material.pair_gains = fit_pair_gains(dataset, result.material, {result.range_map, result.tone_planes, result.horizons, specular},
-                                                options.segmentation.seed, options.threads, [&] { progress.advance(); });
+    result.material.pair_gains = fit_pair_gains(
+        dataset, result.material, {result.range_map, result.tone_planes, result.horizons, specular},
+        options.segmentation.seed, options.threads, [&] { progress.advance(); });
   }
   Material& material = result.material;
   material.settings = {
@@ -414,15 +457,19 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
       {"relief_tone", options.relief_tone ? "yes" : "no"},
       {"coloured_tone", options.relief_tone && options.coloured_tone ? "where it explains the colour" : "no"},
       {"tone_planes", options.tone_planes == TonePlanes::automatic ? "where its colour is visible"
-                      : options.tone_planes == TonePlanes::always  ? "yes" : "no"},
+                      : options.tone_planes == TonePlanes::always  ? "yes"
+                                                                   : "no"},
       {"relief_shadows", options.relief_shadows == AutoChoice::automatic ? "where they explain the images"
-                         : options.relief_shadows == AutoChoice::always  ? "yes" : "no"},
+                         : options.relief_shadows == AutoChoice::always  ? "yes"
+                                                                         : "no"},
       {"remainder_clamps", join_numbers(options.remainder_clamps)},
       {"selection_draws", std::to_string(options.selection_draws)},
       {"deshade_floor", std::to_string(options.deshade_floor)},
       {"pair_gains", options.pair_gains ? "yes" : "no"},
-      {"relief_specular", options.relief_specular == AutoChoice::automatic ? "where the models look nearer with it"
-                          : options.relief_specular == AutoChoice::always  ? "fitted" : "no"},
+      {"relief_specular", options.relief_specular == AutoChoice::automatic
+                              ? "where the models look nearer with it"
+                          : options.relief_specular == AutoChoice::always ? "fitted"
+                                                                          : "no"},
       {"stereo_view", std::to_string(result.stereo_view)},
       {"tile_size", std::to_string(material.range.tile_size)},
       {"edge_colours", std::to_string(material.range.edge_colours)},

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "carbtf/analysis/btf/btf_dataset.hpp"
-#include "carbtf/engine/file_output.hpp"
 #include "carbtf/analysis/input_error.hpp"
+#include "carbtf/engine/file_output.hpp"
 #include "text.hpp"
 
 namespace carbtf {
@@ -22,7 +22,9 @@ namespace {
 
 using detail::lower_extension;
 
-bool is_float_format(const std::string& ext) { return ext == ".exr" || ext == ".tif" || ext == ".tiff" || ext == ".pfm"; }
+bool is_float_format(const std::string& ext) {
+  return ext == ".exr" || ext == ".tif" || ext == ".tiff" || ext == ".pfm";
+}
 
 // The OpenImageIO reader for each extension carbtf reads, or nullptr. Only that reader is tried:
 // ImageInput::open() would otherwise try every installed reader on a file its own one refuses, FFmpeg's
@@ -51,7 +53,8 @@ std::vector<std::byte> encode_image(const std::string& name, const void* pixels,
   OIIO::ImageSpec spec(static_cast<int>(width), static_cast<int>(height), channels, type);
   spec.attribute("CompressionQuality", 95);
   if (!output->open(name, spec)) throw InputError(name, "cannot encode: " + output->geterror());
-  if (!output->write_image(type, pixels) || !output->close()) throw InputError(name, "cannot encode: " + output->geterror());
+  if (!output->write_image(type, pixels) || !output->close())
+    throw InputError(name, "cannot encode: " + output->geterror());
   std::vector<std::byte> result(encoded.size());
   std::memcpy(result.data(), encoded.data(), encoded.size());
   return result;
@@ -65,7 +68,9 @@ std::string without_path(const std::string& message, const std::filesystem::path
 
 }  // namespace
 
-bool is_float_image_extension(const std::filesystem::path& path) { return is_float_format(lower_extension(path)); }
+bool is_float_image_extension(const std::filesystem::path& path) {
+  return is_float_format(lower_extension(path));
+}
 
 // Datasets and outputs: every format there is a reader for but WebP, which only the built-in assets use.
 bool is_supported_image_extension(const std::filesystem::path& path) {
@@ -84,7 +89,8 @@ void write_field_image(const std::filesystem::path& path, std::span<const float>
                        std::uint32_t height, const FieldToDisplay& display) {
   const std::string ext = lower_extension(path);
   if (!is_supported_image_extension(path)) {
-    throw InputError(path, "unsupported image extension '" + ext + "' (use .png, .jpg, .bmp, .exr, .tif or .pfm)");
+    throw InputError(path,
+                     "unsupported image extension '" + ext + "' (use .png, .jpg, .bmp, .exr, .tif or .pfm)");
   }
   if (values.size() < std::size_t{width} * height || width == 0 || height == 0) {
     throw InputError(path, "no pixels to write");
@@ -126,7 +132,8 @@ std::vector<std::byte> read_file_bytes(const std::filesystem::path& path) {
   const std::filesystem::file_status status = std::filesystem::status(path, ec);
   if (ec || !std::filesystem::exists(status)) throw InputError(path, "not a readable file (no such file)");
   // A FIFO would block the reader until a writer came; a folder or device is no image either.
-  if (!std::filesystem::is_regular_file(status)) throw InputError(path, "is not a regular file (a folder, pipe or device), so it is not read");
+  if (!std::filesystem::is_regular_file(status))
+    throw InputError(path, "is not a regular file (a folder, pipe or device), so it is not read");
   const std::uintmax_t file_bytes = std::filesystem::file_size(path, ec);
   if (!ec && file_bytes > kMaxImageFileBytes) {
     throw InputError(path, "is " + std::to_string(file_bytes >> 20) + " MiB; image files are read up to " +
@@ -138,31 +145,41 @@ std::vector<std::byte> read_file_bytes(const std::filesystem::path& path) {
   const std::streamoff size = file.tellg();
   file.seekg(0, std::ios::beg);
   std::vector<std::byte> bytes(static_cast<std::size_t>(std::max<std::streamoff>(size, 0)));
-  if (size > 0 && !file.read(reinterpret_cast<char*>(bytes.data()), size)) throw InputError(path, "read failed");
+  if (size > 0 && !file.read(reinterpret_cast<char*>(bytes.data()), size))
+    throw InputError(path, "read failed");
   return bytes;
 }
 
-RgbImage decode_rgb_image(const std::string& name, std::span<const std::byte> bytes, const ImageShape* expected) {
+RgbImage decode_rgb_image(const std::string& name, std::span<const std::byte> bytes,
+                          const ImageShape* expected) {
   if (bytes.empty()) throw InputError(name, "empty file, not an image");
   // IOMemReader takes a non-const pointer but only reads.
   OIIO::Filesystem::IOMemReader memory(const_cast<std::byte*>(bytes.data()), bytes.size());
   const char* reader = image_reader(lower_extension(name));
-  if (reader == nullptr) throw InputError(name, "is not named as an image carbtf reads (.png, .jpg, .jpeg, .bmp, .exr, .tif, .tiff, .pfm, .webp)");
+  if (reader == nullptr)
+    throw InputError(
+        name,
+        "is not named as an image carbtf reads (.png, .jpg, .jpeg, .bmp, .exr, .tif, .tiff, .pfm, .webp)");
   auto input = OIIO::ImageInput::create(reader);
-  if (!input) throw InputError(name, std::string("no ") + reader + " reader in this OpenImageIO (" + OIIO::geterror() + ")");
-  if (!input->set_ioproxy(&memory)) throw InputError(name, std::string("the ") + reader + " reader cannot read from memory");
+  if (!input)
+    throw InputError(name,
+                     std::string("no ") + reader + " reader in this OpenImageIO (" + OIIO::geterror() + ")");
+  if (!input->set_ioproxy(&memory))
+    throw InputError(name, std::string("the ") + reader + " reader cannot read from memory");
   OIIO::ImageSpec opened;
   if (!input->open(name, opened)) throw InputError(name, "not a readable image (" + input->geterror() + ")");
   const OIIO::ImageSpec& spec = input->spec();
   const std::string size_text = std::to_string(spec.width) + "x" + std::to_string(spec.height);
   if (spec.width <= 0 || spec.height <= 0) throw InputError(name, "implausible image size " + size_text);
   if (std::uint64_t(spec.width) * std::uint64_t(spec.height) > kMaxImagePixels) {
-    throw InputError(name, "image header claims " + size_text + " pixels; carbtf reads images up to 4096x4096 (16.8 M pixels)");
+    throw InputError(name, "image header claims " + size_text +
+                               " pixels; carbtf reads images up to 4096x4096 (16.8 M pixels)");
   }
   if (spec.depth > 1 || spec.nchannels < 1) throw InputError(name, "not a 2D colour or grey image");
   // Bounds the row buffer below, which holds every channel of one row.
   if (spec.nchannels > kMaxImageChannels) {
-    throw InputError(name, "has " + std::to_string(spec.nchannels) + " channels; carbtf reads images of up to " +
+    throw InputError(name, "has " + std::to_string(spec.nchannels) +
+                               " channels; carbtf reads images of up to " +
                                std::to_string(kMaxImageChannels) + " (grey, RGB or RGBA and extras)");
   }
   RgbImage image;
@@ -174,11 +191,12 @@ RgbImage decode_rgb_image(const std::string& name, std::span<const std::byte> by
                         base == OIIO::TypeDesc::INT16 || base == OIIO::TypeDesc::UINT32;
   image.linear = is_float;
   if (expected && (image.width != expected->width || image.height != expected->height)) {
-    throw InputError(name, "image is " + size_text + " but the others are " + std::to_string(expected->width) + "x" +
-                               std::to_string(expected->height));
+    throw InputError(name, "image is " + size_text + " but the others are " +
+                               std::to_string(expected->width) + "x" + std::to_string(expected->height));
   }
   if (expected && image.linear != expected->linear) {
-    throw InputError(name, std::string("holds ") + (image.linear ? "linear float" : "8-bit sRGB") + " pixels but the others hold " +
+    throw InputError(name, std::string("holds ") + (image.linear ? "linear float" : "8-bit sRGB") +
+                               " pixels but the others hold " +
                                (expected->linear ? "linear float" : "8-bit sRGB"));
   }
   const std::size_t pixels = std::size_t{image.width} * image.height;
@@ -194,7 +212,8 @@ RgbImage decode_rgb_image(const std::string& name, std::span<const std::byte> by
       if (!input->read_scanline(spec.y + int(y), spec.z, type, row.data())) return false;
       Value* out = values.data() + std::size_t(y) * image.width * 3;
       for (std::uint32_t x = 0; x < image.width; ++x) {
-        for (int c = 0; c < 3; ++c) out[x * 3 + c] = row[std::size_t(x) * spec.nchannels + (channels == 3 ? c : 0)];
+        for (int c = 0; c < 3; ++c)
+          out[x * 3 + c] = row[std::size_t(x) * spec.nchannels + (channels == 3 ? c : 0)];
       }
     }
     return true;
@@ -208,14 +227,15 @@ RgbImage decode_rgb_image(const std::string& name, std::span<const std::byte> by
   // Decoders such as libjpeg report truncation as a warning and still "succeed": any message fails.
   const std::string error = input->geterror();
   if (!read || !error.empty()) {
-    throw InputError(name, "corrupt or truncated image" + (error.empty() ? std::string() : " (" + error + ")"));
+    throw InputError(name,
+                     "corrupt or truncated image" + (error.empty() ? std::string() : " (" + error + ")"));
   }
   if (is_float) {
     for (std::size_t i = 0; i < image.linear_rgb.size(); ++i) {
       if (!std::isfinite(image.linear_rgb[i])) {
         throw InputError(name, std::string(std::isnan(image.linear_rgb[i]) ? "NaN" : "Inf") + " at pixel (" +
-                                   std::to_string(i / 3 % image.width) + ", " + std::to_string(i / 3 / image.width) +
-                                   ")");
+                                   std::to_string(i / 3 % image.width) + ", " +
+                                   std::to_string(i / 3 / image.width) + ")");
       }
     }
   }
@@ -229,7 +249,9 @@ std::vector<std::byte> encode_rgb_image(const std::string& name, std::span<const
   }
   std::vector<std::uint8_t> bytes(linear_rgb.size());
   for (std::size_t i = 0; i < bytes.size(); ++i) {
-    bytes[i] = srgb_encode ? linear_to_srgb8(linear_rgb[i]) : static_cast<std::uint8_t>(std::lround(std::clamp(linear_rgb[i], 0.0f, 1.0f) * 255.0f));
+    bytes[i] = srgb_encode
+                   ? linear_to_srgb8(linear_rgb[i])
+                   : static_cast<std::uint8_t>(std::lround(std::clamp(linear_rgb[i], 0.0f, 1.0f) * 255.0f));
   }
   return encode_image(name, bytes.data(), OIIO::TypeDesc::UINT8, width, height, 3);
 }
@@ -241,14 +263,19 @@ void write_rgb_image(const std::filesystem::path& path, std::span<const float> r
 
 void write_output_file(const std::filesystem::path& path, std::span<const std::byte> bytes, Flush flush) {
   // Checked before the parent folders are made, so that a refused path creates nothing.
-  if (Status s = check_output_file(path.string()); !s.ok()) throw InputError(path, without_path(s.message(), path));
+  if (Status s = check_output_file(path.string()); !s.ok())
+    throw InputError(path, without_path(s.message(), path));
   create_folder(path.parent_path());
-  const Status s = write_file_whole(path.string(), std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()), flush);
+  const Status s = write_file_whole(
+      path.string(),
+      std::span<const std::uint8_t>(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()),
+      flush);
   if (!s.ok()) throw InputError(path, without_path(s.message(), path));
 }
 
 void write_output_file(const std::filesystem::path& path, std::string_view text) {
-  write_output_file(path, std::span<const std::byte>(reinterpret_cast<const std::byte*>(text.data()), text.size()));
+  write_output_file(path,
+                    std::span<const std::byte>(reinterpret_cast<const std::byte*>(text.data()), text.size()));
 }
 
 }  // namespace carbtf

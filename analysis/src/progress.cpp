@@ -7,7 +7,9 @@
 namespace carbtf {
 
 Progress::Progress(std::string label, std::uint64_t total, bool enabled)
-    : label_(std::move(label)), total_(total), enabled_(enabled && total > 0 && isatty(STDERR_FILENO)),
+    : label_(std::move(label)),
+      total_(total),
+      enabled_(enabled && total > 0 && isatty(STDERR_FILENO)),
       start_(std::chrono::steady_clock::now()) {}
 
 Progress::~Progress() {

@@ -17,7 +17,8 @@ std::size_t resident_high_water_bytes() {
   std::ifstream status("/proc/self/status");
   std::string line;
   while (std::getline(status, line)) {
-    if (line.starts_with("VmHWM:")) return static_cast<std::size_t>(std::stoull(line.substr(6))) * 1024;  // "... kB"
+    if (line.starts_with("VmHWM:"))
+      return static_cast<std::size_t>(std::stoull(line.substr(6))) * 1024;  // "... kB"
   }
   return 0;
 }

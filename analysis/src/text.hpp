@@ -14,6 +14,8 @@ inline std::string to_lower(std::string text) {
   return text;
 }
 
-inline std::string lower_extension(const std::filesystem::path& path) { return to_lower(path.extension().string()); }
+inline std::string lower_extension(const std::filesystem::path& path) {
+  return to_lower(path.extension().string());
+}
 
 }  // namespace carbtf::detail

@@ -28,10 +28,14 @@ using uint = std::uint32_t;
 // nothing more), so float32 results agree bit for bit.
 // The counter quads a row of `cols` columns from column col0 touches: one invocation each where a
 // dispatch fills noise.
-CARBTF_FUNCTION uint carbtf_noise_quads(uint col0, uint cols) { return ((col0 & 3u) + cols + 3u) >> 2u; }
+CARBTF_FUNCTION uint carbtf_noise_quads(uint col0, uint cols) {
+  return ((col0 & 3u) + cols + 3u) >> 2u;
+}
 // The counter quad that is the j-th a row from column col0 touches (quads taken modulo 2^30, as columns
 // are modulo 2^32); its column 0 lies at (quad << 2) - col0 of the row, modulo 2^32.
-CARBTF_FUNCTION uint carbtf_noise_quad(uint col0, uint j) { return ((col0 >> 2u) + j) & 0x3FFFFFFFu; }
+CARBTF_FUNCTION uint carbtf_noise_quad(uint col0, uint j) {
+  return ((col0 >> 2u) + j) & 0x3FFFFFFFu;
+}
 CARBTF_CONST_UINT(CARBTF_PHILOX_M0, 0xD2511F53u)
 CARBTF_CONST_UINT(CARBTF_PHILOX_M1, 0xCD9E8D57u)
 CARBTF_CONST_UINT(CARBTF_PHILOX_W0, 0x9E3779B9u)
@@ -94,9 +98,10 @@ CARBTF_CONST_UINT(CARBTF_CAR_MAX_NEIGHBOURS, 16u)
 CARBTF_CONST_UINT(CARBTF_SYNTH_MAX_CHANNELS, 4u)
 CARBTF_CONST_UINT(CARBTF_SYNTH_GROUP_X, 16u)
 CARBTF_CONST_UINT(CARBTF_SYNTH_GROUP_Y, 16u)
-CARBTF_CONST_UINT(CARBTF_COLOUR_SPAN, 32u)         // pixels of a row per invocation of colour_transform.comp
-CARBTF_CONST_UINT(CARBTF_COLLAPSE_SPAN, 16u)        // 2 x 2 blocks of a block row per invocation of collapse_level.comp
-CARBTF_CONST_UINT(CARBTF_FOLD_GROUP, 64u)          // fold texels per workgroup of colour_fold.comp
+CARBTF_CONST_UINT(CARBTF_COLOUR_SPAN, 32u)  // pixels of a row per invocation of colour_transform.comp
+CARBTF_CONST_UINT(CARBTF_COLLAPSE_SPAN,
+                  16u)  // 2 x 2 blocks of a block row per invocation of collapse_level.comp
+CARBTF_CONST_UINT(CARBTF_FOLD_GROUP, 64u)           // fold texels per workgroup of colour_fold.comp
 CARBTF_CONST_UINT(CARBTF_CAR_SERIAL_GROUP, 8u)      // fields per workgroup of car_serial.comp
 CARBTF_CONST_UINT(CARBTF_CAR_WAVEFRONT_GROUP, 64u)  // invocations per field in car_wavefront.comp
 CARBTF_CONST_UINT(CARBTF_NO_FRAME, 0xFFFFFFFFu)     // CarFieldGpu.frame_offset: the frame is zero
@@ -105,13 +110,13 @@ CARBTF_CONST_UINT(CARBTF_NO_FRAME, 0xFFFFFFFFu)     // CarFieldGpu.frame_offset:
 CARBTF_CONST_UINT(CARBTF_PREPARE_NOISE, 1u)
 
 struct CarFieldGpu {
-  uint offset;        // arena element of padded (0, 0)
-  uint pitch;         // cols + 2 pad
-  uint rows;          // region rows (burn-in margin included)
-  uint cols;          // region columns (margins included)
+  uint offset;  // arena element of padded (0, 0)
+  uint pitch;   // cols + 2 pad
+  uint rows;    // region rows (burn-in margin included)
+  uint cols;    // region columns (margins included)
   uint pad;
   uint field_id;
-  uint row0;          // absolute row of region pixel (0, 0), two's complement (noise coordinates)
+  uint row0;  // absolute row of region pixel (0, 0), two's complement (noise coordinates)
   uint col0;
   uint neighbour_count;
   uint skew;          // wavefront: pixel (r, c) runs at step skew * r + c
@@ -123,11 +128,11 @@ struct CarFieldGpu {
 
 // One band of one level: G = (mean + y) + expand(G_coarse), written over y in the level window.
 struct CollapseItemGpu {
-  uint fine_offset;    // arena element of the level window's (0, 0)
+  uint fine_offset;  // arena element of the level window's (0, 0)
   uint fine_pitch;
-  uint rows;           // level window
+  uint rows;  // level window
   uint cols;
-  uint row0;           // absolute coordinates of the level window (two's complement)
+  uint row0;  // absolute coordinates of the level window (two's complement)
   uint col0;
   uint coarse_offset;  // arena element of the coarse level window's (0, 0), or CARBTF_NO_FRAME: none
   uint coarse_pitch;
@@ -149,7 +154,7 @@ struct ColourItemGpu {
   uint rows;
   uint cols;
   uint overlap;
-  float inv_overlap;  // 1 / overlap, rounded on the host
+  float inv_overlap;                       // 1 / overlap, rounded on the host
   uint offset[CARBTF_SYNTH_MAX_CHANNELS];  // arena element of each channel's G_0 (0, 0)
   uint pitch[CARBTF_SYNTH_MAX_CHANNELS];
   float mean[CARBTF_SYNTH_MAX_CHANNELS];
@@ -165,7 +170,7 @@ struct SynthPassParams {
   uint end;
   uint max_rows;
   uint max_cols;
-  uint flags;  // car_prepare: CARBTF_PREPARE_* bits
+  uint flags;        // car_prepare: CARBTF_PREPARE_* bits
   uint field_begin;  // car_serial, car_wavefront: the first field of the run; item_count is its end
 };
 
@@ -193,11 +198,12 @@ CARBTF_FUNCTION uint carbtf_hash32(uint x) {
 
 // The colour of one tile edge: `kind` 0 for the horizontal edge above tile (row, col), 1 for the
 // vertical edge left of it; rows and columns are two's complement.
-CARBTF_FUNCTION uint carbtf_tile_edge_colour(uint seed_lo, uint seed_hi, uint kind, uint row, uint col, uint colours) {
-  uint h = carbtf_hash32(col ^ carbtf_hash32(row ^ carbtf_hash32(kind ^ carbtf_hash32(seed_lo ^ carbtf_hash32(seed_hi)))));
+CARBTF_FUNCTION uint carbtf_tile_edge_colour(uint seed_lo, uint seed_hi, uint kind, uint row, uint col,
+                                             uint colours) {
+  uint h = carbtf_hash32(
+      col ^ carbtf_hash32(row ^ carbtf_hash32(kind ^ carbtf_hash32(seed_lo ^ carbtf_hash32(seed_hi)))));
   return h % colours;
 }
-
 
 // ---- Direction angles (render pass, scene pruning) -------------------------------------------
 // atan(t) = t * sum_k C_k (t^2)^k, t in [0, 1], max abs error 3.0e-09 (scripts/gen_noise_polynomials.py).
@@ -240,10 +246,10 @@ CARBTF_FUNCTION float carbtf_polar_angle(float r, float z) {
   return z < 0.0f ? CARBTF_PI_F - from_z : from_z;
 }
 
-// ---- Material render pass (carbtf_material.glsl, engine/include/carbtf/engine/render/material_binding.hpp) --
-// The material descriptor set: binding 0 the subspace images (sampler2DArray, one layer per
-// synthesized subspace image), binding 1 the enlarged range map (sampler2DArray: layer 0 r the heights
-// in texels and gba each colour channel's relief tone, layer 1 rgb the relief normal and a its length, layers 2 and 3 the
+// ---- Material render pass (carbtf_material.glsl, engine/include/carbtf/engine/render/material_binding.hpp)
+// -- The material descriptor set: binding 0 the subspace images (sampler2DArray, one layer per synthesized
+// subspace image), binding 1 the enlarged range map (sampler2DArray: layer 0 r the heights in texels and gba
+// each colour channel's relief tone, layer 1 rgb the relief normal and a its length, layers 2 and 3 the
 // horizons of azimuths 0-3 and 4-7 for cast shadows), binding 2 the lookup tables (readonly
 // storage buffer: MaterialTablesHeader, then the tables), binding 3 the same buffer as RGBA32UI texels
 // (usamplerBuffer: 16-byte "quads"), through which the fragment stage reads the tables after the header.
@@ -256,7 +262,8 @@ CARBTF_CONST_UINT(CARBTF_MATERIAL_BINDING_TABLE_QUADS, 3u)
 CARBTF_CONST_UINT(CARBTF_NO_LAYER, 0xFFFFFFFFu)
 // The same in MaterialTablesHeader::pair_table's 16-bit layer field; layers stop below it.
 CARBTF_CONST_UINT(CARBTF_PAIR_NO_LAYER, 0xFFFFu)
-// A pair gain in the pair table (MaterialTablesHeader::pair_table) is a 10-bit count of these fractions (gains 1/4 to 4).
+// A pair gain in the pair table (MaterialTablesHeader::pair_table) is a 10-bit count of these fractions
+// (gains 1/4 to 4).
 CARBTF_CONST_FLOAT(CARBTF_PAIR_GAIN_UNITS, 256.0f)
 // A lookup-cell entry with this bit is a boundary edge, else a triangle.
 CARBTF_CONST_UINT(CARBTF_LOOKUP_EDGE_BIT, 0x80000000u)
@@ -296,7 +303,8 @@ CARBTF_CONST_UINT(CARBTF_PAIR_COUPLING_STAIRCASE, 1u)
 // what both current intervals still hold, then moves on to the next light where the light's interval
 // ends first (or the views are done), else to the next view.
 CARBTF_CONST_UINT(CARBTF_STAIRCASE_STEPS, 5u)
-CARBTF_FUNCTION bool carbtf_staircase_next_is_light(float light_left, float view_left, uint light_step, uint view_step) {
+CARBTF_FUNCTION bool carbtf_staircase_next_is_light(float light_left, float view_left, uint light_step,
+                                                    uint view_step) {
   return (light_left < view_left && light_step < 2u) || view_step == 2u;
 }
 // The penumbra of the relief's cast shadows, in tangent of elevation (relief_horizons.hpp).
@@ -334,15 +342,15 @@ struct MaterialTablesHeader {
                     // 0-9, 10-19 and 20-29, in units of 1/CARBTF_PAIR_GAIN_UNITS: one fetch per tap
   uint width;       // texels of the subspace images and of the range map
   uint height;
-  uint pair_gains;  // 1: the material has pair gains (the pair table holds them); 0: it has none
+  uint pair_gains;       // 1: the material has pair gains (the pair table holds them); 0: it has none
   float parallax_scale;  // parallax offset in texels = parallax_scale * (height - range_mean) * view.xy
   float range_mean;
   float light_z_floor;  // cos of the largest measured light elevation: the relit factor's denominator floor
   uint wrap;            // 1: the textures tile, texel addresses wrap; 0: edge texels repeat
-  uint shadows;    // 1: the relief casts shadows (the range texture's layers 2 and 3 hold its horizons)
+  uint shadows;         // 1: the relief casts shadows (the range texture's layers 2 and 3 hold its horizons)
   float specular_strength;  // the relief's specular lobe (RangeTiles::specular_strength; 0: none)
   float specular_gloss;
-  uint mip_levels;       // levels of the range map and the subspace images, level 0 included (mip_chain.hpp)
+  uint mip_levels;  // levels of the range map and the subspace images, level 0 included (mip_chain.hpp)
 };
 
 #ifdef __cplusplus
@@ -374,15 +382,20 @@ static_assert(sizeof(NoiseFieldParams) == 36, "NoiseFieldParams must match the G
 static_assert(offsetof(NoiseFieldParams, row0) == 12);
 static_assert(offsetof(NoiseFieldParams, element_offset) == 32);
 static_assert(sizeof(CarFieldGpu) == 48 + 8 * CARBTF_CAR_MAX_NEIGHBOURS, "CarFieldGpu must match std430");
-static_assert(offsetof(CarFieldGpu, tap) == 48 && offsetof(CarFieldGpu, gamma) == 48 + 4 * CARBTF_CAR_MAX_NEIGHBOURS);
+static_assert(offsetof(CarFieldGpu, tap) == 48 &&
+              offsetof(CarFieldGpu, gamma) == 48 + 4 * CARBTF_CAR_MAX_NEIGHBOURS);
 static_assert(sizeof(CollapseItemGpu) == 48, "CollapseItemGpu must match std430");
-static_assert(sizeof(ColourItemGpu) == 32 + 16 * CARBTF_SYNTH_MAX_CHANNELS + 4 * CARBTF_SYNTH_MAX_CHANNELS * CARBTF_SYNTH_MAX_CHANNELS);
+static_assert(sizeof(ColourItemGpu) == 32 + 16 * CARBTF_SYNTH_MAX_CHANNELS +
+                                           4 * CARBTF_SYNTH_MAX_CHANNELS * CARBTF_SYNTH_MAX_CHANNELS);
 static_assert(sizeof(SynthPassParams) == 36 && sizeof(InterpolateParams) == 112);
 static_assert(sizeof(DirectionLookupGpu) == 32 && sizeof(MaterialTablesHeader) == 112);
-static_assert(offsetof(MaterialTablesHeader, pair_table) == 64 && offsetof(MaterialTablesHeader, parallax_scale) == 80);
+static_assert(offsetof(MaterialTablesHeader, pair_table) == 64 &&
+              offsetof(MaterialTablesHeader, parallax_scale) == 80);
 static_assert(offsetof(MaterialTablesHeader, mip_levels) == 108);
-static_assert(sizeof(RenderFrameUniforms) == 160 + 32 * CARBTF_RENDER_MAX_LIGHTS, "RenderFrameUniforms must match std140");
-static_assert(offsetof(RenderFrameUniforms, camera) == 128 && offsetof(RenderFrameUniforms, light_position) == 144);
+static_assert(sizeof(RenderFrameUniforms) == 160 + 32 * CARBTF_RENDER_MAX_LIGHTS,
+              "RenderFrameUniforms must match std140");
+static_assert(offsetof(RenderFrameUniforms, camera) == 128 &&
+              offsetof(RenderFrameUniforms, light_position) == 144);
 static_assert(offsetof(RenderFrameUniforms, counts) == 144 + 32 * CARBTF_RENDER_MAX_LIGHTS);
 }  // namespace carbtf::gpu
 #endif

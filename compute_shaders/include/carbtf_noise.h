@@ -16,8 +16,12 @@ namespace carbtf::gpu {
 #define CARBTF_INOUT(type) type&
 #define CARBTF_OUT(type) type&
 // GLSL built-ins the functions below use, for C++.
-inline constexpr uint floatBitsToUint(float value) { return std::bit_cast<uint>(value); }
-inline constexpr float uintBitsToFloat(uint value) { return std::bit_cast<float>(value); }
+inline constexpr uint floatBitsToUint(float value) {
+  return std::bit_cast<uint>(value);
+}
+inline constexpr float uintBitsToFloat(uint value) {
+  return std::bit_cast<float>(value);
+}
 inline constexpr void umulExtended(uint a, uint b, uint& high, uint& low) {
   const std::uint64_t product = std::uint64_t{a} * b;
   high = uint(product >> 32);
@@ -118,7 +122,8 @@ CARBTF_FUNCTION void carbtf_box_muller(uint u_word, uint v_word, CARBTF_OUT(floa
   uint v = v_word >> 8u;
   CARBTF_PRECISE float radius = carbtf_sqrt(-2.0f * carbtf_log(u));
   CARBTF_PRECISE float c = radius * carbtf_cos2pi(float(v) * CARBTF_TWO_POW_MINUS_24);
-  CARBTF_PRECISE float s = radius * carbtf_cos2pi(float((v + 0xC00000u) & 0xFFFFFFu) * CARBTF_TWO_POW_MINUS_24);
+  CARBTF_PRECISE float s =
+      radius * carbtf_cos2pi(float((v + 0xC00000u) & 0xFFFFFFu) * CARBTF_TWO_POW_MINUS_24);
   cos_sample = c;
   sin_sample = s;
 }

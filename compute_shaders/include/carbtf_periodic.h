@@ -35,7 +35,8 @@ inline constexpr
 #else
 #define real float
 #endif
-real carbtf_fold(real centre, real g00, real g10, real g01, real g11, real kx, real tx, real ky, real ty) {
+    real
+    carbtf_fold(real centre, real g00, real g10, real g01, real g11, real kx, real tx, real ky, real ty) {
   CARBTF_PRECISE real top = kx * (g00 - centre) + tx * (g10 - centre);
   CARBTF_PRECISE real bottom = kx * (g01 - centre) + tx * (g11 - centre);
   CARBTF_PRECISE real result = centre + (ky * top + ty * bottom);
@@ -62,8 +63,8 @@ void carbtf_fold_grid(const Grown& grown, uint width, uint height, uint overlap,
       if (x < overlap || y < overlap) {
         const std::size_t right = x < overlap ? x + width : x;
         value = carbtf_fold<Real>(centre, value, grown[row + right], grown[below + x], grown[below + right],
-                                  carbtf_fold_keep(x, overlap, inv_overlap), carbtf_fold_take(x, overlap, inv_overlap),
-                                  ky, ty);
+                                  carbtf_fold_keep(x, overlap, inv_overlap),
+                                  carbtf_fold_take(x, overlap, inv_overlap), ky, ty);
       }
       out[(std::size_t{y} * width + x) * stride] = value;
     }

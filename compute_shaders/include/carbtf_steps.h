@@ -10,7 +10,9 @@
 
 #ifdef __cplusplus
 namespace carbtf::gpu {
-#define CARBTF_STEP template <typename real> inline constexpr
+#define CARBTF_STEP        \
+  template <typename real> \
+  inline constexpr
 #else
 #define CARBTF_STEP
 #define real float

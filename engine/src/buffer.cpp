@@ -67,7 +67,8 @@ Status Buffer::create(const Context& context, const BufferCreateInfo& info, Buff
   context.set_debug_name(buffer.memory_, info.debug_name);
   CARBTF_VK_TRY(vk.vkBindBufferMemory(context.device(), handle, buffer.memory_.get(), 0));
   if (properties & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) {
-    CARBTF_VK_TRY(vk.vkMapMemory(context.device(), buffer.memory_.get(), 0, VK_WHOLE_SIZE, 0, &buffer.mapped_));
+    CARBTF_VK_TRY(
+        vk.vkMapMemory(context.device(), buffer.memory_.get(), 0, VK_WHOLE_SIZE, 0, &buffer.mapped_));
     buffer.coherent_ = properties & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
   }
   out = std::move(buffer);
@@ -119,8 +120,9 @@ Status Image::create(const Context& context, const ImageCreateInfo& info, Image&
   view_info.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
   view_info.format = info.format;
   const bool depth = info.format == VK_FORMAT_D32_SFLOAT || info.format == VK_FORMAT_D16_UNORM;
-  view_info.subresourceRange = {depth ? VkImageAspectFlags{VK_IMAGE_ASPECT_DEPTH_BIT} : VkImageAspectFlags{VK_IMAGE_ASPECT_COLOR_BIT}, 0,
-                                std::max(info.mip_levels, 1u), 0, info.array_layers};
+  view_info.subresourceRange = {
+      depth ? VkImageAspectFlags{VK_IMAGE_ASPECT_DEPTH_BIT} : VkImageAspectFlags{VK_IMAGE_ASPECT_COLOR_BIT},
+      0, std::max(info.mip_levels, 1u), 0, info.array_layers};
   VkImageView view = VK_NULL_HANDLE;
   CARBTF_VK_TRY(vk.vkCreateImageView(context.device(), &view_info, nullptr, &view));
   image.view_ = UniqueHandle<VkImageView>(&vk, context.device(), view);

@@ -45,8 +45,8 @@ bool roots_within(std::vector<Complex> a, double radius) {
 
 }  // namespace
 
-bool car_roots_within(const std::vector<CarNeighbour>& neighbourhood, const std::vector<double>& gamma, double radius,
-                      int frequencies) {
+bool car_roots_within(const std::vector<CarNeighbour>& neighbourhood, const std::vector<double>& gamma,
+                      double radius, int frequencies) {
   if (gamma.size() != neighbourhood.size() || !(radius > 0.0)) return false;
   for (double g : gamma) {
     if (!std::isfinite(g)) return false;
@@ -80,9 +80,11 @@ bool car_roots_within(const std::vector<CarNeighbour>& neighbourhood, const std:
   return true;
 }
 
-double car_spectral_radius(const std::vector<CarNeighbour>& neighbourhood, const std::vector<double>& gamma, int frequencies) {
+double car_spectral_radius(const std::vector<CarNeighbour>& neighbourhood, const std::vector<double>& gamma,
+                           int frequencies) {
   constexpr double kLargest = 1e6;
-  if (!car_roots_within(neighbourhood, gamma, kLargest, frequencies)) return std::numeric_limits<double>::infinity();
+  if (!car_roots_within(neighbourhood, gamma, kLargest, frequencies))
+    return std::numeric_limits<double>::infinity();
   double inside = 1.0, outside = 0.0;  // every root has modulus < inside; some root has modulus >= outside
   while (!car_roots_within(neighbourhood, gamma, inside, frequencies)) {
     outside = inside;

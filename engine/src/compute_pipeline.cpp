@@ -11,7 +11,8 @@ namespace carbtf::detail {
 namespace {
 
 VkDescriptorType descriptor_type(BindingKind kind) {
-  return kind == BindingKind::storage_image ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  return kind == BindingKind::storage_image ? VK_DESCRIPTOR_TYPE_STORAGE_IMAGE
+                                            : VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
 }
 
 }  // namespace
@@ -29,7 +30,8 @@ Status create_shader_module(const Context& context, const std::uint32_t* spirv, 
   return {};
 }
 
-Status ComputePipeline::create(const Context& context, const ComputePipelineInfo& info, ComputePipeline& out) {
+Status ComputePipeline::create(const Context& context, const ComputePipelineInfo& info,
+                               ComputePipeline& out) {
   const VulkanFunctions& vk = context.vk();
   const VkDevice device = context.device();
   if (info.binding_count == 0 || info.binding_count > kMaxBindings) {
@@ -45,7 +47,8 @@ Status ComputePipeline::create(const Context& context, const ComputePipelineInfo
     bindings[i].descriptorCount = 1;
     bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
   }
-  auto set_info = vk_struct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
+  auto set_info =
+      vk_struct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
   set_info.flags = VK_DESCRIPTOR_SET_LAYOUT_CREATE_PUSH_DESCRIPTOR_BIT_KHR;
   set_info.bindingCount = info.binding_count;
   set_info.pBindings = bindings.data();

@@ -1,6 +1,6 @@
 // Internal: a compute pipeline from embedded SPIR-V, with one push-descriptor set (storage buffers
-// and storage images) and a push-constant block. Every carbtf kernel is built this way, so that recording into a host's
-// command buffer needs no descriptor pool.
+// and storage images) and a push-constant block. Every carbtf kernel is built this way, so that recording
+// into a host's command buffer needs no descriptor pool.
 #pragma once
 
 #include <cstddef>
@@ -40,7 +40,7 @@ Status create_shader_module(const Context& context, const std::uint32_t* spirv, 
 struct ComputePipelineInfo {
   const std::uint32_t* spirv = nullptr;
   std::size_t spirv_bytes = 0;
-  std::uint32_t binding_count = 1;  // bindings 0 .. count-1, at most kMaxBindings
+  std::uint32_t binding_count = 1;          // bindings 0 .. count-1, at most kMaxBindings
   BindingKind bindings[kMaxBindings] = {};  // storage buffers unless set
   std::uint32_t push_constant_bytes = 0;
   const char* debug_name = "carbtf compute pipeline";

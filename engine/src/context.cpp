@@ -20,9 +20,10 @@ constexpr std::size_t kKeptMessages = 32;
 constexpr std::uint64_t kSubmitTimeoutNs = 600ull * 1000 * 1000 * 1000;
 
 Status no_driver_status() {
-  return {ErrorCode::vulkan_driver_missing,
-          "no Vulkan driver found: install one (Debian: apt-get install mesa-vulkan-drivers for Vulkan on the "
-          "CPU, or your GPU vendor's Vulkan driver)"};
+  return {
+      ErrorCode::vulkan_driver_missing,
+      "no Vulkan driver found: install one (Debian: apt-get install mesa-vulkan-drivers for Vulkan on the "
+      "CPU, or your GPU vendor's Vulkan driver)"};
 }
 
 template <typename Body>
@@ -47,7 +48,8 @@ struct Context::Messenger {
 
   static VKAPI_ATTR VkBool32 VKAPI_CALL callback(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                                  VkDebugUtilsMessageTypeFlagsEXT,
-                                                 const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
+                                                 const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                                 void* user) {
     auto* self = static_cast<Messenger*>(user);
     const bool is_error = severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
     (is_error ? self->errors : self->warnings).fetch_add(1, std::memory_order_relaxed);
@@ -61,15 +63,18 @@ struct Context::Messenger {
         }
       }
     }
-    if (self->on_message) self->on_message(is_error ? MessageSeverity::error : MessageSeverity::warning, text);
+    if (self->on_message)
+      self->on_message(is_error ? MessageSeverity::error : MessageSeverity::warning, text);
     return VK_FALSE;  // never abort the call: the layer reports, the application decides
   }
 
   VkDebugUtilsMessengerCreateInfoEXT create_info() {
-    auto info = vk_struct<VkDebugUtilsMessengerCreateInfoEXT>(VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT);
+    auto info = vk_struct<VkDebugUtilsMessengerCreateInfoEXT>(
+        VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT);
     info.messageSeverity =
         VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-    info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+    info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                       VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
                        VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
     info.pfnUserCallback = &Messenger::callback;
     info.pUserData = this;
@@ -88,7 +93,8 @@ Context::~Context() {
     vk_.vkDeviceWaitIdle(device_);
     vk_.vkDestroyDevice(device_, nullptr);
   }
-  if (messenger_ && messenger_->handle) vk_.vkDestroyDebugUtilsMessengerEXT(instance_, messenger_->handle, nullptr);
+  if (messenger_ && messenger_->handle)
+    vk_.vkDestroyDebugUtilsMessengerEXT(instance_, messenger_->handle, nullptr);
   if (owns_instance_ && instance_) vk_.vkDestroyInstance(instance_, nullptr);
   detail::close_vulkan_loader(loader_library_);
 }
@@ -144,9 +150,10 @@ Status plan_instance(const VulkanFunctions& vk, bool validation, InstanceSetup& 
       return std::strcmp(l.layerName, kValidationLayer) == 0;
     });
     if (!found) {
-      return {ErrorCode::validation_layer_missing,
-              "Vulkan validation was requested but VK_LAYER_KHRONOS_validation is not installed (Debian: apt-get "
-              "install vulkan-validationlayers)"};
+      return {
+          ErrorCode::validation_layer_missing,
+          "Vulkan validation was requested but VK_LAYER_KHRONOS_validation is not installed (Debian: apt-get "
+          "install vulkan-validationlayers)"};
     }
     if (!setup.debug_utils) {
       return {ErrorCode::validation_layer_missing,
@@ -180,7 +187,8 @@ Status Context::create_own(const ContextCreateInfo& info) {
 
   // Chained messenger: messages during vkCreateInstance/vkDestroyInstance are counted too.
   VkDebugUtilsMessengerCreateInfoEXT messenger_info{};
-  const VkValidationFeatureEnableEXT sync_validation = VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
+  const VkValidationFeatureEnableEXT sync_validation =
+      VK_VALIDATION_FEATURE_ENABLE_SYNCHRONIZATION_VALIDATION_EXT;
   auto features = vk_struct<VkValidationFeaturesEXT>(VK_STRUCTURE_TYPE_VALIDATION_FEATURES_EXT);
   if (info.enable_validation) {
     messenger_ = std::make_unique<Messenger>();
@@ -200,7 +208,8 @@ Status Context::create_own(const ContextCreateInfo& info) {
   CARBTF_TRY(detail::load_instance_functions(vk_, instance_, debug_utils_));
   if (messenger_) {
     messenger_info.pNext = nullptr;  // the validation features belong to the instance chain only
-    CARBTF_VK_TRY(vk_.vkCreateDebugUtilsMessengerEXT(instance_, &messenger_info, nullptr, &messenger_->handle));
+    CARBTF_VK_TRY(
+        vk_.vkCreateDebugUtilsMessengerEXT(instance_, &messenger_info, nullptr, &messenger_->handle));
   }
 
   std::uint32_t count = 0;
@@ -242,7 +251,8 @@ Status Context::create_own(const ContextCreateInfo& info) {
 
 Status Context::adopt_handles(const AdoptInfo& info) {
   if (!info.instance || !info.physical_device || !info.device || !info.queue) {
-    return {ErrorCode::invalid_argument, "AdoptInfo needs the host's instance, physical device, device and queue"};
+    return {ErrorCode::invalid_argument,
+            "AdoptInfo needs the host's instance, physical device, device and queue"};
   }
   if (info.get_instance_proc_addr) {
     vk_.vkGetInstanceProcAddr = info.get_instance_proc_addr;
@@ -264,8 +274,9 @@ Status Context::adopt_handles(const AdoptInfo& info) {
   vk_.vkGetPhysicalDeviceQueueFamilyProperties(physical_device_, &family_count, families.data());
   if (info.queue_family_index >= family_count ||
       !(families[info.queue_family_index].queueFlags & VK_QUEUE_COMPUTE_BIT)) {
-    return {ErrorCode::invalid_argument, "the adopted queue family " + std::to_string(info.queue_family_index) +
-                                             " does not support compute"};
+    return {
+        ErrorCode::invalid_argument,
+        "the adopted queue family " + std::to_string(info.queue_family_index) + " does not support compute"};
   }
   device_info_.queue_family_index = info.queue_family_index;
   device_info_.timestamp_valid_bits = families[info.queue_family_index].timestampValidBits;
@@ -276,7 +287,9 @@ Status Context::adopt_handles(const AdoptInfo& info) {
   return create_submit_resources();
 }
 
-Status Context::load_device_functions() { return detail::load_device_functions(vk_, device_); }
+Status Context::load_device_functions() {
+  return detail::load_device_functions(vk_, device_);
+}
 
 Status Context::create_submit_resources() {
   auto pool_info = vk_struct<VkCommandPoolCreateInfo>(VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO);
@@ -387,7 +400,8 @@ Status enumerate_devices(std::vector<DeviceInfo>& out) noexcept {
       std::vector<VkPhysicalDevice> devices(count);
       vk.vkEnumeratePhysicalDevices(instance, &count, devices.data());
       out.clear();
-      for (std::uint32_t i = 0; i < count; ++i) out.push_back(detail::describe_physical_device(vk, devices[i], i));
+      for (std::uint32_t i = 0; i < count; ++i)
+        out.push_back(detail::describe_physical_device(vk, devices[i], i));
       if (count == 0) status = no_driver_status();
     }
     if (vk.vkDestroyInstance) vk.vkDestroyInstance(instance, nullptr);

@@ -9,11 +9,16 @@ namespace carbtf {
 
 const char* device_type_name(VkPhysicalDeviceType type) noexcept {
   switch (type) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual GPU";
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "CPU";
-    default: return "other";
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+      return "discrete GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+      return "integrated GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+      return "virtual GPU";
+    case VK_PHYSICAL_DEVICE_TYPE_CPU:
+      return "CPU";
+    default:
+      return "other";
   }
 }
 
@@ -30,7 +35,8 @@ DeviceInfo describe_physical_device(const VulkanFunctions& vk, VkPhysicalDevice 
   DeviceInfo info;
   info.index = index;
 
-  auto subgroup = vk_struct<VkPhysicalDeviceSubgroupProperties>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES);
+  auto subgroup =
+      vk_struct<VkPhysicalDeviceSubgroupProperties>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES);
   auto properties2 = vk_struct<VkPhysicalDeviceProperties2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2);
   properties2.pNext = &subgroup;
   vk.vkGetPhysicalDeviceProperties2(device, &properties2);
@@ -81,8 +87,9 @@ DeviceInfo describe_physical_device(const VulkanFunctions& vk, VkPhysicalDevice 
   }
 
   if (VK_API_VERSION_MAJOR(info.api_version) == 1 && VK_API_VERSION_MINOR(info.api_version) < 2) {
-    info.unsuitable_reason = "supports Vulkan " + std::to_string(VK_API_VERSION_MAJOR(info.api_version)) + "." +
-                             std::to_string(VK_API_VERSION_MINOR(info.api_version)) + ", carbtf needs 1.2";
+    info.unsuitable_reason = "supports Vulkan " + std::to_string(VK_API_VERSION_MAJOR(info.api_version)) +
+                             "." + std::to_string(VK_API_VERSION_MINOR(info.api_version)) +
+                             ", carbtf needs 1.2";
   } else if (chosen < 0) {
     info.unsuitable_reason = "has no compute queue";
   } else if (!missing.empty()) {
@@ -115,11 +122,16 @@ namespace {
 
 int type_preference(VkPhysicalDeviceType type) {
   switch (type) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 4;
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 3;
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 1;
-    default: return 0;
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+      return 4;
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+      return 3;
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+      return 2;
+    case VK_PHYSICAL_DEVICE_TYPE_CPU:
+      return 1;
+    default:
+      return 0;
   }
 }
 
@@ -132,8 +144,8 @@ std::string lower(std::string text) {
 std::string device_list(const std::vector<DeviceInfo>& devices) {
   std::string list;
   for (const DeviceInfo& d : devices) {
-    list += (list.empty() ? "" : ", ") + std::to_string(d.index) + ": " + d.name + " (" + device_type_name(d.type) +
-            (d.suitable ? "" : ", unsuitable: " + d.unsuitable_reason) + ")";
+    list += (list.empty() ? "" : ", ") + std::to_string(d.index) + ": " + d.name + " (" +
+            device_type_name(d.type) + (d.suitable ? "" : ", unsuitable: " + d.unsuitable_reason) + ")";
   }
   return list;
 }
@@ -144,9 +156,10 @@ Status select_device(const std::vector<DeviceInfo>& devices, const std::string& 
                      std::uint32_t& index) noexcept {
   try {
     if (devices.empty()) {
-      return {ErrorCode::vulkan_driver_missing,
-              "no Vulkan device found: install a Vulkan driver (Debian: apt-get install mesa-vulkan-drivers for "
-              "Vulkan on the CPU, or your GPU vendor's driver)"};
+      return {
+          ErrorCode::vulkan_driver_missing,
+          "no Vulkan device found: install a Vulkan driver (Debian: apt-get install mesa-vulkan-drivers for "
+          "Vulkan on the CPU, or your GPU vendor's driver)"};
     }
     std::string origin;
     const std::string wanted = detail::effective_selector(selector, origin);
@@ -163,7 +176,8 @@ Status select_device(const std::vector<DeviceInfo>& devices, const std::string& 
     }
 
     const DeviceInfo* match = nullptr;
-    const bool numeric = std::all_of(wanted.begin(), wanted.end(), [](unsigned char c) { return std::isdigit(c); });
+    const bool numeric =
+        std::all_of(wanted.begin(), wanted.end(), [](unsigned char c) { return std::isdigit(c); });
     if (numeric) {
       const unsigned long wanted_index = std::strtoul(wanted.c_str(), nullptr, 10);
       for (const DeviceInfo& d : devices) {

@@ -15,7 +15,9 @@ namespace {
 using Point = std::array<double, 2>;
 using Triangle = std::array<std::uint32_t, 3>;
 
-double cross(const Point& o, const Point& a, const Point& b) { return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]); }
+double cross(const Point& o, const Point& a, const Point& b) {
+  return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+}
 
 struct Circle {
   Point centre;
@@ -34,7 +36,8 @@ Circle circumcircle(const Point& a, const Point& b, const Point& c) {
 // Bowyer-Watson over `points`; the last three points are the enclosing super-triangle.
 std::vector<Triangle> delaunay(const std::vector<Point>& points, std::uint32_t real_count) {
   std::vector<Triangle> triangles{{real_count, real_count + 1, real_count + 2}};
-  std::vector<Circle> circles{circumcircle(points[real_count], points[real_count + 1], points[real_count + 2])};
+  std::vector<Circle> circles{
+      circumcircle(points[real_count], points[real_count + 1], points[real_count + 2])};
   for (std::uint32_t i = 0; i < real_count; ++i) {
     const Point& p = points[i];
     std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
@@ -63,7 +66,9 @@ std::vector<Triangle> delaunay(const std::vector<Point>& points, std::uint32_t r
     triangles = std::move(kept);
     circles = std::move(kept_circles);
   }
-  std::erase_if(triangles, [&](const Triangle& t) { return t[0] >= real_count || t[1] >= real_count || t[2] >= real_count; });
+  std::erase_if(triangles, [&](const Triangle& t) {
+    return t[0] >= real_count || t[1] >= real_count || t[2] >= real_count;
+  });
   return triangles;
 }
 
@@ -74,15 +79,18 @@ std::array<double, 2> project_direction(double theta, double phi) {
   return {r * std::cos(phi), r * std::sin(phi)};
 }
 
-Status build_direction_triangulation(std::span<const MaterialDirection> directions, DirectionTriangulation& out) {
+Status build_direction_triangulation(std::span<const MaterialDirection> directions,
+                                     DirectionTriangulation& out) {
   DirectionTriangulation result;
   for (const MaterialDirection& d : directions) result.points.push_back(project_direction(d.theta, d.phi));
   const auto n = static_cast<std::uint32_t>(result.points.size());
   if (n == 0) return {ErrorCode::invalid_argument, "no directions to interpolate between"};
   for (std::uint32_t i = 0; i < n; ++i) {
     for (std::uint32_t j = 0; j < i; ++j) {
-      if (std::hypot(result.points[i][0] - result.points[j][0], result.points[i][1] - result.points[j][1]) < 1e-9) {
-        return {ErrorCode::invalid_argument, "directions " + std::to_string(j) + " and " + std::to_string(i) + " are the same"};
+      if (std::hypot(result.points[i][0] - result.points[j][0], result.points[i][1] - result.points[j][1]) <
+          1e-9) {
+        return {ErrorCode::invalid_argument,
+                "directions " + std::to_string(j) + " and " + std::to_string(i) + " are the same"};
       }
     }
   }
@@ -93,7 +101,8 @@ Status build_direction_triangulation(std::span<const MaterialDirection> directio
     points.push_back({-86.6, -50.0});
     points.push_back({86.6, -50.0});
     result.triangles = delaunay(points, n);
-    if (result.triangles.empty()) return {ErrorCode::invalid_argument, "the directions lie on one great circle: nothing to triangulate"};
+    if (result.triangles.empty())
+      return {ErrorCode::invalid_argument, "the directions lie on one great circle: nothing to triangulate"};
     std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
     for (const Triangle& t : result.triangles) {
       for (int e = 0; e < 3; ++e) ++edges[{std::min(t[e], t[(e + 1) % 3]), std::max(t[e], t[(e + 1) % 3])}];
@@ -166,7 +175,8 @@ DirectionWeights by_index(DirectionWeights w) {
 
 }  // namespace
 
-PairWeights couple_pair_weights(const DirectionWeights& light, const DirectionWeights& view, PairCoupling coupling) {
+PairWeights couple_pair_weights(const DirectionWeights& light, const DirectionWeights& view,
+                                PairCoupling coupling) {
   PairWeights pair;
   if (coupling == PairCoupling::product) {
     for (int i = 0; i < 3; ++i) {
@@ -199,10 +209,11 @@ PairWeights couple_pair_weights(const DirectionWeights& light, const DirectionWe
   return pair;
 }
 
-PairWeights pair_weights(const DirectionTriangulation& lights, const DirectionTriangulation& views, double light_theta, double light_phi,
-                         double view_theta, double view_phi, PairCoupling coupling) {
-  return couple_pair_weights(direction_weights(lights, light_theta, light_phi), direction_weights(views, view_theta, view_phi),
-                             coupling);
+PairWeights pair_weights(const DirectionTriangulation& lights, const DirectionTriangulation& views,
+                         double light_theta, double light_phi, double view_theta, double view_phi,
+                         PairCoupling coupling) {
+  return couple_pair_weights(direction_weights(lights, light_theta, light_phi),
+                             direction_weights(views, view_theta, view_phi), coupling);
 }
 
 }  // namespace carbtf

@@ -19,16 +19,18 @@ using Point = std::array<double, 2>;
 // of the triangle has the whole box strictly on its outer side (the separating-axis test's remaining
 // axes). The fragment stage scans every triangle a cell lists, so a cell that lists only the
 // triangles that meet it (not every one whose bounding box does) makes the scan shorter.
-bool triangle_meets_box(const DirectionTriangulation& tri, std::uint32_t triangle, double x0, double y0, double x1,
-                        double y1) {
+bool triangle_meets_box(const DirectionTriangulation& tri, std::uint32_t triangle, double x0, double y0,
+                        double x1, double y1) {
   const auto& t = tri.triangles[triangle];
   for (int k = 0; k < 3; ++k) {
     const Point &a = tri.points[t[k]], &b = tri.points[t[(k + 1) % 3]], &c = tri.points[t[(k + 2) % 3]];
-    const auto side = [&](double x, double y) { return (b[0] - a[0]) * (y - a[1]) - (b[1] - a[1]) * (x - a[0]); };
+    const auto side = [&](double x, double y) {
+      return (b[0] - a[0]) * (y - a[1]) - (b[1] - a[1]) * (x - a[0]);
+    };
     const double inner = side(c[0], c[1]);
     if (inner == 0.0) continue;  // a degenerate triangle: keep it, as the bounding box did
-    const bool all_outside = inner * side(x0, y0) < 0.0 && inner * side(x1, y0) < 0.0 && inner * side(x0, y1) < 0.0 &&
-                             inner * side(x1, y1) < 0.0;
+    const bool all_outside = inner * side(x0, y0) < 0.0 && inner * side(x1, y0) < 0.0 &&
+                             inner * side(x0, y1) < 0.0 && inner * side(x1, y1) < 0.0;
     if (all_outside) return false;
   }
   return true;

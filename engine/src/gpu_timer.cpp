@@ -7,7 +7,8 @@ namespace carbtf {
 Status GpuTimer::create(const Context& context, std::uint32_t count, GpuTimer& out) noexcept {
   if (count == 0) return {ErrorCode::invalid_argument, "a GPU timer needs at least one timestamp"};
   if (context.device_info().timestamp_valid_bits == 0) {
-    return {ErrorCode::device_unsuitable, context.device_info().name + " has no timestamps on its compute queue"};
+    return {ErrorCode::device_unsuitable,
+            context.device_info().name + " has no timestamps on its compute queue"};
   }
   auto info = vk_struct<VkQueryPoolCreateInfo>(VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO);
   info.queryType = VK_QUERY_TYPE_TIMESTAMP;
@@ -36,10 +37,12 @@ Status GpuTimer::elapsed_ms(std::uint32_t from, std::uint32_t to, double& millis
   if (from >= count_ || to >= count_) return {ErrorCode::invalid_argument, "timestamp index out of range"};
   std::uint64_t stamps[2] = {0, 0};
   const VulkanFunctions& vk = context_->vk();
-  CARBTF_VK_TRY(vk.vkGetQueryPoolResults(context_->device(), pool_.get(), from, 1, sizeof(std::uint64_t), &stamps[0],
-                                         sizeof(std::uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-  CARBTF_VK_TRY(vk.vkGetQueryPoolResults(context_->device(), pool_.get(), to, 1, sizeof(std::uint64_t), &stamps[1],
-                                         sizeof(std::uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  CARBTF_VK_TRY(vk.vkGetQueryPoolResults(context_->device(), pool_.get(), from, 1, sizeof(std::uint64_t),
+                                         &stamps[0], sizeof(std::uint64_t),
+                                         VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+  CARBTF_VK_TRY(vk.vkGetQueryPoolResults(context_->device(), pool_.get(), to, 1, sizeof(std::uint64_t),
+                                         &stamps[1], sizeof(std::uint64_t),
+                                         VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
   const std::uint32_t bits = context_->device_info().timestamp_valid_bits;
   const std::uint64_t mask = bits >= 64 ? ~0ull : ((1ull << bits) - 1);
   const std::uint64_t ticks = (stamps[1] - stamps[0]) & mask;

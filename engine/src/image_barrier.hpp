@@ -15,8 +15,9 @@ struct ColourRange {
   std::uint32_t layers = 1;
 };
 
-inline VkImageMemoryBarrier colour_barrier(VkImage image, ColourRange range, VkAccessFlags from, VkAccessFlags to,
-                                           VkImageLayout old_layout, VkImageLayout new_layout) {
+inline VkImageMemoryBarrier colour_barrier(VkImage image, ColourRange range, VkAccessFlags from,
+                                           VkAccessFlags to, VkImageLayout old_layout,
+                                           VkImageLayout new_layout) {
   VkImageMemoryBarrier barrier{};
   barrier.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER;
   barrier.srcAccessMask = from;

@@ -26,9 +26,11 @@ namespace carbtf {
 
 namespace {
 
-static_assert(cost_probe::lookups == gpu::CARBTF_COST_PROBE_LOOKUPS && cost_probe::pair_reads == gpu::CARBTF_COST_PROBE_PAIR_READS &&
+static_assert(cost_probe::lookups == gpu::CARBTF_COST_PROBE_LOOKUPS &&
+                  cost_probe::pair_reads == gpu::CARBTF_COST_PROBE_PAIR_READS &&
                   cost_probe::subspace_reads == gpu::CARBTF_COST_PROBE_SUBSPACE_READS &&
-                  cost_probe::relief == gpu::CARBTF_COST_PROBE_RELIEF && cost_probe::parallax == gpu::CARBTF_COST_PROBE_PARALLAX,
+                  cost_probe::relief == gpu::CARBTF_COST_PROBE_RELIEF &&
+                  cost_probe::parallax == gpu::CARBTF_COST_PROBE_PARALLAX,
               "the engine's cost probe bits are the shader's");
 
 constexpr std::uint32_t kHeaderWords = sizeof(gpu::MaterialTablesHeader) / 4;
@@ -81,14 +83,19 @@ void append_lookup(const DirectionTriangulation& triangulation, const DirectionL
 // The pair table (MaterialTablesHeader::pair_table), two words per (light, view) pair at
 // [2 * (light * views + view)]: its layer in the low 16 bits and its subspace's tone weight as a half
 // float in the high 16, then its gains (write_pair_gains()).
-void write_pair_table(const Material& material, const MaterialTextures& textures, std::span<std::uint32_t> out) {
+void write_pair_table(const Material& material, const MaterialTextures& textures,
+                      std::span<std::uint32_t> out) {
   for (std::size_t l = 0; l < material.lights.size(); ++l) {
     for (std::size_t v = 0; v < material.views.size(); ++v) {
-      const std::uint32_t s = subspace_of(material, static_cast<std::uint32_t>(l), static_cast<std::uint32_t>(v));
-      const std::uint32_t layer =
-          textures.pair_layers.empty() ? textures.layers[s] : textures.pair_layers[l * material.views.size() + v];
-      const std::uint32_t field = layer == std::numeric_limits<std::uint32_t>::max() ? gpu::CARBTF_PAIR_NO_LAYER : layer;
-      out[2 * (l * material.views.size() + v)] = field | std::uint32_t{glm::packHalf1x16(material.subspaces[s].tone_weight)} << 16;
+      const std::uint32_t s =
+          subspace_of(material, static_cast<std::uint32_t>(l), static_cast<std::uint32_t>(v));
+      const std::uint32_t layer = textures.pair_layers.empty()
+                                      ? textures.layers[s]
+                                      : textures.pair_layers[l * material.views.size() + v];
+      const std::uint32_t field =
+          layer == std::numeric_limits<std::uint32_t>::max() ? gpu::CARBTF_PAIR_NO_LAYER : layer;
+      out[2 * (l * material.views.size() + v)] =
+          field | std::uint32_t{glm::packHalf1x16(material.subspaces[s].tone_weight)} << 16;
     }
   }
 }
@@ -140,7 +147,7 @@ bool fits_pair_table(std::uint32_t layer) {
 struct MaterialBinding::Resources {
   std::vector<std::uint32_t> tables;
   std::size_t pair_table = 0;  // word offset of the pair table in `tables`, two words per pair
-  bool pair_layers = false;     // drawn by (light, view) pair (MaterialTextures::pair_layers)
+  bool pair_layers = false;    // drawn by (light, view) pair (MaterialTextures::pair_layers)
   std::vector<float> range_map;
   std::vector<float> tone_map;
   std::uint32_t width = 0;
@@ -148,8 +155,8 @@ struct MaterialBinding::Resources {
   Buffer table_buffer;
   UniqueHandle<VkBufferView> table_quads;  // the tables as RGBA32UI texels, for the fragment stage
   // RGBA32F, mip_levels levels: layer 0 the height (r) and the relief tone of each colour channel (gba),
-  // layer 1 the relief normal (rgb, relief_normals.hpp) and its length (a), layers 2 and 3 the horizons of azimuths 0-3
-  // and 4-7 (relief_horizons.hpp; 0 where the material casts no shadows).
+  // layer 1 the relief normal (rgb, relief_normals.hpp) and its length (a), layers 2 and 3 the horizons of
+  // azimuths 0-3 and 4-7 (relief_horizons.hpp; 0 where the material casts no shadows).
   std::unique_ptr<TextureArray> range_image;
   std::uint32_t mip_levels = 1;
   bool shadows = false;
@@ -198,10 +205,10 @@ Status MaterialBinding::create(Context& context, const Material& material, const
       return {ErrorCode::invalid_argument, "the material textures give a layer of 65535 or more"};
     }
     if (textures.mip_levels == 0 || textures.mip_levels > mip_level_count(textures.width, textures.height)) {
-      return {ErrorCode::invalid_argument, "the material textures claim " + std::to_string(textures.mip_levels) +
-                                               " mip levels; a " + std::to_string(textures.width) + "x" +
-                                               std::to_string(textures.height) + " texture has 1 to " +
-                                               std::to_string(mip_level_count(textures.width, textures.height))};
+      return {ErrorCode::invalid_argument,
+              "the material textures claim " + std::to_string(textures.mip_levels) + " mip levels; a " +
+                  std::to_string(textures.width) + "x" + std::to_string(textures.height) +
+                  " texture has 1 to " + std::to_string(mip_level_count(textures.width, textures.height))};
     }
     if (!std::isfinite(info.parallax_scale))
       return {ErrorCode::invalid_argument, "the parallax scale is not finite"};
@@ -247,17 +254,19 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     header.specular_gloss = material.range.specular_gloss;
     r.shadows = header.shadows != 0u;
     if (material.range.tile_size > 0) {
-      const RangeBlock block{info.seed, info.row0, info.col0, textures.width, textures.height,
-                             textures.periodic_overlap};
+      const RangeBlock block{info.seed,      info.row0,       info.col0,
+                             textures.width, textures.height, textures.periodic_overlap};
       enlarge_range_map(material.range, block, r.range_map);
       if (!material.range.tone.empty()) {
         // Each channel's tone with its chroma applied (material.hpp), so the fragment stage reads one
         // factor per channel whether the tone has one plane or three.
         std::vector<float> plane(r.range_map.size());
         for (std::size_t k = 0; k < 3; ++k) {
-          if (k == 0 || tone_planes(material.range) == 3) enlarge_range_map(material.range, block, plane, tone_channel(k));
+          if (k == 0 || tone_planes(material.range) == 3)
+            enlarge_range_map(material.range, block, plane, tone_channel(k));
           const float chroma = material.range.tone_chroma[k];
-          for (std::size_t i = 0; i < plane.size(); ++i) r.tone_map[3 * i + k] = 1.0f + chroma * (plane[i] - 1.0f);
+          for (std::size_t i = 0; i < plane.size(); ++i)
+            r.tone_map[3 * i + k] = 1.0f + chroma * (plane[i] - 1.0f);
         }
       }
     }
@@ -267,14 +276,15 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     std::memcpy(r.tables.data(), &header, sizeof header);
 
     // GPU side.
-    CARBTF_TRY(Buffer::create(context,
-                              {r.tables.size() * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
-                               MemoryUsage::host_upload, "carbtf material tables"},
-                              r.table_buffer));
+    CARBTF_TRY(Buffer::create(
+        context,
+        {r.tables.size() * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
+         MemoryUsage::host_upload, "carbtf material tables"},
+        r.table_buffer));
     std::memcpy(r.table_buffer.mapped(), r.tables.data(), r.tables.size() * 4);
     // The levels come from here, not from blits: the normal layer's w holds each texel's own length.
-    CARBTF_TRY(TextureArray::create(context, textures.width, textures.height, 4, VK_FORMAT_R32G32B32A32_SFLOAT,
-                                    r.range_image, r.mip_levels, true));
+    CARBTF_TRY(TextureArray::create(context, textures.width, textures.height, 4,
+                                    VK_FORMAT_R32G32B32A32_SFLOAT, r.range_image, r.mip_levels, true));
     if (r.range_image->mip_levels() != r.mip_levels)
       return {ErrorCode::vulkan_error, "the range map did not get the subspace images' mip levels"};
     // Layer 0: the heights (parallax) and the tone; layer 1: the normal (shading).
@@ -292,7 +302,9 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     CARBTF_TRY(set_range_layer(*r.range_image, 1, texels, true));
     // Layers 2 and 3: the horizons of azimuths 0-3 and 4-7 (relief_horizons.hpp), 0 without shadows.
     std::vector<float> horizons;
-    if (header.shadows) relief_horizons(r.range_map, textures.width, textures.height, header.wrap != 0u, material.range.shadow_scale, horizons);
+    if (header.shadows)
+      relief_horizons(r.range_map, textures.width, textures.height, header.wrap != 0u,
+                      material.range.shadow_scale, horizons);
     for (std::uint32_t half = 0; half < 2; ++half) {
       horizon_layer(horizons, r.range_map.size(), half, texels);
       CARBTF_TRY(set_range_layer(*r.range_image, 2 + half, texels, false));
@@ -307,10 +319,13 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     VkFormatProperties format{};
     vk.vkGetPhysicalDeviceFormatProperties(context.physical_device(), VK_FORMAT_R32G32B32A32_SFLOAT, &format);
     r.hardware_filtering =
-        info.hardware_filtering && (format.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) != 0;
+        info.hardware_filtering &&
+        (format.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) != 0;
     auto sampler_info = vk_struct<VkSamplerCreateInfo>(VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO);
-    sampler_info.magFilter = sampler_info.minFilter = r.hardware_filtering ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
-    sampler_info.mipmapMode = r.hardware_filtering ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    sampler_info.magFilter = sampler_info.minFilter =
+        r.hardware_filtering ? VK_FILTER_LINEAR : VK_FILTER_NEAREST;
+    sampler_info.mipmapMode =
+        r.hardware_filtering ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST;
     sampler_info.addressModeU = sampler_info.addressModeV = sampler_info.addressModeW =
         header.wrap != 0u ? VK_SAMPLER_ADDRESS_MODE_REPEAT : VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     sampler_info.minLod = 0.0f;
@@ -328,7 +343,8 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     const std::size_t quads = r.tables.size() / 4;
     if (quads > properties.limits.maxTexelBufferElements) {
       return {ErrorCode::device_unsuitable,
-              "the material's lookup tables take " + std::to_string(quads) + " texels, more than the device's " +
+              "the material's lookup tables take " + std::to_string(quads) +
+                  " texels, more than the device's " +
                   std::to_string(properties.limits.maxTexelBufferElements) +
                   " texel buffer elements (fewer directions or a smaller lookup_grid_size fit)"};
     }
@@ -347,7 +363,8 @@ Status MaterialBinding::create(Context& context, const Material& material, const
          nullptr},
         {gpu::CARBTF_MATERIAL_BINDING_RANGE, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stages, nullptr},
         {gpu::CARBTF_MATERIAL_BINDING_TABLES, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stages, nullptr},
-        {gpu::CARBTF_MATERIAL_BINDING_TABLE_QUADS, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1, stages, nullptr}};
+        {gpu::CARBTF_MATERIAL_BINDING_TABLE_QUADS, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1, stages,
+         nullptr}};
     auto layout_info =
         vk_struct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
     layout_info.bindingCount = 4;
@@ -416,9 +433,12 @@ std::uint32_t pair_gain_units(float gain) noexcept {
   return static_cast<std::uint32_t>(std::clamp(std::lround(gain * gpu::CARBTF_PAIR_GAIN_UNITS), 0l, 1023l));
 }
 
-std::array<float, 3> rendered_pair_gain(const Material& material, std::uint32_t light, std::uint32_t view) noexcept {
+std::array<float, 3> rendered_pair_gain(const Material& material, std::uint32_t light,
+                                        std::uint32_t view) noexcept {
   std::array<float, 3> gain{};
-  for (std::uint32_t c = 0; c < 3; ++c) gain[c] = static_cast<float>(pair_gain_units(pair_gain(material, light, view, c))) / gpu::CARBTF_PAIR_GAIN_UNITS;
+  for (std::uint32_t c = 0; c < 3; ++c)
+    gain[c] = static_cast<float>(pair_gain_units(pair_gain(material, light, view, c))) /
+              gpu::CARBTF_PAIR_GAIN_UNITS;
   return gain;
 }
 
@@ -435,13 +455,17 @@ PairCoupling MaterialBinding::pair_coupling() const noexcept {
 }
 
 void MaterialBinding::shader_constants(MaterialShaderConstants& out) const noexcept {
-  out.values = {casts_shadows() ? VK_TRUE : VK_FALSE, hardware_filtering() ? VK_TRUE : VK_FALSE, resources_->cost_probe,
-                pair_coupling() == PairCoupling::staircase ? gpu::CARBTF_PAIR_COUPLING_STAIRCASE : gpu::CARBTF_PAIR_COUPLING_PRODUCT};
-  out.entries = {VkSpecializationMapEntry{CARBTF_SHADOWS_DEFAULT_CONSTANT_ID, 0, sizeof(VkBool32)},
-                 VkSpecializationMapEntry{CARBTF_HARDWARE_FILTERING_DEFAULT_CONSTANT_ID, 4, sizeof(VkBool32)},
-                 VkSpecializationMapEntry{CARBTF_COST_PROBE_DEFAULT_CONSTANT_ID, 8, sizeof(std::uint32_t)},
-                 VkSpecializationMapEntry{CARBTF_PAIR_COUPLING_DEFAULT_CONSTANT_ID, 12, sizeof(std::uint32_t)}};
-  out.info = {static_cast<std::uint32_t>(out.entries.size()), out.entries.data(), sizeof out.values, out.values.data()};
+  out.values = {casts_shadows() ? VK_TRUE : VK_FALSE, hardware_filtering() ? VK_TRUE : VK_FALSE,
+                resources_->cost_probe,
+                pair_coupling() == PairCoupling::staircase ? gpu::CARBTF_PAIR_COUPLING_STAIRCASE
+                                                           : gpu::CARBTF_PAIR_COUPLING_PRODUCT};
+  out.entries = {
+      VkSpecializationMapEntry{CARBTF_SHADOWS_DEFAULT_CONSTANT_ID, 0, sizeof(VkBool32)},
+      VkSpecializationMapEntry{CARBTF_HARDWARE_FILTERING_DEFAULT_CONSTANT_ID, 4, sizeof(VkBool32)},
+      VkSpecializationMapEntry{CARBTF_COST_PROBE_DEFAULT_CONSTANT_ID, 8, sizeof(std::uint32_t)},
+      VkSpecializationMapEntry{CARBTF_PAIR_COUPLING_DEFAULT_CONSTANT_ID, 12, sizeof(std::uint32_t)}};
+  out.info = {static_cast<std::uint32_t>(out.entries.size()), out.entries.data(), sizeof out.values,
+              out.values.data()};
 }
 
 Status MaterialBinding::upload_and_wait() noexcept {
@@ -478,7 +502,8 @@ Status MaterialBinding::set_layers(const Material& material, std::span<const std
   textures.layers.assign(layers.begin(), layers.end());
   const std::span<std::uint32_t> table = std::span(r.tables).subspan(r.pair_table, 2 * pairs);
   write_pair_table(material, textures, table);
-  std::memcpy(static_cast<std::uint32_t*>(r.table_buffer.mapped()) + r.pair_table, table.data(), table.size_bytes());
+  std::memcpy(static_cast<std::uint32_t*>(r.table_buffer.mapped()) + r.pair_table, table.data(),
+              table.size_bytes());
   return {};
 }
 

@@ -39,8 +39,8 @@ Status MaterialDirections::build(const Material& material, MaterialDirections& o
   }
 }
 
-PairWeights MaterialDirections::weights(double light_theta, double light_phi, double view_theta, double view_phi,
-                                        PairCoupling coupling) const {
+PairWeights MaterialDirections::weights(double light_theta, double light_phi, double view_theta,
+                                        double view_phi, PairCoupling coupling) const {
   return pair_weights(lights_, views_, light_theta, light_phi, view_theta, view_phi, coupling);
 }
 

@@ -27,10 +27,23 @@ constexpr std::array<std::uint8_t, 4> kMagic{'C', 'B', 'T', 'F'};
 constexpr std::uint32_t kMaxChunks = 64;
 constexpr std::size_t kChunkOverhead = 12;  // tag, size, CRC
 
-enum class Chunk { settings, directions, index, subspaces, range, tone, tone_weights, tone_chroma, feather, shadows, pair_gains, specular, count };
-constexpr std::array<std::string_view, static_cast<std::size_t>(Chunk::count)> kChunkTags{"SETT", "DIRS", "INDX", "SUBS",
-                                                                                         "RNGE", "TONE", "TWGT", "TCHR", "FTHR", "SHDW", "PGAN",
-                                                                                         "SPEC"};
+enum class Chunk {
+  settings,
+  directions,
+  index,
+  subspaces,
+  range,
+  tone,
+  tone_weights,
+  tone_chroma,
+  feather,
+  shadows,
+  pair_gains,
+  specular,
+  count
+};
+constexpr std::array<std::string_view, static_cast<std::size_t>(Chunk::count)> kChunkTags{
+    "SETT", "DIRS", "INDX", "SUBS", "RNGE", "TONE", "TWGT", "TCHR", "FTHR", "SHDW", "PGAN", "SPEC"};
 
 // A deflated chunk (format 1.1): payload = inner tag (4 bytes), u32 inner payload size, u8 filter, the
 // filter's parameters, then one zlib stream of the filtered payload. Filters:
@@ -66,7 +79,9 @@ struct RasterLayout {
   std::uint64_t end() const { return skip + values() * value_bytes; }
   // Whether the layout is well formed and its rasters lie within `size` bytes (without overflow).
   bool fits(std::uint64_t size) const {
-    if ((value_bytes != 1 && value_bytes != 2) || width == 0 || height == 0 || rasters == 0 || rest_stride > kMaxFilterStride) return false;
+    if ((value_bytes != 1 && value_bytes != 2) || width == 0 || height == 0 || rasters == 0 ||
+        rest_stride > kMaxFilterStride)
+      return false;
     if (skip > size) return false;
     std::uint64_t room = (size - skip) / value_bytes;
     if (width > room) return false;
@@ -79,11 +94,13 @@ struct RasterLayout {
 // Stride 0 is no filter.
 void apply_sub_filter(std::span<std::uint8_t> bytes, std::size_t stride) {
   if (stride == 0) return;
-  for (std::size_t i = bytes.size(); i-- > stride;) bytes[i] = static_cast<std::uint8_t>(bytes[i] - bytes[i - stride]);
+  for (std::size_t i = bytes.size(); i-- > stride;)
+    bytes[i] = static_cast<std::uint8_t>(bytes[i] - bytes[i - stride]);
 }
 void undo_sub_filter(std::span<std::uint8_t> bytes, std::size_t stride) {
   if (stride == 0) return;
-  for (std::size_t i = stride; i < bytes.size(); ++i) bytes[i] = static_cast<std::uint8_t>(bytes[i] + bytes[i - stride]);
+  for (std::size_t i = stride; i < bytes.size(); ++i)
+    bytes[i] = static_cast<std::uint8_t>(bytes[i] + bytes[i - stride]);
 }
 
 // Zigzag of a difference modulo 2^bits: small differences of either sign become small codes.
@@ -97,7 +114,8 @@ std::uint32_t unzigzag(std::uint32_t code, std::uint32_t bits) {
 }
 
 std::uint32_t load_value(const std::uint8_t* at, std::uint8_t value_bytes) {
-  return value_bytes == 1 ? at[0] : static_cast<std::uint32_t>(at[0]) | static_cast<std::uint32_t>(at[1]) << 8;
+  return value_bytes == 1 ? at[0]
+                          : static_cast<std::uint32_t>(at[0]) | static_cast<std::uint32_t>(at[1]) << 8;
 }
 
 enum class FilterDirection { apply, undo };
@@ -116,51 +134,64 @@ void raster_filter(std::span<std::uint8_t> bytes, const RasterLayout& layout, Fi
   std::uint8_t* const planes_at = values_at;                   // residual codes, one byte plane after another
   std::vector<Value> values(count);
   if (apply) {
-    for (std::size_t i = 0; i < count; ++i) values[i] = static_cast<Value>(load_value(values_at + i * sizeof(Value), sizeof(Value)));
+    for (std::size_t i = 0; i < count; ++i)
+      values[i] = static_cast<Value>(load_value(values_at + i * sizeof(Value), sizeof(Value)));
   }
   for (std::size_t i = 0; i < count; ++i) {
     const std::size_t in_raster = i % texels;
     const auto x = static_cast<std::uint32_t>(in_raster % layout.width);
     const auto y = static_cast<std::uint32_t>(in_raster / layout.width);
-    const std::uint32_t prediction = detail::raster_prediction(values.data() + (i - in_raster), layout.width, x, y);
+    const std::uint32_t prediction =
+        detail::raster_prediction(values.data() + (i - in_raster), layout.width, x, y);
     if (apply) {
       const std::uint32_t code = zigzag((values[i] - prediction) & mask, bits);
-      for (std::size_t k = 0; k < sizeof(Value); ++k) planes_at[k * count + i] = static_cast<std::uint8_t>(code >> (8 * k));
+      for (std::size_t k = 0; k < sizeof(Value); ++k)
+        planes_at[k * count + i] = static_cast<std::uint8_t>(code >> (8 * k));
     } else {
       std::uint32_t code = 0;
-      for (std::size_t k = 0; k < sizeof(Value); ++k) code |= static_cast<std::uint32_t>(planes_at[k * count + i]) << (8 * k);
+      for (std::size_t k = 0; k < sizeof(Value); ++k)
+        code |= static_cast<std::uint32_t>(planes_at[k * count + i]) << (8 * k);
       values[i] = static_cast<Value>((prediction + unzigzag(code, bits)) & mask);
     }
   }
   if (!apply) {
     for (std::size_t i = 0; i < count; ++i) {
-      for (std::size_t k = 0; k < sizeof(Value); ++k) values_at[i * sizeof(Value) + k] = static_cast<std::uint8_t>(values[i] >> (8 * k));
+      for (std::size_t k = 0; k < sizeof(Value); ++k)
+        values_at[i * sizeof(Value) + k] = static_cast<std::uint8_t>(values[i] >> (8 * k));
     }
   }
 }
 
-void run_filter(std::vector<std::uint8_t>& bytes, std::uint8_t filter, const RasterLayout& layout, FilterDirection direction) {
+void run_filter(std::vector<std::uint8_t>& bytes, std::uint8_t filter, const RasterLayout& layout,
+                FilterDirection direction) {
   const auto sub = [direction](std::span<std::uint8_t> span, std::size_t stride) {
-    if (direction == FilterDirection::apply) apply_sub_filter(span, stride);
-    else undo_sub_filter(span, stride);
+    if (direction == FilterDirection::apply)
+      apply_sub_filter(span, stride);
+    else
+      undo_sub_filter(span, stride);
   };
   if (filter != kRasterFilter) {
     sub(bytes, filter);
     return;
   }
-  if (layout.value_bytes == 1) raster_filter<std::uint8_t>(bytes, layout, direction);
-  else raster_filter<std::uint16_t>(bytes, layout, direction);
+  if (layout.value_bytes == 1)
+    raster_filter<std::uint8_t>(bytes, layout, direction);
+  else
+    raster_filter<std::uint16_t>(bytes, layout, direction);
   sub(std::span(bytes).subspan(static_cast<std::size_t>(layout.end())), layout.rest_stride);
 }
 
 // The layout of the window filter's stream: the source as one raster between the same bytes.
 RasterLayout source_layout(const RasterLayout& rasters, const detail::RasterWindows& windows) {
-  return {rasters.skip, rasters.value_bytes, windows.source_width, windows.source_height, 1, rasters.rest_stride};
+  return {rasters.skip,       rasters.value_bytes, windows.source_width, windows.source_height, 1,
+          rasters.rest_stride};
 }
 
-std::vector<std::uint32_t> load_raster_values(std::span<const std::uint8_t> payload, const RasterLayout& layout) {
+std::vector<std::uint32_t> load_raster_values(std::span<const std::uint8_t> payload,
+                                              const RasterLayout& layout) {
   std::vector<std::uint32_t> values(static_cast<std::size_t>(layout.values()));
-  for (std::size_t i = 0; i < values.size(); ++i) values[i] = load_value(payload.data() + layout.skip + i * layout.value_bytes, layout.value_bytes);
+  for (std::size_t i = 0; i < values.size(); ++i)
+    values[i] = load_value(payload.data() + layout.skip + i * layout.value_bytes, layout.value_bytes);
   return values;
 }
 
@@ -169,13 +200,15 @@ void store_value(std::vector<std::uint8_t>& out, std::uint32_t value, std::uint8
 }
 
 // The window filter's stream before deflate, or nullopt where the rasters share no texels.
-std::optional<std::pair<detail::RasterWindows, std::vector<std::uint8_t>>> window_filtered(std::span<const std::uint8_t> payload,
-                                                                                             const RasterLayout& layout) {
+std::optional<std::pair<detail::RasterWindows, std::vector<std::uint8_t>>> window_filtered(
+    std::span<const std::uint8_t> payload, const RasterLayout& layout) {
   const std::vector<std::uint32_t> values = load_raster_values(payload, layout);
-  std::optional<detail::RasterWindows> windows = detail::find_raster_windows(values, layout.width, layout.height, layout.rasters);
+  std::optional<detail::RasterWindows> windows =
+      detail::find_raster_windows(values, layout.width, layout.height, layout.rasters);
   if (!windows) return std::nullopt;
   std::vector<std::uint8_t> stream(payload.begin(), payload.begin() + layout.skip);
-  for (std::uint32_t v : detail::compose_window_source(values, layout.width, layout.height, *windows)) store_value(stream, v, layout.value_bytes);
+  for (std::uint32_t v : detail::compose_window_source(values, layout.width, layout.height, *windows))
+    store_value(stream, v, layout.value_bytes);
   stream.insert(stream.end(), payload.begin() + static_cast<std::ptrdiff_t>(layout.end()), payload.end());
   run_filter(stream, kRasterFilter, source_layout(layout, *windows), FilterDirection::apply);
   return std::make_pair(std::move(*windows), std::move(stream));
@@ -212,7 +245,8 @@ class Deflater {
   bool ready_ = false;
 };
 
-std::vector<std::uint8_t> deflate_chunk(Deflater& deflater, std::string_view tag, std::span<const std::uint8_t> payload,
+std::vector<std::uint8_t> deflate_chunk(Deflater& deflater, std::string_view tag,
+                                        std::span<const std::uint8_t> payload,
                                         const std::optional<RasterLayout>& rasters) {
   std::vector<std::uint8_t> best;
   const bool has_rasters = rasters && rasters->fits(payload.size());
@@ -255,14 +289,16 @@ std::vector<std::uint8_t> deflate_chunk(Deflater& deflater, std::string_view tag
       }
     }
     w.bytes(packed);
-    if (chunk.size() < payload.size() && (best.empty() || chunk.size() < best.size())) best = std::move(chunk);
+    if (chunk.size() < payload.size() && (best.empty() || chunk.size() < best.size()))
+      best = std::move(chunk);
   }
   return best;
 }
 
 // Inflates one zlib stream that must give exactly `size` bytes. It grows the output as the stream
 // produces it, so a chunk that lies about its size costs what its stream holds, not what it claims.
-bool inflate_exactly(std::span<const std::uint8_t> packed, std::uint32_t size, std::vector<std::uint8_t>& out, std::string& problem) {
+bool inflate_exactly(std::span<const std::uint8_t> packed, std::uint32_t size, std::vector<std::uint8_t>& out,
+                     std::string& problem) {
   z_stream stream{};
   if (inflateInit(&stream) != Z_OK) {
     problem = "could not start zlib";
@@ -287,7 +323,9 @@ bool inflate_exactly(std::span<const std::uint8_t> packed, std::uint32_t size, s
   }
   inflateEnd(&stream);
   if (too_long || result != Z_STREAM_END || out.size() != size) {
-    const std::string zlib = too_long ? "long" : result == Z_STREAM_END || result == Z_BUF_ERROR ? "short" : std::to_string(result);
+    const std::string zlib = too_long                                          ? "long"
+                             : result == Z_STREAM_END || result == Z_BUF_ERROR ? "short"
+                                                                               : std::to_string(result);
     problem = "does not inflate to its " + std::to_string(size) + " bytes (zlib: " + zlib + ")";
     return false;
   }
@@ -296,7 +334,8 @@ bool inflate_exactly(std::span<const std::uint8_t> packed, std::uint32_t size, s
 
 // The window filter's placement, checked: every window inside the source, and the source no larger
 // than the rasters it replaces (so the stream is no longer than the payload).
-bool read_windows(ByteReader& r, const RasterLayout& layout, detail::RasterWindows& windows, std::string& problem) {
+bool read_windows(ByteReader& r, const RasterLayout& layout, detail::RasterWindows& windows,
+                  std::string& problem) {
   windows.source_width = r.u32();
   windows.source_height = r.u32();
   if (r.failed() || !r.can_read(layout.rasters, 8)) {
@@ -329,7 +368,9 @@ std::vector<std::uint8_t> expand_windows(const std::vector<std::uint8_t>& stream
   const std::uint8_t* source = stream.data() + layout.skip;
   for (std::uint32_t i = 0; i < layout.rasters; ++i) {
     for (std::uint32_t y = 0; y < layout.height; ++y) {
-      const std::uint8_t* row = source + ((std::size_t{windows.rows[i]} + y) * windows.source_width + windows.cols[i]) * layout.value_bytes;
+      const std::uint8_t* row =
+          source +
+          ((std::size_t{windows.rows[i]} + y) * windows.source_width + windows.cols[i]) * layout.value_bytes;
       out.insert(out.end(), row, row + row_bytes);
     }
   }
@@ -338,8 +379,8 @@ std::vector<std::uint8_t> expand_windows(const std::vector<std::uint8_t>& stream
 }
 
 // Inflates a DEFL payload into its inner tag and payload; false with `problem` set when it is malformed.
-bool inflate_chunk(std::span<const std::uint8_t> payload, std::array<std::uint8_t, 4>& tag, std::vector<std::uint8_t>& out,
-                   std::string& problem) {
+bool inflate_chunk(std::span<const std::uint8_t> payload, std::array<std::uint8_t, 4>& tag,
+                   std::vector<std::uint8_t>& out, std::string& problem) {
   ByteReader r(payload);
   const auto inner = r.bytes(4);
   const std::uint32_t size = r.u32();
@@ -359,14 +400,15 @@ bool inflate_chunk(std::span<const std::uint8_t> payload, std::array<std::uint8_
   }
   std::copy(inner.begin(), inner.end(), tag.begin());
   if (filter > kMaxFilterStride && filter != kRasterFilter && filter != kWindowFilter) {
-    problem = "has unknown filter " + std::to_string(filter) + " (this carbtf knows 0-" + std::to_string(kWindowFilter) + ")";
+    problem = "has unknown filter " + std::to_string(filter) + " (this carbtf knows 0-" +
+              std::to_string(kWindowFilter) + ")";
     return false;
   }
   if (filter >= kRasterFilter && !layout.fits(size)) {
-    problem = "has a raster filter that does not fit its " + std::to_string(size) + " bytes (skip " + std::to_string(layout.skip) +
-              ", " + std::to_string(layout.value_bytes) + "-byte values, " + std::to_string(layout.width) + " x " +
-              std::to_string(layout.height) + " x " + std::to_string(layout.rasters) + ", rest stride " +
-              std::to_string(layout.rest_stride) + ")";
+    problem = "has a raster filter that does not fit its " + std::to_string(size) + " bytes (skip " +
+              std::to_string(layout.skip) + ", " + std::to_string(layout.value_bytes) + "-byte values, " +
+              std::to_string(layout.width) + " x " + std::to_string(layout.height) + " x " +
+              std::to_string(layout.rasters) + ", rest stride " + std::to_string(layout.rest_stride) + ")";
     return false;
   }
   detail::RasterWindows windows;
@@ -492,14 +534,21 @@ void encode_tone(const Material& m, ByteWriter& w) {
 std::optional<RasterLayout> chunk_rasters(Chunk chunk, const Material& m) {
   // Three planes of lights x views gains, smooth over both: a raster per colour channel.
   if (chunk == Chunk::pair_gains) {
-    return RasterLayout{8, 1, static_cast<std::uint32_t>(m.views.size()), static_cast<std::uint32_t>(m.lights.size()), 3, 0};
+    return RasterLayout{
+        8, 1, static_cast<std::uint32_t>(m.views.size()), static_cast<std::uint32_t>(m.lights.size()), 3, 0};
   }
   const RangeTiles& r = m.range;
   if (r.tile_size == 0) return std::nullopt;
   const std::uint32_t patches = 2 * r.edge_colours;
   // The cuts after the patches are runs of small steps: Sub over u16 turns them into 0s and 1s.
   if (chunk == Chunk::range) return RasterLayout{kRangeHeaderBytes, 2, r.tile_size, r.tile_size, patches, 2};
-  if (chunk == Chunk::tone) return RasterLayout{kToneHeaderBytes, 1, r.tile_size, r.tile_size, patches * static_cast<std::uint32_t>(tone_planes(r)), 0};
+  if (chunk == Chunk::tone)
+    return RasterLayout{kToneHeaderBytes,
+                        1,
+                        r.tile_size,
+                        r.tile_size,
+                        patches * static_cast<std::uint32_t>(tone_planes(r)),
+                        0};
   return std::nullopt;
 }
 
@@ -571,7 +620,9 @@ bool decode_subspaces(ByteReader& r, Material& m) {
     s.height = r.u32();
     s.channels = r.u32();
     s.levels = r.u32();
-    if (r.failed() || s.channels == 0 || s.channels > kMaxChannels || s.levels == 0 || s.levels > kMaxPyramidLevels) return false;
+    if (r.failed() || s.channels == 0 || s.channels > kMaxChannels || s.levels == 0 ||
+        s.levels > kMaxPyramidLevels)
+      return false;
     const std::size_t floats = s.channels + std::size_t{s.channels} * s.channels;
     const std::size_t bands = std::size_t{s.levels} * s.channels;
     if (!r.can_read(floats + bands * 5, 4)) return false;
@@ -608,7 +659,8 @@ bool decode_range(ByteReader& r, Material& m) {
 
 // Optional (format 1.2): written only when a subspace takes less than the whole tone.
 bool has_tone_weights(const Material& m) {
-  return std::any_of(m.subspaces.begin(), m.subspaces.end(), [](const SubspaceModel& s) { return s.tone_weight != 1.0f; });
+  return std::any_of(m.subspaces.begin(), m.subspaces.end(),
+                     [](const SubspaceModel& s) { return s.tone_weight != 1.0f; });
 }
 
 void encode_tone_weights(const Material& m, ByteWriter& w) {
@@ -627,7 +679,8 @@ bool decode_tone_weights(ByteReader& r, std::vector<float>& weights) {
 
 // Optional (format 1.4): written only when the tone is not grey.
 bool has_tone_chroma(const Material& m) {
-  return std::any_of(m.range.tone_chroma.begin(), m.range.tone_chroma.end(), [](float c) { return c != 1.0f; });
+  return std::any_of(m.range.tone_chroma.begin(), m.range.tone_chroma.end(),
+                     [](float c) { return c != 1.0f; });
 }
 
 void encode_tone_chroma(const Material& m, ByteWriter& w) {
@@ -698,7 +751,8 @@ bool decode_tone(ByteReader& r, Material& m) {
   t.tone_offset = r.f32();
   t.tone_scale = r.f32();
   const std::uint32_t count = r.u32();
-  constexpr std::size_t kMaxToneTexels = 3 * 2 * std::size_t{kMaxEdgeColours} * kMaxTileSize * kMaxTileSize;  // three planes
+  constexpr std::size_t kMaxToneTexels =
+      3 * 2 * std::size_t{kMaxEdgeColours} * kMaxTileSize * kMaxTileSize;  // three planes
   if (r.failed() || count > kMaxToneTexels || !r.can_read(count, 1)) return false;
   const auto bytes = r.bytes(count);
   t.tone.assign(bytes.begin(), bytes.end());
@@ -715,23 +769,28 @@ Status walk_chunks(std::span<const std::uint8_t> bytes, const std::string& name,
   ByteReader r(bytes);
   const auto magic = r.bytes(4);
   if (r.failed() || !std::equal(magic.begin(), magic.end(), kMagic.begin())) {
-    return fail(name, bytes.size() < 4 ? "too short to be a carbtf material file" : "not a carbtf material file (no CBTF signature)");
+    return fail(name, bytes.size() < 4 ? "too short to be a carbtf material file"
+                                       : "not a carbtf material file (no CBTF signature)");
   }
   const std::uint16_t major = r.u16();
   const std::uint16_t minor = r.u16();
   const std::uint32_t chunks = r.u32();
   if (r.failed()) return fail(name, "truncated header");
   if (major != kMaterialFormatMajor) {
-    return fail(name, "material format " + std::to_string(major) + "." + std::to_string(minor) + " is not supported (this carbtf reads " +
-                          std::to_string(kMaterialFormatMajor) + ".x)");
+    return fail(name, "material format " + std::to_string(major) + "." + std::to_string(minor) +
+                          " is not supported (this carbtf reads " + std::to_string(kMaterialFormatMajor) +
+                          ".x)");
   }
-  if (chunks > kMaxChunks) return fail(name, "claims " + std::to_string(chunks) + " chunks (at most " + std::to_string(kMaxChunks) + ")");
+  if (chunks > kMaxChunks)
+    return fail(name,
+                "claims " + std::to_string(chunks) + " chunks (at most " + std::to_string(kMaxChunks) + ")");
   for (std::uint32_t i = 0; i < chunks; ++i) {
     const auto tag = r.bytes(4);
     const std::uint32_t size = r.u32();
     if (r.failed()) return fail(name, "truncated in the header of chunk " + std::to_string(i));
     if (size > r.remaining() || r.remaining() - size < 4) {
-      return fail(name, "chunk " + printable_tag(tag) + " claims " + std::to_string(size) + " bytes but the file is truncated");
+      return fail(name, "chunk " + printable_tag(tag) + " claims " + std::to_string(size) +
+                            " bytes but the file is truncated");
     }
     const auto payload = r.bytes(size);
     const std::uint32_t stored_crc = r.u32();
@@ -743,7 +802,8 @@ Status walk_chunks(std::span<const std::uint8_t> bytes, const std::string& name,
     if (crc != stored_crc) return fail(name, "chunk " + printable_tag(tag) + " is corrupt (CRC mismatch)");
     if (Status s = visit(tag, payload); !s.ok()) return s;
   }
-  if (!r.at_end()) return fail(name, std::to_string(r.remaining()) + " unexpected bytes after the last chunk");
+  if (!r.at_end())
+    return fail(name, std::to_string(r.remaining()) + " unexpected bytes after the last chunk");
   return {};
 }
 
@@ -756,8 +816,10 @@ std::uint32_t crc32(std::span<const std::uint8_t> bytes, std::uint32_t crc) {
   return ~crc;
 }
 
-Status encode_material(const Material& material, std::vector<std::uint8_t>& out, const MaterialEncoding& encoding) {
-  if (Status s = validate_material(material); !s.ok()) return {ErrorCode::invalid_argument, "cannot encode material: " + s.message()};
+Status encode_material(const Material& material, std::vector<std::uint8_t>& out,
+                       const MaterialEncoding& encoding) {
+  if (Status s = validate_material(material); !s.ok())
+    return {ErrorCode::invalid_argument, "cannot encode material: " + s.message()};
   out.clear();
   ByteWriter w(out);
   w.bytes(kMagic);
@@ -776,8 +838,9 @@ Status encode_material(const Material& material, std::vector<std::uint8_t>& out,
   Deflater deflater;
   using Encoder = void (*)(const Material&, ByteWriter&);
   constexpr std::array<Encoder, static_cast<std::size_t>(Chunk::count)> encoders{
-      encode_settings, encode_directions, encode_index, encode_subspaces, encode_range, encode_tone, encode_tone_weights,
-      encode_tone_chroma, encode_feather, encode_shadows, encode_pair_gains, encode_specular};
+      encode_settings, encode_directions, encode_index,        encode_subspaces,
+      encode_range,    encode_tone,       encode_tone_weights, encode_tone_chroma,
+      encode_feather,  encode_shadows,    encode_pair_gains,   encode_specular};
   for (std::size_t c = 0; c < encoders.size(); ++c) {
     if (!written[c]) continue;
     std::vector<std::uint8_t> payload;
@@ -785,7 +848,9 @@ Status encode_material(const Material& material, std::vector<std::uint8_t>& out,
     encoders[c](material, payload_writer);
     // Settings stay plain text, readable with a hex viewer; the rest is deflated where that is smaller.
     std::vector<std::uint8_t> deflated;
-    if (encoding.deflate && static_cast<Chunk>(c) != Chunk::settings) deflated = deflate_chunk(deflater, kChunkTags[c], payload, chunk_rasters(static_cast<Chunk>(c), material));
+    if (encoding.deflate && static_cast<Chunk>(c) != Chunk::settings)
+      deflated =
+          deflate_chunk(deflater, kChunkTags[c], payload, chunk_rasters(static_cast<Chunk>(c), material));
     const std::string_view tag = deflated.empty() ? kChunkTags[c] : kDeflatedTag;
     const std::vector<std::uint8_t>& body = deflated.empty() ? payload : deflated;
     const std::size_t start = w.size();
@@ -806,54 +871,88 @@ Status decode_material(std::span<const std::uint8_t> bytes, const std::string& n
   std::uint32_t feather = 0;
   float shadow_scale = 0.0f;
   std::array<float, 2> specular{0.0f, 0.0f};
-  Status walked = walk_chunks(bytes, name, [&](std::span<const std::uint8_t> outer_tag, std::span<const std::uint8_t> outer_payload) -> Status {
-    std::span<const std::uint8_t> tag = outer_tag;
-    std::span<const std::uint8_t> payload = outer_payload;
-    std::array<std::uint8_t, 4> inner_tag{};
-    std::vector<std::uint8_t> inflated;
-    if (printable_tag(outer_tag) == kDeflatedTag) {
-      std::string problem;
-      if (!inflate_chunk(outer_payload, inner_tag, inflated, problem)) return fail(name, "deflated chunk " + problem);
-      if (printable_tag(inner_tag) == kDeflatedTag) return fail(name, "a deflated chunk holds another deflated chunk");
-      tag = inner_tag;
-      payload = inflated;
-    }
-    const int number = chunk_number(tag);
-    if (number < 0) return {};  // a chunk from a newer minor version
-    if (seen[number]) return fail(name, "chunk " + printable_tag(tag) + " appears twice");
-    seen[number] = true;
-    ByteReader r(payload);
-    bool ok = false;
-    switch (static_cast<Chunk>(number)) {
-      case Chunk::settings: ok = decode_settings(r, m); break;
-      case Chunk::directions: ok = decode_directions(r, m); break;
-      case Chunk::index: ok = decode_index(r, m, index_lights, index_views); break;
-      case Chunk::subspaces: ok = decode_subspaces(r, m); break;
-      case Chunk::range: ok = decode_range(r, m); break;
-      case Chunk::tone: ok = decode_tone(r, m); break;
-      case Chunk::tone_weights: ok = decode_tone_weights(r, tone_weights); break;
-      case Chunk::tone_chroma: ok = decode_tone_chroma(r, tone_chroma); break;
-      case Chunk::feather: ok = decode_feather(r, feather); break;
-      case Chunk::shadows: ok = decode_shadows(r, shadow_scale); break;
-      case Chunk::pair_gains: ok = decode_pair_gains(r, m); break;
-      case Chunk::specular: ok = decode_specular(r, specular); break;
-      case Chunk::count: break;
-    }
-    if (!ok) return fail(name, "chunk " + printable_tag(tag) + " is truncated or has out-of-range counts");
-    if (!r.at_end()) return fail(name, "chunk " + printable_tag(tag) + " has " + std::to_string(r.remaining()) + " trailing bytes");
-    return {};
-  });
+  Status walked = walk_chunks(
+      bytes, name,
+      [&](std::span<const std::uint8_t> outer_tag, std::span<const std::uint8_t> outer_payload) -> Status {
+        std::span<const std::uint8_t> tag = outer_tag;
+        std::span<const std::uint8_t> payload = outer_payload;
+        std::array<std::uint8_t, 4> inner_tag{};
+        std::vector<std::uint8_t> inflated;
+        if (printable_tag(outer_tag) == kDeflatedTag) {
+          std::string problem;
+          if (!inflate_chunk(outer_payload, inner_tag, inflated, problem))
+            return fail(name, "deflated chunk " + problem);
+          if (printable_tag(inner_tag) == kDeflatedTag)
+            return fail(name, "a deflated chunk holds another deflated chunk");
+          tag = inner_tag;
+          payload = inflated;
+        }
+        const int number = chunk_number(tag);
+        if (number < 0) return {};  // a chunk from a newer minor version
+        if (seen[number]) return fail(name, "chunk " + printable_tag(tag) + " appears twice");
+        seen[number] = true;
+        ByteReader r(payload);
+        bool ok = false;
+        switch (static_cast<Chunk>(number)) {
+          case Chunk::settings:
+            ok = decode_settings(r, m);
+            break;
+          case Chunk::directions:
+            ok = decode_directions(r, m);
+            break;
+          case Chunk::index:
+            ok = decode_index(r, m, index_lights, index_views);
+            break;
+          case Chunk::subspaces:
+            ok = decode_subspaces(r, m);
+            break;
+          case Chunk::range:
+            ok = decode_range(r, m);
+            break;
+          case Chunk::tone:
+            ok = decode_tone(r, m);
+            break;
+          case Chunk::tone_weights:
+            ok = decode_tone_weights(r, tone_weights);
+            break;
+          case Chunk::tone_chroma:
+            ok = decode_tone_chroma(r, tone_chroma);
+            break;
+          case Chunk::feather:
+            ok = decode_feather(r, feather);
+            break;
+          case Chunk::shadows:
+            ok = decode_shadows(r, shadow_scale);
+            break;
+          case Chunk::pair_gains:
+            ok = decode_pair_gains(r, m);
+            break;
+          case Chunk::specular:
+            ok = decode_specular(r, specular);
+            break;
+          case Chunk::count:
+            break;
+        }
+        if (!ok)
+          return fail(name, "chunk " + printable_tag(tag) + " is truncated or has out-of-range counts");
+        if (!r.at_end())
+          return fail(name, "chunk " + printable_tag(tag) + " has " + std::to_string(r.remaining()) +
+                                " trailing bytes");
+        return {};
+      });
   if (!walked.ok()) return walked;
   for (std::size_t c = 0; c < seen.size(); ++c) {
-    const bool optional = static_cast<Chunk>(c) == Chunk::settings || static_cast<Chunk>(c) == Chunk::tone ||
-                          static_cast<Chunk>(c) == Chunk::tone_weights || static_cast<Chunk>(c) == Chunk::tone_chroma ||
-                          static_cast<Chunk>(c) == Chunk::feather || static_cast<Chunk>(c) == Chunk::shadows ||
-                          static_cast<Chunk>(c) == Chunk::pair_gains || static_cast<Chunk>(c) == Chunk::specular;
+    const bool optional =
+        static_cast<Chunk>(c) == Chunk::settings || static_cast<Chunk>(c) == Chunk::tone ||
+        static_cast<Chunk>(c) == Chunk::tone_weights || static_cast<Chunk>(c) == Chunk::tone_chroma ||
+        static_cast<Chunk>(c) == Chunk::feather || static_cast<Chunk>(c) == Chunk::shadows ||
+        static_cast<Chunk>(c) == Chunk::pair_gains || static_cast<Chunk>(c) == Chunk::specular;
     if (!seen[c] && !optional) return fail(name, "chunk " + std::string(kChunkTags[c]) + " is missing");
   }
   if (index_lights != m.lights.size() || index_views != m.views.size()) {
-    return fail(name, "the index table is " + std::to_string(index_lights) + " x " + std::to_string(index_views) + " but there are " +
-                          std::to_string(m.lights.size()) + " lights and " + std::to_string(m.views.size()) + " views");
+    return fail(name, "the index table is " + std::to_string(index_lights) + " x " +
+                          std::to_string(index_views) + " but there are " + std::to_string(m.lights.size()) +
+                          " lights and " + std::to_string(m.views.size()) + " views");
   }
   if (seen[static_cast<std::size_t>(Chunk::tone_weights)]) {
     if (tone_weights.size() != m.subspaces.size()) {
@@ -874,25 +973,33 @@ Status decode_material(std::span<const std::uint8_t> bytes, const std::string& n
 
 Status list_material_chunks(std::span<const std::uint8_t> bytes, std::vector<MaterialChunkInfo>& out) {
   out.clear();
-  return walk_chunks(bytes, "material", [&](std::span<const std::uint8_t> tag, std::span<const std::uint8_t> payload) -> Status {
-    if (printable_tag(tag) == kDeflatedTag && payload.size() >= 9) {
-      const std::uint32_t inflated = static_cast<std::uint32_t>(payload[4]) | static_cast<std::uint32_t>(payload[5]) << 8 |
-                                     static_cast<std::uint32_t>(payload[6]) << 16 | static_cast<std::uint32_t>(payload[7]) << 24;
-      out.push_back({printable_tag(payload.first(4)), payload.size() + kChunkOverhead, chunk_number(payload.first(4)) >= 0, inflated + kChunkOverhead});
-      return {};
-    }
-    out.push_back({printable_tag(tag), payload.size() + kChunkOverhead, chunk_number(tag) >= 0, 0});
-    return {};
-  });
+  return walk_chunks(
+      bytes, "material",
+      [&](std::span<const std::uint8_t> tag, std::span<const std::uint8_t> payload) -> Status {
+        if (printable_tag(tag) == kDeflatedTag && payload.size() >= 9) {
+          const std::uint32_t inflated =
+              static_cast<std::uint32_t>(payload[4]) | static_cast<std::uint32_t>(payload[5]) << 8 |
+              static_cast<std::uint32_t>(payload[6]) << 16 | static_cast<std::uint32_t>(payload[7]) << 24;
+          out.push_back({printable_tag(payload.first(4)), payload.size() + kChunkOverhead,
+                         chunk_number(payload.first(4)) >= 0, inflated + kChunkOverhead});
+          return {};
+        }
+        out.push_back({printable_tag(tag), payload.size() + kChunkOverhead, chunk_number(tag) >= 0, 0});
+        return {};
+      });
 }
 
 Status read_material_file_bytes(const std::string& path, std::vector<std::uint8_t>& bytes) {
   // A folder, FIFO or device is refused before it is opened: opening a FIFO would wait for a writer.
   std::error_code error;
   const std::filesystem::file_status status = std::filesystem::status(path, error);
-  if (error || !std::filesystem::exists(status)) return {ErrorCode::file_error, path + ": no such material file"};
-  if (std::filesystem::is_directory(status)) return {ErrorCode::file_error, path + ": is a folder, not a material file (.cbtf)"};
-  if (!std::filesystem::is_regular_file(status)) return {ErrorCode::file_error, path + ": is not a regular file (a pipe or device?), so it is not read as a material"};
+  if (error || !std::filesystem::exists(status))
+    return {ErrorCode::file_error, path + ": no such material file"};
+  if (std::filesystem::is_directory(status))
+    return {ErrorCode::file_error, path + ": is a folder, not a material file (.cbtf)"};
+  if (!std::filesystem::is_regular_file(status))
+    return {ErrorCode::file_error,
+            path + ": is not a regular file (a pipe or device?), so it is not read as a material"};
   std::ifstream file(path, std::ios::binary);
   if (!file) return {ErrorCode::file_error, path + ": cannot open the material file"};
   file.seekg(0, std::ios::end);
@@ -900,10 +1007,12 @@ Status read_material_file_bytes(const std::string& path, std::vector<std::uint8_
   // A valid material is far below this; refusing early keeps a mistaken path (a BTF zip) cheap.
   constexpr std::streamoff kMaxFileBytes = std::streamoff{256} << 20;
   if (size < 0) return {ErrorCode::file_error, path + ": cannot read the material file"};
-  if (size > kMaxFileBytes) return fail(path, "is " + std::to_string(size >> 20) + " MiB, too large to be a carbtf material file");
+  if (size > kMaxFileBytes)
+    return fail(path, "is " + std::to_string(size >> 20) + " MiB, too large to be a carbtf material file");
   file.seekg(0);
   bytes.resize(static_cast<std::size_t>(size));
-  if (!file.read(reinterpret_cast<char*>(bytes.data()), size)) return {ErrorCode::file_error, path + ": cannot read the material file"};
+  if (!file.read(reinterpret_cast<char*>(bytes.data()), size))
+    return {ErrorCode::file_error, path + ": cannot read the material file"};
   return {};
 }
 

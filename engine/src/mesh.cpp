@@ -75,8 +75,8 @@ Mesh make_plane(std::uint32_t subdivisions) {
 // Azimuth a = 2 pi u - pi / 2 starts at -y, so u = 0 (the seam) faces away from a camera on +y... and
 // a camera on -y sees it; the CLI's default camera looks from +x +y.
 Mesh make_sphere(std::uint32_t segments, std::uint32_t rings) {
-  return closed(parametric(
-      std::max(segments, 3u), std::max(rings, 2u), [](glm::vec2 uv, glm::vec3& p, glm::vec3& n) {
+  return closed(
+      parametric(std::max(segments, 3u), std::max(rings, 2u), [](glm::vec2 uv, glm::vec3& p, glm::vec3& n) {
         const float a = 2 * kPi * uv.x - kPi / 2, polar = kPi * uv.y;
         n = glm::vec3(std::sin(polar) * std::cos(a), std::sin(polar) * std::sin(a), std::cos(polar));
         p = n;
@@ -93,12 +93,12 @@ Mesh make_cylinder(std::uint32_t segments) {
 
 Mesh make_torus(std::uint32_t segments, std::uint32_t tube_segments) {
   return closed(parametric(std::max(segments, 3u), std::max(tube_segments, 3u),
-                    [](glm::vec2 uv, glm::vec3& p, glm::vec3& n) {
-                      const float a = 2 * kPi * uv.x - kPi / 2, b = 2 * kPi * uv.y;
-                      const glm::vec3 radial(std::cos(a), std::sin(a), 0);
-                      n = std::cos(b) * radial + glm::vec3(0, 0, std::sin(b));
-                      p = radial + 0.4f * n;
-                    }));
+                           [](glm::vec2 uv, glm::vec3& p, glm::vec3& n) {
+                             const float a = 2 * kPi * uv.x - kPi / 2, b = 2 * kPi * uv.y;
+                             const glm::vec3 radial(std::cos(a), std::sin(a), 0);
+                             n = std::cos(b) * radial + glm::vec3(0, 0, std::sin(b));
+                             p = radial + 0.4f * n;
+                           }));
 }
 
 bool texture_coordinates_wrap(const Mesh& mesh) {

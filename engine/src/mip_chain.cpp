@@ -10,8 +10,9 @@ namespace carbtf {
 
 namespace {
 
-VkImageMemoryBarrier level_barrier(VkImage image, std::uint32_t level, std::uint32_t layer, VkAccessFlags from,
-                                   VkAccessFlags to, VkImageLayout old_layout, VkImageLayout new_layout) {
+VkImageMemoryBarrier level_barrier(VkImage image, std::uint32_t level, std::uint32_t layer,
+                                   VkAccessFlags from, VkAccessFlags to, VkImageLayout old_layout,
+                                   VkImageLayout new_layout) {
   return detail::colour_barrier(image, {level, 1, layer, 1}, from, to, old_layout, new_layout);
 }
 

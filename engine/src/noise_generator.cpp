@@ -52,17 +52,19 @@ Status NoiseGenerator::record(VkCommandBuffer command_buffer, const NoiseBlock& 
   // device's storage range, and its group counts the device's dispatch limits.
   if (block.width > std::uint64_t{device.max_compute_group_count[0]} * gpu::CARBTF_NOISE_GROUP_X ||
       row_bytes + alignment > device.max_storage_buffer_range) {
-    return {ErrorCode::invalid_argument,
-            "noise block width " + std::to_string(block.width) + " exceeds what " + device.name + " can dispatch"};
+    return {ErrorCode::invalid_argument, "noise block width " + std::to_string(block.width) +
+                                             " exceeds what " + device.name + " can dispatch"};
   }
   std::uint64_t rows_per_chunk = (device.max_storage_buffer_range - alignment) / row_bytes;
   rows_per_chunk = std::min<std::uint64_t>(
       rows_per_chunk, std::uint64_t{device.max_compute_group_count[1]} * gpu::CARBTF_NOISE_GROUP_Y);
-  if (max_rows_per_dispatch_ > 0) rows_per_chunk = std::min<std::uint64_t>(rows_per_chunk, max_rows_per_dispatch_);
+  if (max_rows_per_dispatch_ > 0)
+    rows_per_chunk = std::min<std::uint64_t>(rows_per_chunk, max_rows_per_dispatch_);
 
   const std::uint64_t seed = block.seed;
   for (std::uint64_t first_row = 0; first_row < block.height; first_row += rows_per_chunk) {
-    const auto rows = static_cast<std::uint32_t>(std::min<std::uint64_t>(rows_per_chunk, block.height - first_row));
+    const auto rows =
+        static_cast<std::uint32_t>(std::min<std::uint64_t>(rows_per_chunk, block.height - first_row));
     const VkDeviceSize chunk_offset = offset + first_row * row_bytes;
     const VkDeviceSize bound_offset = chunk_offset / alignment * alignment;
 
@@ -77,17 +79,19 @@ Status NoiseGenerator::record(VkCommandBuffer command_buffer, const NoiseBlock& 
     params.row_pitch = block.width;
     params.element_offset = static_cast<std::uint32_t>((chunk_offset - bound_offset) / sizeof(float));
 
-    const auto output =
-        detail::BindingResource::of(destination, bound_offset, (chunk_offset - bound_offset) + rows * row_bytes);
+    const auto output = detail::BindingResource::of(destination, bound_offset,
+                                                    (chunk_offset - bound_offset) + rows * row_bytes);
     pipeline_->compute.bind(*context_, command_buffer, &output, &params, sizeof(params));
     const std::uint32_t quads = gpu::carbtf_noise_quads(params.col0, block.width);
-    context_->vk().vkCmdDispatch(command_buffer, (quads + gpu::CARBTF_NOISE_GROUP_X - 1) / gpu::CARBTF_NOISE_GROUP_X,
+    context_->vk().vkCmdDispatch(command_buffer,
+                                 (quads + gpu::CARBTF_NOISE_GROUP_X - 1) / gpu::CARBTF_NOISE_GROUP_X,
                                  (rows + gpu::CARBTF_NOISE_GROUP_Y - 1) / gpu::CARBTF_NOISE_GROUP_Y, 1);
   }
   return {};
 }
 
-Status NoiseGenerator::generate(const NoiseBlock& block, std::vector<float>& out, double* gpu_milliseconds) noexcept {
+Status NoiseGenerator::generate(const NoiseBlock& block, std::vector<float>& out,
+                                double* gpu_milliseconds) noexcept {
   try {
     const VkDeviceSize bytes = VkDeviceSize{block.width} * block.height * sizeof(float);
     if (bytes == 0) {
@@ -95,10 +99,10 @@ Status NoiseGenerator::generate(const NoiseBlock& block, std::vector<float>& out
       return {};
     }
     Buffer buffer;
-    CARBTF_TRY(Buffer::create(*context_,
-                              {bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::host_readback,
-                               "carbtf noise readback"},
-                              buffer));
+    CARBTF_TRY(Buffer::create(
+        *context_,
+        {bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::host_readback, "carbtf noise readback"},
+        buffer));
     GpuTimer timer;
     const bool timed = gpu_milliseconds && context_->device_info().timestamp_valid_bits > 0;
     if (timed) CARBTF_TRY(GpuTimer::create(*context_, 2, timer));

@@ -19,8 +19,8 @@ std::int64_t floor_div(std::int64_t a, std::int64_t b) {
 
 // The tile at (tile_row, tile_col); with periods > 0 the tile grid repeats every `rows` x `cols` tiles
 // (edge colours taken at the wrapped coordinates, so the last tile's far edge is the first one's near edge).
-std::uint32_t tile_at(const RangeTiles& tiles, std::uint64_t seed, std::int64_t tile_row, std::int64_t tile_col,
-                      std::int64_t rows, std::int64_t cols) {
+std::uint32_t tile_at(const RangeTiles& tiles, std::uint64_t seed, std::int64_t tile_row,
+                      std::int64_t tile_col, std::int64_t rows, std::int64_t cols) {
   auto wrap = [](std::int64_t i, std::int64_t period) {
     return static_cast<std::uint32_t>(period > 0 ? i - floor_div(i, period) * period : i);
   };
@@ -76,10 +76,14 @@ QuadrantPatches quadrant_patches(const RangeTiles& tiles, std::uint32_t tile, Ti
   const TileEdgeColours colours = range_tile_colours(tiles, tile);
   const std::uint32_t vertical_base = tiles.edge_colours;
   switch (quadrant) {
-    case TileQuadrant::top_left: return {colours.north, vertical_base + colours.west};
-    case TileQuadrant::top_right: return {colours.north, vertical_base + colours.east};
-    case TileQuadrant::bottom_right: return {colours.south, vertical_base + colours.east};
-    case TileQuadrant::bottom_left: return {colours.south, vertical_base + colours.west};
+    case TileQuadrant::top_left:
+      return {colours.north, vertical_base + colours.west};
+    case TileQuadrant::top_right:
+      return {colours.north, vertical_base + colours.east};
+    case TileQuadrant::bottom_right:
+      return {colours.south, vertical_base + colours.east};
+    case TileQuadrant::bottom_left:
+      return {colours.south, vertical_base + colours.west};
   }
   return {};
 }
@@ -139,24 +143,31 @@ void for_each_tile_texel(const RangeTiles& tiles, std::uint32_t tile, Texel&& te
 
 }  // namespace
 
-float patch_value_at_tile_texel(const RangeTiles& tiles, RangeChannel channel, std::uint32_t patch, std::uint32_t x,
-                                std::uint32_t y) {
+float patch_value_at_tile_texel(const RangeTiles& tiles, RangeChannel channel, std::uint32_t patch,
+                                std::uint32_t x, std::uint32_t y) {
   const std::size_t texel = patch_texel(tiles, patch, x, y);
   if (channel != RangeChannel::height) {
     if (tiles.tone.empty()) return 1.0f;
-    const std::size_t plane = tone_planes(tiles) == 3 ? static_cast<std::size_t>(channel) - static_cast<std::size_t>(RangeChannel::tone) : 0;
-    return tiles.tone_offset + tiles.tone_scale * static_cast<float>(tiles.tone[plane * tiles.patches.size() + texel]);
+    const std::size_t plane = tone_planes(tiles) == 3 ? static_cast<std::size_t>(channel) -
+                                                            static_cast<std::size_t>(RangeChannel::tone)
+                                                      : 0;
+    return tiles.tone_offset +
+           tiles.tone_scale * static_cast<float>(tiles.tone[plane * tiles.patches.size() + texel]);
   }
   return tiles.height_offset + tiles.height_scale * static_cast<float>(tiles.patches[texel]);
 }
 
-void compose_range_tile(const RangeTiles& tiles, std::uint32_t tile, std::span<float> out, RangeChannel channel) {
+void compose_range_tile(const RangeTiles& tiles, std::uint32_t tile, std::span<float> out,
+                        RangeChannel channel) {
   const std::uint32_t size = tiles.tile_size;
-  for_each_tile_texel(tiles, tile, [&](std::uint32_t x, std::uint32_t y, std::uint32_t a, std::uint32_t b, float share_b) {
-    const float from_a = share_b < 1.0f ? patch_value_at_tile_texel(tiles, channel, a, x, y) : 0.0f;
-    const float from_b = share_b > 0.0f ? patch_value_at_tile_texel(tiles, channel, b, x, y) : 0.0f;
-    out[std::size_t{y} * size + x] = share_b == 0.0f ? from_a : share_b == 1.0f ? from_b : from_a + share_b * (from_b - from_a);
-  });
+  for_each_tile_texel(
+      tiles, tile, [&](std::uint32_t x, std::uint32_t y, std::uint32_t a, std::uint32_t b, float share_b) {
+        const float from_a = share_b < 1.0f ? patch_value_at_tile_texel(tiles, channel, a, x, y) : 0.0f;
+        const float from_b = share_b > 0.0f ? patch_value_at_tile_texel(tiles, channel, b, x, y) : 0.0f;
+        out[std::size_t{y} * size + x] = share_b == 0.0f   ? from_a
+                                         : share_b == 1.0f ? from_b
+                                                           : from_a + share_b * (from_b - from_a);
+      });
 }
 
 namespace {
@@ -165,10 +176,11 @@ namespace {
 std::vector<bool> shown_patch_texels(const RangeTiles& tiles) {
   std::vector<bool> shown(tiles.patches.size(), false);
   for (std::uint32_t t = 0; t < range_tile_count(tiles); ++t) {
-    for_each_tile_texel(tiles, t, [&](std::uint32_t x, std::uint32_t y, std::uint32_t a, std::uint32_t b, float share_b) {
-      if (share_b < 1.0f) shown[patch_texel(tiles, a, x, y)] = true;
-      if (share_b > 0.0f) shown[patch_texel(tiles, b, x, y)] = true;
-    });
+    for_each_tile_texel(
+        tiles, t, [&](std::uint32_t x, std::uint32_t y, std::uint32_t a, std::uint32_t b, float share_b) {
+          if (share_b < 1.0f) shown[patch_texel(tiles, a, x, y)] = true;
+          if (share_b > 0.0f) shown[patch_texel(tiles, b, x, y)] = true;
+        });
   }
   return shown;
 }
@@ -186,7 +198,8 @@ void fill_unseen_patch_texels(RangeTiles& tiles) {
       for (std::uint32_t x = 0; x < size; ++x) {
         const std::size_t texel = p * texels + std::size_t{y} * size + x;
         if (seen[texel]) continue;
-        tiles.patches[texel] = static_cast<std::uint16_t>(detail::raster_prediction(tiles.patches.data() + p * texels, size, x, y));
+        tiles.patches[texel] = static_cast<std::uint16_t>(
+            detail::raster_prediction(tiles.patches.data() + p * texels, size, x, y));
         for (std::size_t plane = 0; plane < tone_planes(tiles); ++plane) {
           std::uint8_t* tone = tiles.tone.data() + plane * tiles.patches.size();
           tone[texel] = static_cast<std::uint8_t>(detail::raster_prediction(tone + p * texels, size, x, y));
@@ -222,7 +235,8 @@ void fill_unseen_patch_texels(RangeTiles& tiles, std::span<const PatchWindow> wi
         const std::size_t at = source_texel(p, x, y);
         shown[at] = true;
         heights[at] = tiles.patches[texel];
-        for (std::size_t plane = 0; plane < planes; ++plane) tone[plane * map_texels + at] = tiles.tone[plane * tiles.patches.size() + texel];
+        for (std::size_t plane = 0; plane < planes; ++plane)
+          tone[plane * map_texels + at] = tiles.tone[plane * tiles.patches.size() + texel];
       }
     }
   }
@@ -265,7 +279,8 @@ JoinSteps measure_join_steps(const RangeTiles& tiles) {
         quadrant_to_tile(size, quadrant, u0, v0, x0, y0);
         quadrant_to_tile(size, quadrant, u1, v1, x1, y1);
         const int across = (u0 < cut[v0]) != (u1 < cut[v1]) ? 0 : 1;
-        sum[across] += std::abs(double{tile[std::size_t{y0} * size + x0]} - tile[std::size_t{y1} * size + x1]);
+        sum[across] +=
+            std::abs(double{tile[std::size_t{y0} * size + x0]} - tile[std::size_t{y1} * size + x1]);
         ++count[across];
       };
       for (std::uint32_t v = 0; v < half; ++v) {
@@ -280,16 +295,19 @@ JoinSteps measure_join_steps(const RangeTiles& tiles) {
           count[1] ? sum[1] / static_cast<double>(count[1]) : 0.0};
 }
 
-std::uint32_t range_tile_at(const RangeTiles& tiles, std::uint64_t seed, std::int32_t tile_row, std::int32_t tile_col) {
+std::uint32_t range_tile_at(const RangeTiles& tiles, std::uint64_t seed, std::int32_t tile_row,
+                            std::int32_t tile_col) {
   return tile_at(tiles, seed, tile_row, tile_col, 0, 0);
 }
 
 void enlarge_range_map(const RangeTiles& tiles, std::uint64_t seed, std::int64_t row0, std::int64_t col0,
-                       std::uint32_t width, std::uint32_t height, std::span<float> out, RangeChannel channel) {
+                       std::uint32_t width, std::uint32_t height, std::span<float> out,
+                       RangeChannel channel) {
   compose_block(tiles, {seed, row0, col0, width, height}, 0, 0, out, channel);
 }
 
-void enlarge_range_map(const RangeTiles& tiles, const RangeBlock& block, std::span<float> out, RangeChannel channel) {
+void enlarge_range_map(const RangeTiles& tiles, const RangeBlock& block, std::span<float> out,
+                       RangeChannel channel) {
   const std::uint32_t size = tiles.tile_size, overlap = block.periodic_overlap;
   if (overlap == 0) {
     compose_block(tiles, block, 0, 0, out, channel);

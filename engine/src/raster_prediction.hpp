@@ -13,7 +13,8 @@
 
 namespace carbtf::detail {
 
-inline std::uint32_t median_edge_prediction(std::uint32_t left, std::uint32_t above, std::uint32_t above_left) {
+inline std::uint32_t median_edge_prediction(std::uint32_t left, std::uint32_t above,
+                                            std::uint32_t above_left) {
   const std::uint32_t low = std::min(left, above);
   const std::uint32_t high = std::max(left, above);
   if (above_left >= high) return low;

@@ -9,10 +9,11 @@
 
 namespace carbtf {
 
-static_assert(kReliefShadowSoftness == gpu::CARBTF_RELIEF_SHADOW_SOFTNESS, "the shader's penumbra is the CPU's");
+static_assert(kReliefShadowSoftness == gpu::CARBTF_RELIEF_SHADOW_SOFTNESS,
+              "the shader's penumbra is the CPU's");
 
-void relief_horizons(std::span<const float> heights, std::uint32_t width, std::uint32_t height, bool wrap, float scale,
-                     std::vector<float>& out) {
+void relief_horizons(std::span<const float> heights, std::uint32_t width, std::uint32_t height, bool wrap,
+                     float scale, std::vector<float>& out) {
   constexpr std::uint32_t n = kReliefHorizonDirections;
   out.assign(std::size_t{width} * height * n, 0.0f);
   if (width == 0 || height == 0 || heights.size() != std::size_t{width} * height) return;
@@ -25,19 +26,23 @@ void relief_horizons(std::span<const float> heights, std::uint32_t width, std::u
   std::array<std::array<float, kReliefHorizonReach + 1>, n> inverse_distance{};
   for (std::uint32_t k = 0; k < n; ++k) {
     const float step = (step_x[k] != 0 && step_row[k] != 0) ? std::numbers::sqrt2_v<float> : 1.0f;
-    for (std::uint32_t t = 1; t <= kReliefHorizonReach; ++t) inverse_distance[k][t] = 1.0f / (step * static_cast<float>(t));
+    for (std::uint32_t t = 1; t <= kReliefHorizonReach; ++t)
+      inverse_distance[k][t] = 1.0f / (step * static_cast<float>(t));
   }
   const auto address = [wrap](std::int64_t j, std::uint32_t size) {
     if (wrap) return static_cast<std::uint32_t>(((j % size) + size) % size);
     return static_cast<std::uint32_t>(std::clamp<std::int64_t>(j, 0, std::int64_t{size} - 1));
   };
-  std::vector<std::uint32_t> column(std::size_t{width} * n * kReliefHorizonReach), row(std::size_t{height} * n * kReliefHorizonReach);
+  std::vector<std::uint32_t> column(std::size_t{width} * n * kReliefHorizonReach),
+      row(std::size_t{height} * n * kReliefHorizonReach);
   for (std::uint32_t k = 0; k < n; ++k) {
     for (std::uint32_t t = 1; t <= kReliefHorizonReach; ++t) {
       for (std::uint32_t x = 0; x < width; ++x)
-        column[(std::size_t{x} * n + k) * kReliefHorizonReach + t - 1] = address(std::int64_t{x} + std::int64_t{step_x[k]} * t, width);
+        column[(std::size_t{x} * n + k) * kReliefHorizonReach + t - 1] =
+            address(std::int64_t{x} + std::int64_t{step_x[k]} * t, width);
       for (std::uint32_t y = 0; y < height; ++y)
-        row[(std::size_t{y} * n + k) * kReliefHorizonReach + t - 1] = address(std::int64_t{y} + std::int64_t{step_row[k]} * t, height);
+        row[(std::size_t{y} * n + k) * kReliefHorizonReach + t - 1] =
+            address(std::int64_t{y} + std::int64_t{step_row[k]} * t, height);
     }
   }
   for (std::uint32_t y = 0; y < height; ++y) {
@@ -49,7 +54,8 @@ void relief_horizons(std::span<const float> heights, std::uint32_t width, std::u
         const std::uint32_t* cy = &row[(std::size_t{y} * n + k) * kReliefHorizonReach];
         float best = 0.0f;
         for (std::uint32_t t = 1; t <= kReliefHorizonReach; ++t) {
-          best = std::max(best, (heights[std::size_t{cy[t - 1]} * width + cx[t - 1]] - h0) * inverse_distance[k][t]);
+          best = std::max(
+              best, (heights[std::size_t{cy[t - 1]} * width + cx[t - 1]] - h0) * inverse_distance[k][t]);
         }
         horizon[k] = scale * best;
       }
@@ -57,15 +63,18 @@ void relief_horizons(std::span<const float> heights, std::uint32_t width, std::u
   }
 }
 
-void horizon_layer(std::span<const float> horizons, std::size_t texels, std::uint32_t half, std::vector<float>& out) {
+void horizon_layer(std::span<const float> horizons, std::size_t texels, std::uint32_t half,
+                   std::vector<float>& out) {
   out.assign(texels * 4, 0.0f);
   if (horizons.size() != texels * kReliefHorizonDirections) return;
   for (std::size_t i = 0; i < texels; ++i) {
-    for (std::size_t k = 0; k < 4; ++k) out[4 * i + k] = horizons[kReliefHorizonDirections * i + 4 * half + k];
+    for (std::size_t k = 0; k < 4; ++k)
+      out[4 * i + k] = horizons[kReliefHorizonDirections * i + 4 * half + k];
   }
 }
 
-float relief_visibility(std::span<const float, kReliefHorizonDirections> horizons, const std::array<float, 3>& light) {
+float relief_visibility(std::span<const float, kReliefHorizonDirections> horizons,
+                        const std::array<float, 3>& light) {
   const float across = std::sqrt(light[0] * light[0] + light[1] * light[1]);
   if (!(across > 0.0f)) return 1.0f;  // overhead: nothing rises above the zenith
   const float sector = std::atan2(light[1], light[0]) * (4.0f / std::numbers::pi_v<float>);

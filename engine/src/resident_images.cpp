@@ -39,7 +39,8 @@ Status ResidentImages::create(Context& context, const Material& material, std::u
     const std::uint32_t possible = can_blit_mips(context, info.format) ? mip_level_count(size, size) : 1;
     info.mip_levels = mip_levels == 0 ? possible : std::min(mip_levels, possible);
     // TRANSFER_SRC: level 0 is the source of the blits that make the mip levels.
-    info.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+    info.usage =
+        VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     info.debug_name = "carbtf resident subspace images";
     CARBTF_TRY(Image::create(context, info, images->image_));
     out = std::move(images);
@@ -115,20 +116,21 @@ Status ResidentImages::record_add(VkCommandBuffer command_buffer, const Subspace
                             nullptr, static_cast<std::uint32_t>(before.size()), before.data());
     vk.vkCmdCopyImage(command_buffer, synthesizer.image(), source, image_.handle(), target,
                       static_cast<std::uint32_t>(copies.size()), copies.data());
-    vk.vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT, shaders | VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
-                            0, nullptr, 0, nullptr, static_cast<std::uint32_t>(after.size()), after.data());
+    vk.vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                            shaders | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr,
+                            static_cast<std::uint32_t>(after.size()), after.data());
     if (mipped) {
-      CARBTF_TRY(record_mip_blits(
-          *context_, command_buffer,
-          {image_.handle(), 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, image_.info().width, image_.info().height},
-          image_.handle(), 1, image_.info().mip_levels - 1, added, general));
+      CARBTF_TRY(record_mip_blits(*context_, command_buffer,
+                                  {image_.handle(), 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                                   image_.info().width, image_.info().height},
+                                  image_.handle(), 1, image_.info().mip_levels - 1, added, general));
       std::vector<VkImageMemoryBarrier> back;
       for (std::uint32_t s : added) {
-        back.push_back(layout_change(image_.handle(), s, 1, VK_ACCESS_TRANSFER_READ_BIT, VK_ACCESS_SHADER_READ_BIT,
-                                     source, general));
+        back.push_back(layout_change(image_.handle(), s, 1, VK_ACCESS_TRANSFER_READ_BIT,
+                                     VK_ACCESS_SHADER_READ_BIT, source, general));
       }
-      vk.vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT, shaders, 0, 0, nullptr, 0, nullptr,
-                              static_cast<std::uint32_t>(back.size()), back.data());
+      vk.vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT, shaders, 0, 0, nullptr, 0,
+                              nullptr, static_cast<std::uint32_t>(back.size()), back.data());
     }
     resident_.insert(added.begin(), added.end());
     return {};

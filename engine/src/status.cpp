@@ -9,19 +9,32 @@ namespace carbtf {
 
 const char* error_code_name(ErrorCode code) noexcept {
   switch (code) {
-    case ErrorCode::ok: return "ok";
-    case ErrorCode::vulkan_loader_missing: return "vulkan_loader_missing";
-    case ErrorCode::vulkan_driver_missing: return "vulkan_driver_missing";
-    case ErrorCode::validation_layer_missing: return "validation_layer_missing";
-    case ErrorCode::device_not_found: return "device_not_found";
-    case ErrorCode::device_unsuitable: return "device_unsuitable";
-    case ErrorCode::invalid_argument: return "invalid_argument";
-    case ErrorCode::out_of_host_memory: return "out_of_host_memory";
-    case ErrorCode::out_of_device_memory: return "out_of_device_memory";
-    case ErrorCode::device_lost: return "device_lost";
-    case ErrorCode::vulkan_error: return "vulkan_error";
-    case ErrorCode::file_error: return "file_error";
-    case ErrorCode::invalid_material: return "invalid_material";
+    case ErrorCode::ok:
+      return "ok";
+    case ErrorCode::vulkan_loader_missing:
+      return "vulkan_loader_missing";
+    case ErrorCode::vulkan_driver_missing:
+      return "vulkan_driver_missing";
+    case ErrorCode::validation_layer_missing:
+      return "validation_layer_missing";
+    case ErrorCode::device_not_found:
+      return "device_not_found";
+    case ErrorCode::device_unsuitable:
+      return "device_unsuitable";
+    case ErrorCode::invalid_argument:
+      return "invalid_argument";
+    case ErrorCode::out_of_host_memory:
+      return "out_of_host_memory";
+    case ErrorCode::out_of_device_memory:
+      return "out_of_device_memory";
+    case ErrorCode::device_lost:
+      return "device_lost";
+    case ErrorCode::vulkan_error:
+      return "vulkan_error";
+    case ErrorCode::file_error:
+      return "file_error";
+    case ErrorCode::invalid_material:
+      return "invalid_material";
   }
   return "unknown";
 }
@@ -31,7 +44,8 @@ namespace detail {
 const char* vk_result_name(VkResult result) noexcept {
   switch (result) {
 #define CARBTF_RESULT_CASE(name) \
-  case name: return #name;
+  case name:                     \
+    return #name;
     CARBTF_RESULT_CASE(VK_SUCCESS)
     CARBTF_RESULT_CASE(VK_NOT_READY)
     CARBTF_RESULT_CASE(VK_TIMEOUT)
@@ -51,7 +65,8 @@ const char* vk_result_name(VkResult result) noexcept {
     CARBTF_RESULT_CASE(VK_ERROR_OUT_OF_POOL_MEMORY)
     CARBTF_RESULT_CASE(VK_ERROR_UNKNOWN)
 #undef CARBTF_RESULT_CASE
-    default: return "VkResult";
+    default:
+      return "VkResult";
   }
 }
 
@@ -59,8 +74,8 @@ Status vulkan_failure(VkResult result, const char* call, const char* file, int l
   // Report paths from the source root ("engine/src/x.cpp"), not the build machine's absolute path.
   const char* short_file = std::strstr(file, "engine/");
   std::string message = std::string(call) + " failed with " + vk_result_name(result) + " (" +
-                        std::to_string(static_cast<int>(result)) + ") at " + (short_file ? short_file : file) +
-                        ":" + std::to_string(line);
+                        std::to_string(static_cast<int>(result)) + ") at " +
+                        (short_file ? short_file : file) + ":" + std::to_string(line);
   ErrorCode code = ErrorCode::vulkan_error;
   if (result == VK_ERROR_OUT_OF_HOST_MEMORY) code = ErrorCode::out_of_host_memory;
   if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY) code = ErrorCode::out_of_device_memory;

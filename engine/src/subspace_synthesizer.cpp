@@ -124,7 +124,7 @@ constexpr SpirvCode kCarWavefront[kCarTapVariants] = {
 
 struct SubspaceSynthesizer::Pipelines {
   detail::ComputePipeline prepare;
-  detail::ComputePipeline serial[kCarTapVariants];     // [detail::car_tap_variant()]; null until needed
+  detail::ComputePipeline serial[kCarTapVariants];  // [detail::car_tap_variant()]; null until needed
   detail::ComputePipeline wavefront[kCarTapVariants];
   detail::ComputePipeline collapse;
   detail::ComputePipeline colour;
@@ -212,7 +212,9 @@ Status SubspaceSynthesizer::build_car_pipeline(CarScheme scheme, std::uint32_t v
   return detail::ComputePipeline::create(*context_, info, pipeline);
 }
 
-void SubspaceSynthesizer::release() noexcept { prepared_.reset(); }
+void SubspaceSynthesizer::release() noexcept {
+  prepared_.reset();
+}
 
 Status SubspaceSynthesizer::prepare(const Material& material, const SynthesisRequest& request) noexcept {
   try {
@@ -278,7 +280,8 @@ Status SubspaceSynthesizer::prepare(const Material& material, const SynthesisReq
           device.type == VK_PHYSICAL_DEVICE_TYPE_CPU ? CarScheme::serial : CarScheme::wavefront;
     }
     for (const detail::PlannedBatch& batch : plan.batches) {
-      for (const detail::CarRun& run : batch.car_runs) CARBTF_TRY(build_car_pipeline(prepared->scheme, run.tap_variant));
+      for (const detail::CarRun& run : batch.car_runs)
+        CARBTF_TRY(build_car_pipeline(prepared->scheme, run.tap_variant));
     }
 
     // Tables: per batch the fields, each level's collapse items and the colour items, each aligned.
@@ -379,7 +382,8 @@ Status SubspaceSynthesizer::read_band(std::uint32_t subspace, std::uint32_t leve
                                       std::vector<float>& out, std::uint32_t& rows,
                                       std::uint32_t& cols) const noexcept {
   if (!prepared_ || prepared_->capture_stage == SynthesisStage::none) {
-    return {ErrorCode::invalid_argument, "read_band() needs a synthesize() or run() whose request captured a stage"};
+    return {ErrorCode::invalid_argument,
+            "read_band() needs a synthesize() or run() whose request captured a stage"};
   }
   const Prepared& p = *prepared_;
   CARBTF_TRY(p.capture.invalidate_for_host_read());
@@ -492,9 +496,10 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
         params.begin = group.first;
         params.item_count = group.first + group.count;
         pipelines.prepare.bind(*context_, command_buffer, resources, &params, sizeof(params));
-        vk.vkCmdDispatch(command_buffer, kFrameCellsPerRow / gpu::CARBTF_SYNTH_GROUP_X,
-                         ceil_div(ceil_div(group.max_frame_cells, kFrameCellsPerRow), gpu::CARBTF_SYNTH_GROUP_Y),
-                         group.count);
+        vk.vkCmdDispatch(
+            command_buffer, kFrameCellsPerRow / gpu::CARBTF_SYNTH_GROUP_X,
+            ceil_div(ceil_div(group.max_frame_cells, kFrameCellsPerRow), gpu::CARBTF_SYNTH_GROUP_Y),
+            group.count);
         ++p.dispatches;
       }
       if (p.scheme == CarScheme::wavefront || p.capture_stage == SynthesisStage::noise) {
@@ -505,7 +510,8 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
           params.item_count = group.first + group.count;
           pipelines.prepare.bind(*context_, command_buffer, resources, &params, sizeof(params));
           // A row of `cols` columns touches at most ceil(pitch / 4) + 1 counter quads (cols <= pitch - 2).
-          vk.vkCmdDispatch(command_buffer, ceil_div(ceil_div(group.max_pitch, 4u) + 1u, gpu::CARBTF_SYNTH_GROUP_X),
+          vk.vkCmdDispatch(command_buffer,
+                           ceil_div(ceil_div(group.max_pitch, 4u) + 1u, gpu::CARBTF_SYNTH_GROUP_X),
                            ceil_div(group.max_padded_rows, gpu::CARBTF_SYNTH_GROUP_Y), group.count);
           ++p.dispatches;
         }
@@ -525,7 +531,8 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
           detail::BindingResource::of(tables, t.fields, field_bytes), arena};
       const bool serial = p.scheme == CarScheme::serial;
       for (const detail::CarRun& run : batch.car_runs) {
-        const detail::ComputePipeline& pipeline = (serial ? pipelines.serial : pipelines.wavefront)[run.tap_variant];
+        const detail::ComputePipeline& pipeline =
+            (serial ? pipelines.serial : pipelines.wavefront)[run.tap_variant];
         std::uint64_t total = 0;
         std::uint64_t chunk = 0;
         if (serial) {
@@ -544,7 +551,8 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
           params.begin = static_cast<std::uint32_t>(begin);
           params.end = static_cast<std::uint32_t>(std::min(total, begin + chunk));
           pipeline.bind(*context_, command_buffer, resources, &params, sizeof(params));
-          vk.vkCmdDispatch(command_buffer, serial ? ceil_div(run.count, gpu::CARBTF_CAR_SERIAL_GROUP) : run.count, 1, 1);
+          vk.vkCmdDispatch(command_buffer,
+                           serial ? ceil_div(run.count, gpu::CARBTF_CAR_SERIAL_GROUP) : run.count, 1, 1);
           ++p.dispatches;
         }
       }
@@ -591,8 +599,7 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
         const std::uint64_t fold_texels =
             std::uint64_t{plan.periodic_overlap} * (plan.width + plan.height - plan.periodic_overlap);
         pipelines.colour_fold.bind(*context_, command_buffer, resources, &params, sizeof(params));
-        vk.vkCmdDispatch(command_buffer, ceil_div(fold_texels, gpu::CARBTF_FOLD_GROUP), 1,
-                         params.item_count);
+        vk.vkCmdDispatch(command_buffer, ceil_div(fold_texels, gpu::CARBTF_FOLD_GROUP), 1, params.item_count);
         ++p.dispatches;
       }
     }
@@ -604,9 +611,9 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
                   VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
   if (p.image.info().mip_levels > 1) {
     // Level 0 is the blits' source, then GENERAL again like the levels they write.
-    transition_image(vk, command_buffer, image, layers, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                     VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                     VK_ACCESS_TRANSFER_READ_BIT);
+    transition_image(vk, command_buffer, image, layers, VK_IMAGE_LAYOUT_GENERAL,
+                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                     VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
     std::vector<std::uint32_t> all;
     try {
       all.resize(layers);
@@ -615,10 +622,10 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
     }
     for (std::uint32_t i = 0; i < layers; ++i) all[i] = i;
     CARBTF_TRY(record_mip_blits(*context_, command_buffer,
-                                {image, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, plan.width, plan.height}, image, 1,
-                                p.image.info().mip_levels - 1, all, VK_IMAGE_LAYOUT_GENERAL));
-    transition_image(vk, command_buffer, image, layers, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_GENERAL,
-                     VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
+                                {image, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, plan.width, plan.height},
+                                image, 1, p.image.info().mip_levels - 1, all, VK_IMAGE_LAYOUT_GENERAL));
+    transition_image(vk, command_buffer, image, layers, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                     VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
                      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT |
                          VK_PIPELINE_STAGE_TRANSFER_BIT,
                      VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
@@ -762,19 +769,21 @@ Status read_back_in_row_bands(Context& context, VkImage image, std::uint32_t wid
                               const std::function<Status(VkCommandBuffer)>& work,
                               const std::function<void(const float*, std::uint32_t, std::uint32_t)>& unpack) {
   const VkDeviceSize row_bytes = VkDeviceSize{width} * 4 * sizeof(float) * layers;
-  const auto band_rows = static_cast<std::uint32_t>(std::clamp<VkDeviceSize>(band_bytes / row_bytes, 1, height));
+  const auto band_rows =
+      static_cast<std::uint32_t>(std::clamp<VkDeviceSize>(band_bytes / row_bytes, 1, height));
   if (readback.handle() == VK_NULL_HANDLE || readback.size() < row_bytes * band_rows) {
     readback = {};  // released before the new one is allocated
     CARBTF_TRY(Buffer::create(context,
-                              {row_bytes * band_rows, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::host_readback,
-                               "carbtf readback"},
+                              {row_bytes * band_rows, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                               MemoryUsage::host_readback, "carbtf readback"},
                               readback));
   }
   for (std::uint32_t row0 = 0; row0 < height; row0 += band_rows) {
     const std::uint32_t rows = std::min(band_rows, height - row0);
     const auto record_band = [&](VkCommandBuffer command_buffer) -> Status {
       if (row0 == 0) CARBTF_TRY(work(command_buffer));
-      record_image_readback(context.vk(), command_buffer, image, width, row0, rows, layers, readback.handle());
+      record_image_readback(context.vk(), command_buffer, image, width, row0, rows, layers,
+                            readback.handle());
       return {};
     };
     CARBTF_TRY(context.submit_and_wait(record_band));
@@ -815,17 +824,16 @@ Status SubspaceSynthesizer::synthesize(const Material& material, const Synthesis
     const auto record_work = [&](VkCommandBuffer command_buffer) {
       return record(command_buffer, timing_out != nullptr);
     };
-    CARBTF_TRY(read_back_in_row_bands(
-        *context_, prepared_->image.handle(), plan.width, plan.height, layers, readback_bytes(), prepared_->readback,
-        record_work,
-        [&](const float* rgba, std::uint32_t row0, std::uint32_t rows) {
-          const std::size_t pixels = std::size_t{plan.width} * rows;
-          for (std::size_t layer = 0; layer < layers; ++layer) {
-            const std::uint32_t s = plan.subspaces[layer];
-            unpack_rgba(rgba + layer * pixels * 4, pixels, plan.channels[layer],
-                        std::size_t{row0} * plan.width, out.images[s]);
-          }
-        }));
+    CARBTF_TRY(read_back_in_row_bands(*context_, prepared_->image.handle(), plan.width, plan.height, layers,
+                                      readback_bytes(), prepared_->readback, record_work,
+                                      [&](const float* rgba, std::uint32_t row0, std::uint32_t rows) {
+                                        const std::size_t pixels = std::size_t{plan.width} * rows;
+                                        for (std::size_t layer = 0; layer < layers; ++layer) {
+                                          const std::uint32_t s = plan.subspaces[layer];
+                                          unpack_rgba(rgba + layer * pixels * 4, pixels, plan.channels[layer],
+                                                      std::size_t{row0} * plan.width, out.images[s]);
+                                        }
+                                      }));
     if (timing_out) CARBTF_TRY(timing(*timing_out));
     return {};
   } catch (const std::bad_alloc&) {
@@ -833,9 +841,11 @@ Status SubspaceSynthesizer::synthesize(const Material& material, const Synthesis
   }
 }
 
-Status SubspaceSynthesizer::run(const Material& material, const SynthesisRequest& request, SynthesisTiming* timing_out) noexcept {
+Status SubspaceSynthesizer::run(const Material& material, const SynthesisRequest& request,
+                                SynthesisTiming* timing_out) noexcept {
   CARBTF_TRY(prepare(material, request));
-  CARBTF_TRY(context_->submit_and_wait([&](VkCommandBuffer command_buffer) { return record(command_buffer, timing_out != nullptr); }));
+  CARBTF_TRY(context_->submit_and_wait(
+      [&](VkCommandBuffer command_buffer) { return record(command_buffer, timing_out != nullptr); }));
   if (timing_out) CARBTF_TRY(timing(*timing_out));
   return {};
 }
@@ -870,8 +880,8 @@ Status SubspaceSynthesizer::interpolate(const Material& material, const PairWeig
       return record_interpolation(command_buffer, material, weights, target.view());
     };
     CARBTF_TRY(read_back_in_row_bands(
-        *context_, target.handle(), plan.width, plan.height, 1, readback_bytes(), prepared_->readback, record_work,
-        [&](const float* rgba, std::uint32_t row0, std::uint32_t rows) {
+        *context_, target.handle(), plan.width, plan.height, 1, readback_bytes(), prepared_->readback,
+        record_work, [&](const float* rgba, std::uint32_t row0, std::uint32_t rows) {
           unpack_rgba(rgba, std::size_t{plan.width} * rows, channels, std::size_t{row0} * plan.width, out);
         }));
     return {};

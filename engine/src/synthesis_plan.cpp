@@ -92,8 +92,11 @@ void finish_batch(const Material& material, std::vector<Stack>& stacks, const Sy
     for (std::size_t s = 0; s < stacks.size(); ++s) {
       if (level < stacks[s].levels.size()) order.push_back(s);
     }
-    const auto variant_of = [&](std::size_t s) { return car_tap_variant(stacks[s].levels[level].gpu.neighbour_count); };
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return variant_of(a) < variant_of(b); });
+    const auto variant_of = [&](std::size_t s) {
+      return car_tap_variant(stacks[s].levels[level].gpu.neighbour_count);
+    };
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return variant_of(a) < variant_of(b); });
     for (const std::size_t s : order) {
       PlannedField field = stacks[s].levels[level];
       field.gpu.offset = static_cast<std::uint32_t>(batch.window_floats);
@@ -112,8 +115,9 @@ void finish_batch(const Material& material, std::vector<Stack>& stacks, const Sy
       }
       CarRun& run = batch.car_runs.back();
       ++run.count;
-      run.max_region_quads = std::max(
-          run.max_region_quads, std::uint64_t{field.gpu.rows} * gpu::carbtf_noise_quads(field.gpu.col0, field.gpu.cols));
+      run.max_region_quads =
+          std::max(run.max_region_quads,
+                   std::uint64_t{field.gpu.rows} * gpu::carbtf_noise_quads(field.gpu.col0, field.gpu.cols));
       run.max_region_rows = std::max(run.max_region_rows, field.gpu.rows);
       run.max_steps = std::max(run.max_steps, field.steps());
       field_index[s].push_back(batch.fields.size());
@@ -250,14 +254,13 @@ Status plan_synthesis(const Material& material, const SynthesisRequest& request,
   for (std::uint32_t s : out.subspaces) {
     const SubspaceModel& model = material.subspaces[s];
     if (model.channels == 0 || model.channels > kMaxGpuChannels) {
-      return {ErrorCode::invalid_argument, "subspace " + std::to_string(s) + " has " +
-                                               std::to_string(model.channels) +
-                                               " channels; the GPU synthesis supports 1 to " +
-                                               std::to_string(kMaxGpuChannels) + " (the CPU reference, `carbtf synth --device cpu`, has no such limit)"};
+      return {ErrorCode::invalid_argument,
+              "subspace " + std::to_string(s) + " has " + std::to_string(model.channels) +
+                  " channels; the GPU synthesis supports 1 to " + std::to_string(kMaxGpuChannels) +
+                  " (the CPU reference, `carbtf synth --device cpu`, has no such limit)"};
     }
     out.channels.push_back(model.channels);
-    const auto regions =
-        level_regions(synthesized_region(request), model.levels);
+    const auto regions = level_regions(synthesized_region(request), model.levels);
     for (std::uint32_t c = 0; c < model.channels; ++c) {
       Stack stack;
       CARBTF_TRY(make_stack(material, s, c, regions, request.margin,

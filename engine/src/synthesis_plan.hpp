@@ -8,10 +8,10 @@
 
 #include <carbtf_gpu_shared.h>
 
+#include "carbtf/engine/internal/synthesis_layout.hpp"
 #include "carbtf/engine/material/material.hpp"
 #include "carbtf/engine/status.hpp"
 #include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
-#include "carbtf/engine/internal/synthesis_layout.hpp"
 
 namespace carbtf::detail {
 
@@ -55,7 +55,7 @@ struct CarRun {
   std::uint32_t tap_variant = 0;
   std::uint64_t max_region_quads = 0;  // serial iterations: rows x counter quads per row
   std::uint32_t max_region_rows = 0;
-  std::uint32_t max_steps = 0;         // wavefront steps
+  std::uint32_t max_steps = 0;  // wavefront steps
 };
 
 struct PlannedBatch {

@@ -70,7 +70,8 @@ TextureArray::~TextureArray() = default;
 
 std::size_t TextureArray::staging_offset(std::uint32_t layer, std::uint32_t level) const noexcept {
   std::size_t offset = 0;
-  for (std::uint32_t l = 0; l < level; ++l) offset += std::size_t{width() >> l} * (height() >> l) * layers() * texel_bytes_;
+  for (std::uint32_t l = 0; l < level; ++l)
+    offset += std::size_t{width() >> l} * (height() >> l) * layers() * texel_bytes_;
   return offset + std::size_t{width() >> level} * (height() >> level) * layer * texel_bytes_;
 }
 
@@ -81,15 +82,19 @@ Status TextureArray::set_layer(std::uint32_t layer, std::span<const std::uint8_t
                                              std::to_string(layer_bytes) + " bytes, got " +
                                              std::to_string(texels.size())};
   }
-  std::memcpy(static_cast<std::uint8_t*>(staging_.mapped()) + staging_offset(layer, 0), texels.data(), layer_bytes);
+  std::memcpy(static_cast<std::uint8_t*>(staging_.mapped()) + staging_offset(layer, 0), texels.data(),
+              layer_bytes);
   return {};
 }
 
-Status TextureArray::set_level(std::uint32_t layer, std::uint32_t level, std::span<const std::uint8_t> texels) noexcept {
+Status TextureArray::set_level(std::uint32_t layer, std::uint32_t level,
+                               std::span<const std::uint8_t> texels) noexcept {
   if (!host_levels_ || level == 0 || level >= mip_levels()) {
-    return {ErrorCode::invalid_argument, "texture array level " + std::to_string(level) +
-                                             (host_levels_ ? " is not a level above 0 of this array"
-                                                           : " is made by the upload's blits (the array was not created with host levels)")};
+    return {
+        ErrorCode::invalid_argument,
+        "texture array level " + std::to_string(level) +
+            (host_levels_ ? " is not a level above 0 of this array"
+                          : " is made by the upload's blits (the array was not created with host levels)")};
   }
   const std::size_t level_bytes = std::size_t{width() >> level} * (height() >> level) * texel_bytes_;
   if (layer >= layers() || texels.size() != level_bytes) {
@@ -97,7 +102,8 @@ Status TextureArray::set_level(std::uint32_t layer, std::uint32_t level, std::sp
                                              std::to_string(level) + " needs " + std::to_string(level_bytes) +
                                              " bytes, got " + std::to_string(texels.size())};
   }
-  std::memcpy(static_cast<std::uint8_t*>(staging_.mapped()) + staging_offset(layer, level), texels.data(), level_bytes);
+  std::memcpy(static_cast<std::uint8_t*>(staging_.mapped()) + staging_offset(layer, level), texels.data(),
+              level_bytes);
   return {};
 }
 

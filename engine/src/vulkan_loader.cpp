@@ -22,7 +22,8 @@ Status open_vulkan_loader(void*& library, PFN_vkGetInstanceProcAddr& get_instanc
   if (!get_instance_proc_addr) {
     dlclose(library);
     library = nullptr;
-    return {ErrorCode::vulkan_loader_missing, "libvulkan.so.1 has no vkGetInstanceProcAddr: broken Vulkan loader"};
+    return {ErrorCode::vulkan_loader_missing,
+            "libvulkan.so.1 has no vkGetInstanceProcAddr: broken Vulkan loader"};
   }
   return {};
 }
@@ -45,7 +46,7 @@ Status resolve(Pfn& slot, PFN_vkVoidFunction function, const char* name, bool re
 }  // namespace
 
 Status load_global_functions(VulkanFunctions& vk) noexcept {
-#define CARBTF_LOAD(name)                                                                   \
+#define CARBTF_LOAD(name)                                                                                 \
   if (Status s = resolve(vk.name, vk.vkGetInstanceProcAddr(VK_NULL_HANDLE, #name), #name, true); !s.ok()) \
     return s;
   CARBTF_VK_GLOBAL_FUNCTIONS(CARBTF_LOAD)
@@ -54,9 +55,8 @@ Status load_global_functions(VulkanFunctions& vk) noexcept {
 }
 
 Status load_instance_functions(VulkanFunctions& vk, VkInstance instance, bool debug_utils) noexcept {
-#define CARBTF_LOAD(name)                                                               \
-  if (Status s = resolve(vk.name, vk.vkGetInstanceProcAddr(instance, #name), #name, true); !s.ok()) \
-    return s;
+#define CARBTF_LOAD(name) \
+  if (Status s = resolve(vk.name, vk.vkGetInstanceProcAddr(instance, #name), #name, true); !s.ok()) return s;
   CARBTF_VK_INSTANCE_FUNCTIONS(CARBTF_LOAD)
   if (debug_utils) {
     CARBTF_VK_DEBUG_UTILS_FUNCTIONS(CARBTF_LOAD)
@@ -66,9 +66,8 @@ Status load_instance_functions(VulkanFunctions& vk, VkInstance instance, bool de
 }
 
 Status load_device_functions(VulkanFunctions& vk, VkDevice device) noexcept {
-#define CARBTF_LOAD(name)                                                               \
-  if (Status s = resolve(vk.name, vk.vkGetDeviceProcAddr(device, #name), #name, true); !s.ok()) \
-    return s;
+#define CARBTF_LOAD(name) \
+  if (Status s = resolve(vk.name, vk.vkGetDeviceProcAddr(device, #name), #name, true); !s.ok()) return s;
   CARBTF_VK_DEVICE_FUNCTIONS(CARBTF_LOAD)
 #undef CARBTF_LOAD
   return {};

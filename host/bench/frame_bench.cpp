@@ -40,21 +40,25 @@ std::string write_frame_bench_report(const std::filesystem::path& out,
   return table;
 }
 
-std::string write_frame_parts_report(const std::filesystem::path& out, const std::vector<FramePartTimes>& parts,
-                                     const std::string& heading) {
+std::string write_frame_parts_report(const std::filesystem::path& out,
+                                     const std::vector<FramePartTimes>& parts, const std::string& heading) {
   std::ostringstream csv;
   csv << "part,frame,render_gpu_ms\n";
   for (const FramePartTimes& p : parts) {
     // Quoted: a part's name may hold commas.
-    for (std::size_t i = 0; i < p.render_gpu_ms.size(); ++i) csv << '"' << p.part << "\"," << i << ',' << p.render_gpu_ms[i] << '\n';
+    for (std::size_t i = 0; i < p.render_gpu_ms.size(); ++i)
+      csv << '"' << p.part << "\"," << i << ',' << p.render_gpu_ms[i] << '\n';
   }
   const double full = parts.empty() ? 0.0 : median(parts[0].render_gpu_ms);
-  std::string table = "| replaced (by a constant, or as the row says) | frames | render pass median ms | the part costs ms |\n"
-                      "|---|---|---|---|\n";
+  std::string table =
+      "| replaced (by a constant, or as the row says) | frames | render pass median ms | the part costs ms "
+      "|\n"
+      "|---|---|---|---|\n";
   char line[256];
   for (const FramePartTimes& p : parts) {
     const double m = median(p.render_gpu_ms);
-    std::snprintf(line, sizeof line, "| %s | %zu | %.2f | %.2f |\n", p.part.c_str(), p.render_gpu_ms.size(), m, full - m);
+    std::snprintf(line, sizeof line, "| %s | %zu | %.2f | %.2f |\n", p.part.c_str(), p.render_gpu_ms.size(),
+                  m, full - m);
     table += line;
   }
   write_output_file(out / "bench_frame_parts.csv", csv.str());

@@ -29,14 +29,14 @@ std::string write_frame_bench_report(const std::filesystem::path& out,
 // (MaterialBindingInfo::cost_probe), or drawn with the other pair coupling, its frames rendered in turn
 // with the full pass's.
 struct FramePartTimes {
-  std::string part;                // "none" for the full pass
+  std::string part;                   // "none" for the full pass
   std::vector<double> render_gpu_ms;  // one per frame
 };
 
 // Writes OUT/bench_frame_parts.csv (part, frame, render pass ms) and OUT/bench_frame_parts.md
 // (`heading`, then per part the median render pass without it and the difference to the full pass's
 // median: what the part costs); returns the table. parts[0] is the full pass.
-std::string write_frame_parts_report(const std::filesystem::path& out, const std::vector<FramePartTimes>& parts,
-                                     const std::string& heading);
+std::string write_frame_parts_report(const std::filesystem::path& out,
+                                     const std::vector<FramePartTimes>& parts, const std::string& heading);
 
 }  // namespace carbtf::cli

@@ -38,7 +38,8 @@ void write_tables(const std::filesystem::path& out, const std::vector<SynthesisB
   md << "# carbtf bench synth\n\nDevice: " << device << ". CPU reference on " << threads
      << " threads. Errors are against the float64 CPU reference, relative to each channel's standard "
         "deviation"
-     << ". Fidelity is the calibrated texture measure's rel (docs/design.md 5; 0 = as close as the measurement "
+     << ". Fidelity is the calibrated texture measure's rel (docs/design.md 5; 0 = as close as the "
+        "measurement "
         "to itself, 1 = white noise) of the GPU images, times the relief tone and the relit range map, "
         "against "
         "the measured image of each subspace's representative pair, mean (worst), beside the best Gaussian "

@@ -6,10 +6,10 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <filesystem>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <limits>
 
@@ -32,7 +32,8 @@ void add_car_scheme_option(CLI::App& command, CarScheme& scheme) {
               if (name == car_scheme_name(s)) scheme = s;
             }
           },
-          "CAR scheme on the Vulkan device: serial (one invocation per field, for CPU devices), wavefront (one "
+          "CAR scheme on the Vulkan device: serial (one invocation per field, for CPU devices), wavefront "
+          "(one "
           "workgroup per field, for GPUs), or automatic by device type")
       ->check(CLI::IsMember({car_scheme_name(CarScheme::automatic), car_scheme_name(CarScheme::serial),
                              car_scheme_name(CarScheme::wavefront)}))
@@ -48,19 +49,25 @@ void add_direction_taps_option(CLI::App& command, PairCoupling& coupling) {
       .add_option_function<std::string>(
           "--direction-taps",
           [&coupling](const std::string& taps) {
-            coupling = taps == direction_taps_name(PairCoupling::staircase) ? PairCoupling::staircase : PairCoupling::product;
+            coupling = taps == direction_taps_name(PairCoupling::staircase) ? PairCoupling::staircase
+                                                                            : PairCoupling::product;
           },
-          "(Light, view) pairs the render pass reads per light: 9, every light weight times every view weight "
+          "(Light, view) pairs the render pass reads per light: 9, every light weight times every view "
+          "weight "
           "(the paper's), or 5, a staircase of the same weights, exact at the measured pairs, whose render "
-          "pass is about a fifth faster on lavapipe and whose picture between the measured directions differs "
+          "pass is about a fifth faster on lavapipe and whose picture between the measured directions "
+          "differs "
           "(docs/design.md 4.5)")
-      ->check(CLI::IsMember({direction_taps_name(PairCoupling::product), direction_taps_name(PairCoupling::staircase)}))
+      ->check(CLI::IsMember(
+          {direction_taps_name(PairCoupling::product), direction_taps_name(PairCoupling::staircase)}))
       ->default_str(direction_taps_name(coupling));
 }
 
 const CLI::Validator& non_negative() {
   static const CLI::Validator validator(
-      [](std::string& value) { return value.find('-') == std::string::npos ? std::string() : "must not be negative"; },
+      [](std::string& value) {
+        return value.find('-') == std::string::npos ? std::string() : "must not be negative";
+      },
       "NON-NEGATIVE");
   return validator;
 }
@@ -115,23 +122,26 @@ void check_every_option(CLI::App& app) {
     const bool real = type.find("FLOAT") != std::string::npos;
     const bool integer = type.find("INT") != std::string::npos;
     if (!real && !integer) continue;
-    option->check(CLI::Validator([real](std::string& token) { return representable_number(token, real); }, ""));
+    option->check(
+        CLI::Validator([real](std::string& token) { return representable_number(token, real); }, ""));
   }
   for (CLI::App* command : app.get_subcommands({})) check_every_option(*command);
 }
 
-
 void require_finite(std::span<const float> values, const std::string& what) {
-  const auto bad = static_cast<std::size_t>(std::count_if(values.begin(), values.end(), [](float v) { return !std::isfinite(v); }));
+  const auto bad = static_cast<std::size_t>(
+      std::count_if(values.begin(), values.end(), [](float v) { return !std::isfinite(v); }));
   if (bad == 0) return;
-  throw CommandError(what + ": " + std::to_string(bad) + " of " + std::to_string(values.size()) +
-                     " values are not finite (NaN or infinity); nothing was written. This is a defect of carbtf or of "
-                     "the material: please report it with the material file");
+  throw CommandError(
+      what + ": " + std::to_string(bad) + " of " + std::to_string(values.size()) +
+      " values are not finite (NaN or infinity); nothing was written. This is a defect of carbtf or of "
+      "the material: please report it with the material file");
 }
 
 void check_output_file_path(const std::string& path, const std::string& option) {
   if (path.empty()) throw CommandError(option + ": the output path is empty");
-  if (std::filesystem::is_directory(path)) throw CommandError(option + " " + path + ": is a folder; this option takes a file name");
+  if (std::filesystem::is_directory(path))
+    throw CommandError(option + " " + path + ": is a folder; this option takes a file name");
   check(check_output_file(path), option);
 }
 
@@ -142,7 +152,8 @@ void check_image_output_path(const std::string& path, const std::string& option)
                        (std::filesystem::path(path) / "frame.png").string());
   }
   if (!is_supported_image_extension(path)) {
-    throw CommandError(option + " " + path + ": unknown image type; use .png, .jpg, .bmp (8-bit sRGB) or .exr, .tif, .pfm (float)");
+    throw CommandError(option + " " + path +
+                       ": unknown image type; use .png, .jpg, .bmp (8-bit sRGB) or .exr, .tif, .pfm (float)");
   }
   check(check_output_file(path), option);
 }
@@ -154,8 +165,8 @@ std::unique_ptr<Context> make_context(const DeviceOptions& options) {
   info.enable_validation = options.validation;
   if (options.validation) {
     info.on_message = [](MessageSeverity severity, const char* text) {
-      std::cerr << "carbtf: vulkan " << (severity == MessageSeverity::error ? "error" : "warning") << ": " << text
-                << "\n";
+      std::cerr << "carbtf: vulkan " << (severity == MessageSeverity::error ? "error" : "warning") << ": "
+                << text << "\n";
     };
   }
   std::unique_ptr<Context> context;
@@ -166,8 +177,8 @@ std::unique_ptr<Context> make_context(const DeviceOptions& options) {
 void check_validation(const Context& context) {
   const ValidationReport report = context.validation_report();
   if (!report.clean()) {
-    throw CommandError("the Vulkan validation layer reported " + std::to_string(report.errors) + " errors and " +
-                       std::to_string(report.warnings) + " warnings");
+    throw CommandError("the Vulkan validation layer reported " + std::to_string(report.errors) +
+                       " errors and " + std::to_string(report.warnings) + " warnings");
   }
 }
 
@@ -188,11 +199,13 @@ double percentile(std::vector<double> samples, double fraction) {
   return samples[below] + (position - static_cast<double>(below)) * (samples[above] - samples[below]);
 }
 
-void parse_frame_size(const std::string& text, const std::string& option, std::uint32_t& width, std::uint32_t& height) {
+void parse_frame_size(const std::string& text, const std::string& option, std::uint32_t& width,
+                      std::uint32_t& height) {
   // Digits only, at most 5 each: sscanf's %u would wrap 4294967297 to 1 and accept a sign.
   const std::size_t x = text.find_first_of("xX");
   const auto digits = [](std::string_view part) {
-    return !part.empty() && part.size() <= 5 && part.find_first_not_of("0123456789") == std::string_view::npos;
+    return !part.empty() && part.size() <= 5 &&
+           part.find_first_not_of("0123456789") == std::string_view::npos;
   };
   const std::string_view all(text);
   const bool shaped = x != std::string::npos && digits(all.substr(0, x)) && digits(all.substr(x + 1));
@@ -205,11 +218,10 @@ void parse_frame_size(const std::string& text, const std::string& option, std::u
   height = h;
 }
 
-
 std::filesystem::path with_stem_suffix(const std::filesystem::path& file, const std::string& suffix) {
-  return std::filesystem::path(file).replace_filename(file.stem().string() + suffix + file.extension().string());
+  return std::filesystem::path(file).replace_filename(file.stem().string() + suffix +
+                                                      file.extension().string());
 }
-
 
 BtfDataset load_measurement_of(const Material& material, const std::string& path, const std::string& option) {
   std::vector<std::string> warnings;

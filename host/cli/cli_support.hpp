@@ -73,11 +73,14 @@ std::filesystem::path with_stem_suffix(const std::filesystem::path& file, const 
 BtfDataset load_measurement_of(const Material& material, const std::string& path, const std::string& option);
 
 // "WIDTHxHEIGHT" (digits only, each 1 to 16384) into width and height, or CommandError naming `option`.
-void parse_frame_size(const std::string& text, const std::string& option, std::uint32_t& width, std::uint32_t& height);
+void parse_frame_size(const std::string& text, const std::string& option, std::uint32_t& width,
+                      std::uint32_t& height);
 
 // The `fraction` quantile of benchmark samples, interpolating linearly between order statistics
 // (0.5: the median, the mean of the two middle samples for an even count); 0 for no samples.
 double percentile(std::vector<double> samples, double fraction);
-inline double median(std::vector<double> samples) { return percentile(std::move(samples), 0.5); }
+inline double median(std::vector<double> samples) {
+  return percentile(std::move(samples), 0.5);
+}
 
 }  // namespace carbtf::cli

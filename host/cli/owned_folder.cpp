@@ -39,7 +39,8 @@ fs::path OwnedFolder::claim(const std::string& name) {
   const fs::path path = root_ / name;
   std::error_code error;
   if (fs::exists(fs::symlink_status(path, error))) {
-    throw CommandError(path.string() + ": already exists; this command does not overwrite it. Remove it or choose "
+    throw CommandError(path.string() +
+                       ": already exists; this command does not overwrite it. Remove it or choose "
                        "another --out");
   }
   claimed_.push_back(path);

@@ -35,7 +35,9 @@ void render_jpeg_btf(const std::string& material, std::uint32_t size, const fs::
   RenderOptions render;
   render.progress = false;
   render_btf(surface, ubo2003_directions(), ubo2003_directions(), render,
-             [&](std::uint32_t l, std::uint32_t v, std::span<const float> image) { writer.write(l, v, image, size, size); });
+             [&](std::uint32_t l, std::uint32_t v, std::span<const float> image) {
+               writer.write(l, v, image, size, size);
+             });
   writer.finish();
 }
 
@@ -52,12 +54,14 @@ int analyze_child(const fs::path& btf, const fs::path& material_path, const std:
   const auto write_start = std::chrono::steady_clock::now();
   check(write_material_file(material_path.string(), result.material), "cannot write the material");
   const double write_seconds = seconds_since(write_start);
-  const double raw = static_cast<double>(dataset.present_pairs().size()) * static_cast<double>(dataset.pixel_count()) * 3.0;
+  const double raw =
+      static_cast<double>(dataset.present_pairs().size()) * static_cast<double>(dataset.pixel_count()) * 3.0;
   const auto bytes = static_cast<double>(fs::file_size(material_path));
   std::printf("%s: raw 8-bit data %.1f MiB\n", label.c_str(), raw / 1048576.0);
   std::printf("  %-24s %9s %14s\n", "stage", "seconds", "peak RSS MiB");
   std::printf("  %-24s %9.2f %14.0f\n", "load JPEGs", load_seconds, load_rss / 1048576.0);
-  for (const StageReport& s : result.stages) std::printf("  %-24s %9.2f %14.0f\n", s.name.c_str(), s.seconds, s.peak_rss_bytes / 1048576.0);
+  for (const StageReport& s : result.stages)
+    std::printf("  %-24s %9.2f %14.0f\n", s.name.c_str(), s.seconds, s.peak_rss_bytes / 1048576.0);
   std::printf("  %-24s %9.2f %14.0f\n", "write material", write_seconds, peak_rss_bytes() / 1048576.0);
   std::printf("  %-24s %9.2f %14.0f\n", "total", seconds_since(start), peak_rss_bytes() / 1048576.0);
   std::printf("  material file %.1f KiB, compression ratio 1 : %.0f\n\n", bytes / 1024.0, raw / bytes);
@@ -67,16 +71,19 @@ int analyze_child(const fs::path& btf, const fs::path& material_path, const std:
 void run_analyze_bench(const AnalyzeBenchOptions& options) {
   OwnedFolder out(options.out);
   if (options.keep) out.keep();
-  const std::vector<std::string> materials = options.materials.empty() ? sample_material_names() : options.materials;
+  const std::vector<std::string> materials =
+      options.materials.empty() ? sample_material_names() : options.materials;
   for (const std::string& material : materials) {
     for (std::uint32_t size : options.sizes) {
-      const std::string label = material + " " + std::to_string(size) + "x" + std::to_string(size) + ", 81 x 81 JPEGs";
+      const std::string label =
+          material + " " + std::to_string(size) + "x" + std::to_string(size) + ", 81 x 81 JPEGs";
       const std::string stem = material + "_" + std::to_string(size);
       const fs::path btf = out.claim(stem);
       const fs::path material_path = out.claim(stem + ".cbtf");
       const auto render_start = std::chrono::steady_clock::now();
       render_jpeg_btf(material, size, btf);
-      std::fprintf(stderr, "rendered %s in %.1f s (not part of the analysis)\n", label.c_str(), seconds_since(render_start));
+      std::fprintf(stderr, "rendered %s in %.1f s (not part of the analysis)\n", label.c_str(),
+                   seconds_since(render_start));
       std::fflush(stdout);
       std::fflush(stderr);
       const pid_t child = fork();
@@ -93,7 +100,8 @@ void run_analyze_bench(const AnalyzeBenchOptions& options) {
       }
       int status = 0;
       waitpid(child, &status, 0);
-      if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw CommandError("the analysis of " + label + " failed");
+      if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+        throw CommandError("the analysis of " + label + " failed");
       if (!options.keep) out.release(btf);
     }
   }
@@ -103,11 +111,19 @@ void run_analyze_bench(const AnalyzeBenchOptions& options) {
 
 void register_bench_analyze_command(CLI::App& bench) {
   auto options = std::make_shared<AnalyzeBenchOptions>();
-  auto* command = bench.add_subcommand("analyze", "Analysis time and peak RSS per stage, file size and compression ratio, for each "
-                                                  "sample material rendered as 81x81 JPEGs");
+  auto* command =
+      bench.add_subcommand("analyze",
+                           "Analysis time and peak RSS per stage, file size and compression ratio, for each "
+                           "sample material rendered as 81x81 JPEGs");
   command->add_option("--materials", options->materials, "Sample materials (default: all)");
-  command->add_option("--sizes", options->sizes, "Image sizes")->check(CLI::Range(16u, 1024u))->capture_default_str();
-  command->add_option("--out", options->out, "Folder for the rendered sets and materials (created if missing; only what the bench creates there is removed)")->capture_default_str();
+  command->add_option("--sizes", options->sizes, "Image sizes")
+      ->check(CLI::Range(16u, 1024u))
+      ->capture_default_str();
+  command
+      ->add_option("--out", options->out,
+                   "Folder for the rendered sets and materials (created if missing; only what the bench "
+                   "creates there is removed)")
+      ->capture_default_str();
   command->add_flag("--keep", options->keep, "Keep the rendered images and the material files");
   command->callback([options] { run_analyze_bench(*options); });
 }

@@ -7,8 +7,8 @@
 
 #include <filesystem>
 
-#include "carbtf/reference/noise.hpp"
 #include "carbtf/engine/synthesis/noise_generator.hpp"
+#include "carbtf/reference/noise.hpp"
 #include "cli/cli_support.hpp"
 #include "commands/commands.hpp"
 
@@ -52,9 +52,8 @@ void run_noise_bench(const NoiseBenchOptions& options) {
 
   const unsigned threads = std::max(1u, std::thread::hardware_concurrency());
   std::vector<float> cpu(std::size_t{n} * n);
-  const auto cpu_one = time_runs(options.repeats, [&](unsigned i) {
-    reference::fill_noise_block(i + 2ull, 0, 0, 0, n, n, cpu, 1);
-  });
+  const auto cpu_one = time_runs(
+      options.repeats, [&](unsigned i) { reference::fill_noise_block(i + 2ull, 0, 0, 0, n, n, cpu, 1); });
   const auto cpu_all = time_runs(options.repeats, [&](unsigned i) {
     reference::fill_noise_block(i + 2ull, 0, 0, 0, n, n, cpu, threads);
   });
@@ -82,8 +81,11 @@ void register_bench_command(CLI::App& app) {
   auto* bench = app.add_subcommand("bench", "Benchmarks: print measured times and throughputs");
   bench->require_subcommand(1);
   auto options = std::make_shared<NoiseBenchOptions>();
-  auto* noise = bench->add_subcommand("noise", "Gaussian noise throughput: GPU kernel, GPU with readback, CPU");
-  noise->add_option("--size", options->size, "Field width and height")->check(CLI::Range(16u, 8192u))->capture_default_str();
+  auto* noise =
+      bench->add_subcommand("noise", "Gaussian noise throughput: GPU kernel, GPU with readback, CPU");
+  noise->add_option("--size", options->size, "Field width and height")
+      ->check(CLI::Range(16u, 8192u))
+      ->capture_default_str();
   noise->add_option("--repeats", options->repeats, "Timed runs per path (median reported)")
       ->check(CLI::Range(1u, 1000u))
       ->capture_default_str();

@@ -6,8 +6,8 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <sstream>
 #include <functional>
+#include <sstream>
 
 #include "carbtf/analysis/analyze.hpp"
 #include "carbtf/analysis/btf/btf_reader.hpp"
@@ -41,7 +41,8 @@ const std::vector<ModelVariant>& model_variants() {
       {"tiles128", "no relief tone, 128-texel tiles", [](AnalysisOptions& o) { o.relief_tone = false; }},
       {"tone64", "relief tone, 64-texel tiles", [](AnalysisOptions& o) { o.tiles.tile_size = 64; }},
       {"tone96", "relief tone, 96-texel tiles", [](AnalysisOptions& o) { o.tiles.tile_size = 96; }},
-      {"tone128_12bit", "relief tone, 128-texel tiles, 12-bit heights", [](AnalysisOptions& o) { o.tiles.height_bits = 12; }},
+      {"tone128_12bit", "relief tone, 128-texel tiles, 12-bit heights",
+       [](AnalysisOptions& o) { o.tiles.height_bits = 12; }},
       {"fine", "the default with 8-bit heights and a 7-bit tone (the default before format 1.5)",
        [](AnalysisOptions& o) {
          o.tiles.height_bits = 8;
@@ -53,22 +54,34 @@ const std::vector<ModelVariant>& model_variants() {
          o.tiles.tone_bits = 3;
        }},
       {"default",
-       "relief tone (R, G, B planes where its colour is not grey), 128-texel tiles with feathered cuts, 6-bit heights, "
+       "relief tone (R, G, B planes where its colour is not grey), 128-texel tiles with feathered cuts, "
+       "6-bit heights, "
        "4-bit tone; clamp, levels and noise gains chosen per subspace",
        [](AnalysisOptions&) {}},
       {"specular", "the default with the relief's specular lobe wherever it is fitted (--specular)",
        [](AnalysisOptions& o) { o.relief_specular = AutoChoice::always; }},
-      {"no_specular", "the default without the relief's specular lobe", [](AnalysisOptions& o) { o.relief_specular = AutoChoice::never; }},
-      {"deshade", "the default with the relit range map divided out (floor 0.3)", [](AnalysisOptions& o) { o.deshade_floor = 0.3; }},
-      {"no_pair_gains", "the default without the per-pair colour gains", [](AnalysisOptions& o) { o.pair_gains = false; }},
-      {"no_noise_gains", "the default with every subspace's fitted sigma", [](AnalysisOptions& o) { o.noise_gains = {1.0}; }},
-      {"grey_tone", "the default with a grey relief tone everywhere", [](AnalysisOptions& o) { o.tone_planes = TonePlanes::never; }},
+      {"no_specular", "the default without the relief's specular lobe",
+       [](AnalysisOptions& o) { o.relief_specular = AutoChoice::never; }},
+      {"deshade", "the default with the relit range map divided out (floor 0.3)",
+       [](AnalysisOptions& o) { o.deshade_floor = 0.3; }},
+      {"no_pair_gains", "the default without the per-pair colour gains",
+       [](AnalysisOptions& o) { o.pair_gains = false; }},
+      {"no_noise_gains", "the default with every subspace's fitted sigma",
+       [](AnalysisOptions& o) { o.noise_gains = {1.0}; }},
+      {"grey_tone", "the default with a grey relief tone everywhere",
+       [](AnalysisOptions& o) { o.tone_planes = TonePlanes::never; }},
       {"hard_cuts", "the default with hard range-tile cuts", [](AnalysisOptions& o) { o.tiles.feather = 0; }},
-      {"tone_weights", "the default with each subspace's share of the relief tone (0 or 1) chosen with its clamp",
-       [](AnalysisOptions& o) { o.tone_weights = {0.0, 1.0}; }},
-      {"fixed_levels", "the default with 3 pyramid levels in every subspace", [](AnalysisOptions& o) { o.other_level_counts = {}; }},
-      {"no_shadows", "the default without the relief's cast shadows", [](AnalysisOptions& o) { o.relief_shadows = AutoChoice::never; }},
-      {"shadows", "the default with the relief's cast shadows at full strength", [](AnalysisOptions& o) { o.relief_shadows = AutoChoice::always; }},
+      {"tone_weights",
+       "the default with each subspace's share of the relief tone (0 or 1) chosen with its clamp",
+       [](AnalysisOptions& o) {
+         o.tone_weights = {0.0, 1.0};
+       }},
+      {"fixed_levels", "the default with 3 pyramid levels in every subspace",
+       [](AnalysisOptions& o) { o.other_level_counts = {}; }},
+      {"no_shadows", "the default without the relief's cast shadows",
+       [](AnalysisOptions& o) { o.relief_shadows = AutoChoice::never; }},
+      {"shadows", "the default with the relief's cast shadows at full strength",
+       [](AnalysisOptions& o) { o.relief_shadows = AutoChoice::always; }},
   };
   return variants;
 }
@@ -91,12 +104,14 @@ struct VariantResult {
 void run_fidelity_bench(const FidelityBenchOptions& options) {
   std::vector<const ModelVariant*> chosen;
   for (const ModelVariant& v : model_variants()) {
-    if (options.variants.empty() || std::find(options.variants.begin(), options.variants.end(), v.name) != options.variants.end()) {
+    if (options.variants.empty() ||
+        std::find(options.variants.begin(), options.variants.end(), v.name) != options.variants.end()) {
       chosen.push_back(&v);
     }
   }
   for (const std::string& name : options.variants) {
-    if (std::none_of(model_variants().begin(), model_variants().end(), [&](const ModelVariant& v) { return name == v.name; })) {
+    if (std::none_of(model_variants().begin(), model_variants().end(),
+                     [&](const ModelVariant& v) { return name == v.name; })) {
       std::string known;
       for (const ModelVariant& v : model_variants()) known += std::string(known.empty() ? "" : ", ") + v.name;
       throw CommandError("--variants: unknown variant '" + name + "' (known: " + known + ")");
@@ -108,9 +123,11 @@ void run_fidelity_bench(const FidelityBenchOptions& options) {
   OwnedFolder out(options.out);
   out.keep();  // the materials, CSV and plot are the bench's output
   auto context = make_context(options.device);
-  std::printf("fidelity against size for %s (%ux%u) on %s; s: 0 = as close as the measurement to itself, 1 = no better than a "
-              "Gaussian field (rel: 1 = white noise)\n",
-              options.dataset.c_str(), dataset.width(), dataset.height(), context->device_info().name.c_str());
+  std::printf(
+      "fidelity against size for %s (%ux%u) on %s; s: 0 = as close as the measurement to itself, 1 = no "
+      "better than a "
+      "Gaussian field (rel: 1 = white noise)\n",
+      options.dataset.c_str(), dataset.width(), dataset.height(), context->device_info().name.c_str());
   std::vector<VariantResult> results;
   for (const ModelVariant* variant : chosen) {
     AnalysisOptions analysis;
@@ -129,50 +146,71 @@ void run_fidelity_bench(const FidelityBenchOptions& options) {
     FidelityRunOptions run;
     run.seed = options.seed;
     run.progress = false;
-    const std::vector<PairFidelity> scored = run_fidelity(*context, analysed.material, dataset, default_fidelity_pairs(analysed.material), run);
+    const std::vector<PairFidelity> scored =
+        run_fidelity(*context, analysed.material, dataset, default_fidelity_pairs(analysed.material), run);
     check_validation(*context);
     r.summary = summarize(scored);
-    std::printf("  %-13s %8.1f KiB  s mean %.3f worst %.3f  rel mean %.3f  beats the Gaussian reference on %zu of %zu  (analysis %.1f s)\n",
-                variant->name, static_cast<double>(r.bytes) / 1024.0, r.summary.mean_structure, r.summary.worst_structure, r.summary.mean_rel,
-                r.summary.beats_gaussian, r.summary.pairs, r.analysis_seconds);
+    std::printf(
+        "  %-13s %8.1f KiB  s mean %.3f worst %.3f  rel mean %.3f  beats the Gaussian reference on %zu of "
+        "%zu  (analysis %.1f s)\n",
+        variant->name, static_cast<double>(r.bytes) / 1024.0, r.summary.mean_structure,
+        r.summary.worst_structure, r.summary.mean_rel, r.summary.beats_gaussian, r.summary.pairs,
+        r.analysis_seconds);
     std::fflush(stdout);
     results.push_back(r);
   }
-  if (!results.empty()) std::printf("Gaussian reference rel mean %.3f\n", results.front().summary.mean_gaussian_rel);
+  if (!results.empty())
+    std::printf("Gaussian reference rel mean %.3f\n", results.front().summary.mean_gaussian_rel);
 
   const fs::path csv_path = out.claim("fidelity_size.csv");
   std::ostringstream csv;
-  csv << "variant,description,bytes,mean_s,worst_s,mean_rel,worst_rel,gaussian_mean_rel,beats_gaussian,pairs,analysis_seconds\n";
+  csv << "variant,description,bytes,mean_s,worst_s,mean_rel,worst_rel,gaussian_mean_rel,beats_gaussian,pairs,"
+         "analysis_seconds\n";
   std::vector<ScatterPoint> points;
   std::vector<std::string_view> legend;
   for (std::size_t i = 0; i < results.size(); ++i) {
     const VariantResult& r = results[i];
-    csv << r.variant->name << ",\"" << r.variant->description << "\"," << r.bytes << "," << r.summary.mean_structure << ","
-        << r.summary.worst_structure << "," << r.summary.mean_rel << "," << r.summary.worst_rel
-        << "," << r.summary.mean_gaussian_rel << "," << r.summary.beats_gaussian << "," << r.summary.pairs << "," << r.analysis_seconds << "\n";
-    points.push_back({static_cast<double>(r.bytes) / 1024.0, r.summary.mean_structure, static_cast<std::uint32_t>(i)});
+    csv << r.variant->name << ",\"" << r.variant->description << "\"," << r.bytes << ","
+        << r.summary.mean_structure << "," << r.summary.worst_structure << "," << r.summary.mean_rel << ","
+        << r.summary.worst_rel << "," << r.summary.mean_gaussian_rel << "," << r.summary.beats_gaussian << ","
+        << r.summary.pairs << "," << r.analysis_seconds << "\n";
+    points.push_back(
+        {static_cast<double>(r.bytes) / 1024.0, r.summary.mean_structure, static_cast<std::uint32_t>(i)});
     legend.push_back(r.variant->name);
   }
   write_output_file(csv_path, csv.str());
-  const Figure plot = scatter_figure(points, "MATERIAL SIZE (KIB)", "MEAN S (0 = MEASUREMENT, 1 = GAUSSIAN FIELD)", legend);
+  const Figure plot =
+      scatter_figure(points, "MATERIAL SIZE (KIB)", "MEAN S (0 = MEASUREMENT, 1 = GAUSSIAN FIELD)", legend);
   write_rgb_image(out.claim("fidelity_size.png"), plot.rgb, plot.width, plot.height, false);
-  std::printf("wrote %s: one .cbtf per variant, fidelity_size.csv and fidelity_size.png (mean s against size)\n", options.out.c_str());
+  std::printf(
+      "wrote %s: one .cbtf per variant, fidelity_size.csv and fidelity_size.png (mean s against size)\n",
+      options.out.c_str());
 }
 
 }  // namespace
 
 void register_bench_fidelity_command(CLI::App& bench) {
   auto options = std::make_shared<FidelityBenchOptions>();
-  auto* command = bench.add_subcommand(
-      "fidelity", "Error against size: the dataset analysed once per model option, each material scored by the calibrated "
-                  "fidelity measure through the render pass (as `carbtf fidelity`), beside its file size; table, CSV and plot");
-  command->add_option("dataset", options->dataset, "A measured BTF (UBO2003 folder or zip, a manifest, or a UBO2014 .btf file)")->required();
+  auto* command = bench.add_subcommand("fidelity",
+                                       "Error against size: the dataset analysed once per model option, each "
+                                       "material scored by the calibrated "
+                                       "fidelity measure through the render pass (as `carbtf fidelity`), "
+                                       "beside its file size; table, CSV and plot");
+  command
+      ->add_option("dataset", options->dataset,
+                   "A measured BTF (UBO2003 folder or zip, a manifest, or a UBO2014 .btf file)")
+      ->required();
   std::string names;
   for (const ModelVariant& v : model_variants()) names += std::string("\n  ") + v.name + ": " + v.description;
-  command->add_option("--variants", options->variants, "Model variants to compare (default: all):" + names)->delimiter(',');
-  command->add_option("--out", options->out, "Folder for the materials, CSV and plot (created if missing; existing files there are refused, not overwritten)")
+  command->add_option("--variants", options->variants, "Model variants to compare (default: all):" + names)
+      ->delimiter(',');
+  command
+      ->add_option("--out", options->out,
+                   "Folder for the materials, CSV and plot (created if missing; existing files there are "
+                   "refused, not overwritten)")
       ->capture_default_str();
-  command->add_option("--seed", options->seed, "Seed of the analysis, the synthesis and the reference noise")->capture_default_str();
+  command->add_option("--seed", options->seed, "Seed of the analysis, the synthesis and the reference noise")
+      ->capture_default_str();
   add_device_options(*command, options->device);
   command->callback([options] { run_fidelity_bench(*options); });
 }

@@ -11,16 +11,16 @@
 #include "bench/frame_bench.hpp"
 #include "carbtf/analysis/analyze.hpp"
 #include "carbtf/analysis/btf/btf_reader.hpp"
+#include "carbtf/analysis/sample/sample_btf.hpp"
 #include "carbtf/analysis/sample/sample_materials.hpp"
-#include "carbtf/engine/vulkan/gpu_timer.hpp"
-#include "carbtf/engine/render/material_binding.hpp"
 #include "carbtf/engine/material/material_file.hpp"
+#include "carbtf/engine/render/material_binding.hpp"
 #include "carbtf/engine/render/mesh_renderer.hpp"
 #include "carbtf/engine/render/resident_images.hpp"
 #include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
+#include "carbtf/engine/vulkan/gpu_timer.hpp"
 #include "cli/cli_support.hpp"
 #include "cli/owned_folder.hpp"
-#include "carbtf/analysis/sample/sample_btf.hpp"
 #include "commands/commands.hpp"
 #include "scene/material_render.hpp"
 #include "scene/orbit.hpp"
@@ -39,11 +39,11 @@ struct FrameBenchOptions {
   std::uint32_t lights = 1;
   std::uint32_t width = 1920;
   std::uint32_t height = 1080;
-  std::uint32_t texture_size = 0;  // 0: what the first frame needs, up to 1024
-  std::uint32_t mip_levels = 0;    // MaterialBindingInfo::max_mip_levels
-  bool hand_filtering = false;     // !MaterialBindingInfo::hardware_filtering
+  std::uint32_t texture_size = 0;                      // 0: what the first frame needs, up to 1024
+  std::uint32_t mip_levels = 0;                        // MaterialBindingInfo::max_mip_levels
+  bool hand_filtering = false;                         // !MaterialBindingInfo::hardware_filtering
   PairCoupling pair_coupling = PairCoupling::product;  // MaterialBindingInfo::pair_coupling
-  bool parts = false;              // also time the render pass without each part (cost probes)
+  bool parts = false;  // also time the render pass without each part (cost probes)
   std::string out = "bench_frame";
 };
 
@@ -119,7 +119,8 @@ void run_bench_frame(const FrameBenchOptions& options) {
       const std::uint32_t overlap = needs.periodic ? default_periodic_overlap(texture_size, texture_size) : 0;
       check(ResidentImages::create(*context, material, texture_size, overlap, resident, options.mip_levels),
             "cannot hold the images");
-      check(MaterialBinding::create(*context, material, resident->textures(), bench_binding_info(options, 0), binding),
+      check(MaterialBinding::create(*context, material, resident->textures(), bench_binding_info(options, 0),
+                                    binding),
             "cannot bind");
       check(context->submit_and_wait([&](VkCommandBuffer cb) {
         resident->record_transition(cb);
@@ -164,15 +165,17 @@ void run_bench_frame(const FrameBenchOptions& options) {
     records.push_back(record);
   }
   if (options.parts) {
-    std::printf("bench frame: the render pass again with each part of the fragment stage replaced by a constant, "
-                "and with the other --direction-taps\n");
+    std::printf(
+        "bench frame: the render pass again with each part of the fragment stage replaced by a constant, "
+        "and with the other --direction-taps\n");
     std::fflush(stdout);
     // The last variant draws the material with the other --direction-taps: the full picture, another
     // interpolation between the measured directions.
     const PairCoupling other_coupling =
         options.pair_coupling == PairCoupling::staircase ? PairCoupling::product : PairCoupling::staircase;
-    const std::string other_taps = std::string(direction_taps_name(options.pair_coupling)) + " direction taps (" +
-                                   direction_taps_name(other_coupling) + " in their place)";
+    const std::string other_taps = std::string(direction_taps_name(options.pair_coupling)) +
+                                   " direction taps (" + direction_taps_name(other_coupling) +
+                                   " in their place)";
     struct Variant {
       std::string part;
       std::uint32_t cost_probe = 0;
@@ -192,9 +195,11 @@ void run_bench_frame(const FrameBenchOptions& options) {
     for (std::size_t p = 0; p < probes.size(); ++p) {
       MaterialBindingInfo info = bench_binding_info(options, probes[p].cost_probe);
       info.pair_coupling = probes[p].coupling;
-      check(MaterialBinding::create(*context, material, resident->textures(), info, bindings[p]), "cannot bind");
+      check(MaterialBinding::create(*context, material, resident->textures(), info, bindings[p]),
+            "cannot bind");
       check(bindings[p]->upload_and_wait(), "cannot upload the material");
-      check(MeshRenderer::create(*context, *bindings[p], target, renderers[p]), "cannot build the render pass");
+      check(MeshRenderer::create(*context, *bindings[p], target, renderers[p]),
+            "cannot build the render pass");
       check(renderers[p]->set_mesh(mesh), "cannot upload the mesh");
       parts.push_back({probes[p].part, {}});
     }
@@ -216,8 +221,9 @@ void run_bench_frame(const FrameBenchOptions& options) {
       }
     }
     check_validation(*context);
-    const std::string heading = "bench frame --parts: render pass GPU time, " + std::to_string(options.frames) +
-                                " frames per variant, " + context->device_info().name +
+    const std::string heading = "bench frame --parts: render pass GPU time, " +
+                                std::to_string(options.frames) + " frames per variant, " +
+                                context->device_info().name +
                                 " (timing only: a replaced part makes the picture wrong)\n\n";
     std::printf("\n%s%s", heading.c_str(), write_frame_parts_report(out, parts, heading).c_str());
     std::printf("wrote %s/bench_frame_parts.csv and bench_frame_parts.md\n\n", out.string().c_str());
@@ -225,15 +231,14 @@ void run_bench_frame(const FrameBenchOptions& options) {
   check_validation(*context);
 
   char line[256];
-  std::snprintf(line, sizeof line,
-                "bench frame: %u frames of %ux%u, %s, %u light%s, on %s, texture %u^2 with %u mip levels, filtered "
-                "%s, %s direction taps, %zu of %zu subspace images resident at the end\n\n",
-                options.frames, options.width, options.height, options.mesh.c_str(), options.lights,
-                options.lights == 1 ? "" : "s",
-                context->device_info().name.c_str(), texture_size, binding->mip_levels(),
-                binding->hardware_filtering() ? "by the sampler" : "by hand",
-                direction_taps_name(binding->pair_coupling()), resident->resident_count(),
-                material.subspaces.size());
+  std::snprintf(
+      line, sizeof line,
+      "bench frame: %u frames of %ux%u, %s, %u light%s, on %s, texture %u^2 with %u mip levels, filtered "
+      "%s, %s direction taps, %zu of %zu subspace images resident at the end\n\n",
+      options.frames, options.width, options.height, options.mesh.c_str(), options.lights,
+      options.lights == 1 ? "" : "s", context->device_info().name.c_str(), texture_size,
+      binding->mip_levels(), binding->hardware_filtering() ? "by the sampler" : "by hand",
+      direction_taps_name(binding->pair_coupling()), resident->resident_count(), material.subspaces.size());
   std::printf("%s%s", line, write_frame_bench_report(out, records, line).c_str());
   std::printf("wrote %s/bench_frame.csv and bench_frame.md\n", out.string().c_str());
 }
@@ -255,7 +260,10 @@ void register_bench_frame_command(CLI::App& bench) {
   command->add_option("--frames", options->frames, "Frames to render")
       ->check(CLI::Range(1u, 100000u))
       ->capture_default_str();
-  command->add_option("--lights", options->lights, "Directional lights at 40 degrees from the pole, spread evenly in azimuth, each 1/N strong")
+  command
+      ->add_option(
+          "--lights", options->lights,
+          "Directional lights at 40 degrees from the pole, spread evenly in azimuth, each 1/N strong")
       ->check(CLI::Range(1u, static_cast<unsigned>(kMaxRenderLights)))
       ->capture_default_str();
   command->add_option("--width", options->width, "Frame width")
@@ -268,13 +276,17 @@ void register_bench_frame_command(CLI::App& bench) {
       ->add_option("--texture-size", options->texture_size,
                    "Synthesized texels per side (default: what the first frame needs, up to 1024)")
       ->check(CLI::Range(16u, 8192u));
-  command->add_option("--mip-levels", options->mip_levels, "At most this many mip levels (0: all; 1: level 0 only)")
-      ->check(CLI::Range(0u, 16u))->capture_default_str();
-  command->add_flag("--parts", options->parts,
-                    "Also render the frames with each part of the fragment stage (direction lookups, pair table, "
-                    "subspace image reads, relief, parallax) replaced by a constant, and with the other "
-                    "--direction-taps, in turn with the full pass, and report what each part costs (timing only; "
-                    "writes bench_frame_parts.md and .csv)");
+  command
+      ->add_option("--mip-levels", options->mip_levels,
+                   "At most this many mip levels (0: all; 1: level 0 only)")
+      ->check(CLI::Range(0u, 16u))
+      ->capture_default_str();
+  command->add_flag(
+      "--parts", options->parts,
+      "Also render the frames with each part of the fragment stage (direction lookups, pair table, "
+      "subspace image reads, relief, parallax) replaced by a constant, and with the other "
+      "--direction-taps, in turn with the full pass, and report what each part costs (timing only; "
+      "writes bench_frame_parts.md and .csv)");
   command->add_flag("--hand-filtering", options->hand_filtering,
                     "Filter the subspace images by hand, as the CPU reference does, instead of through the "
                     "sampler's trilinear filtering (the default where the device filters RGBA32F)");

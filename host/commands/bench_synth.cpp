@@ -149,7 +149,10 @@ void register_bench_synth_command(CLI::App& bench) {
   command->add_option("--size-sweep-subspaces", options->size_sweep_subspaces, "Subspaces in the size sweep")
       ->check(CLI::Range(1u, 255u))
       ->capture_default_str();
-  command->add_option("--margin", options->settings.margin, "The most CAR burn-in rows and columns a band gets (each takes what its stability needs, docs/design.md 4.4)")
+  command
+      ->add_option("--margin", options->settings.margin,
+                   "The most CAR burn-in rows and columns a band gets (each takes what its stability needs, "
+                   "docs/design.md 4.4)")
       ->check(CLI::Range(0u, 4096u))
       ->capture_default_str();
   command->add_option("--repeats", options->settings.repeats, "Timed GPU runs per case (median reported)")

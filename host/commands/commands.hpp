@@ -9,11 +9,11 @@ void register_devices_command(CLI::App& app);
 void register_noise_command(CLI::App& app);
 void register_demo_command(CLI::App& app);
 void register_bench_command(CLI::App& app);
-void register_bench_analyze_command(CLI::App& bench);  // under `bench`
-void register_bench_data_command(CLI::App& bench);     // under `bench`
-void register_bench_synth_command(CLI::App& bench);    // under `bench`
-void register_bench_fidelity_command(CLI::App& bench); // under `bench`
-void register_bench_frame_command(CLI::App& bench);    // under `bench`
+void register_bench_analyze_command(CLI::App& bench);   // under `bench`
+void register_bench_data_command(CLI::App& bench);      // under `bench`
+void register_bench_synth_command(CLI::App& bench);     // under `bench`
+void register_bench_fidelity_command(CLI::App& bench);  // under `bench`
+void register_bench_frame_command(CLI::App& bench);     // under `bench`
 void register_sample_command(CLI::App& app);
 void register_info_command(CLI::App& app);
 void register_analyze_command(CLI::App& app);

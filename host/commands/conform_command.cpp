@@ -104,7 +104,10 @@ void register_conform_command(CLI::App& app) {
       ->check(CLI::Range(1u, 16384u))
       ->capture_default_str();
   command->add_option("--seed", options->settings.seed, "Seed")->check(non_negative())->capture_default_str();
-  command->add_option("--margin", options->settings.margin, "The most CAR burn-in rows and columns a band gets (each takes what its stability needs, docs/design.md 4.4)")
+  command
+      ->add_option("--margin", options->settings.margin,
+                   "The most CAR burn-in rows and columns a band gets (each takes what its stability needs, "
+                   "docs/design.md 4.4)")
       ->check(CLI::Range(0u, 4096u))
       ->capture_default_str();
   command

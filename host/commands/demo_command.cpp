@@ -14,13 +14,13 @@
 #include "carbtf/analysis/analyze.hpp"
 #include "carbtf/analysis/btf/btf_reader.hpp"
 #include "carbtf/analysis/image_io.hpp"
+#include "carbtf/analysis/sample/sample_btf.hpp"
 #include "carbtf/analysis/sample/sample_materials.hpp"
 #include "carbtf/engine/material/material_file.hpp"
 #include "carbtf/engine/render/mesh_renderer.hpp"
 #include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
 #include "carbtf/reference/subspace_synthesis.hpp"
 #include "cli/cli_support.hpp"
-#include "carbtf/analysis/sample/sample_btf.hpp"
 #include "commands/commands.hpp"
 #include "fidelity/fidelity_run.hpp"
 #include "report/analysis_report.hpp"
@@ -105,7 +105,7 @@ void run_demo(const DemoOptions& options) {
   request.seed = options.seed;
   request.width = request.height = n;
   request.periodic_overlap = default_periodic_overlap(n, n);  // step 5 wraps them round a sphere
-  request.mip_levels = 0;                                      // and samples every level
+  request.mip_levels = 0;                                     // and samples every level
   SynthesizedImages images;
   SynthesisTiming timing;
   start = std::chrono::steady_clock::now();
@@ -139,12 +139,13 @@ void run_demo(const DemoOptions& options) {
   const RgbField grid = fidelity_grid(fidelity);
   write_rgb_image(folder / "fidelity_grid.png", grid.rgb, grid.width, grid.height);
   write_output_file(folder / "fidelity.csv", fidelity_csv(fidelity, material));
-  timed("fidelity (" + std::to_string(fidelity.size()) + " pairs: synthesis, two renders and the measure each)",
-        seconds_since(start));
+  timed(
+      "fidelity (" + std::to_string(fidelity.size()) + " pairs: synthesis, two renders and the measure each)",
+      seconds_since(start));
   // 5. The material on a sphere, from the front and from behind, where u wraps (the images are periodic).
   step(5, "render on a sphere, 960x640, front and back");
-  const MaterialRender sphere_render =
-      prepare_material_render(*context, material, *synthesizer, options.seed, 1.0f, 960, 640, make_sphere(), true);
+  const MaterialRender sphere_render = prepare_material_render(*context, material, *synthesizer, options.seed,
+                                                               1.0f, 960, 640, make_sphere(), true);
   for (const float side : {0.0f, 180.0f}) {
     RenderScene scene;
     const std::array<float, 3> eye = unit_vector_degrees(60, 35 + side);
@@ -169,8 +170,9 @@ void run_demo(const DemoOptions& options) {
   figures.gpu_synthesis_ms = timing.total_ms;
   write_demo_report(folder, figures, fidelity);
 
-  std::printf("material %.1f KiB, ratio 1 : %.0f; GPU synthesis %.1f ms, bit-identical to the CPU on %zu of "
-              "%zu values\n",
+  std::printf(
+      "material %.1f KiB, ratio 1 : %.0f; GPU synthesis %.1f ms, bit-identical to the CPU on %zu of "
+      "%zu values\n",
       file_bytes / 1024.0, raw_bytes / file_bytes, timing.total_ms, texels - differing, texels);
   std::printf("fidelity: %s\n", summary_text(fidelity_summary).c_str());
   std::printf("report: %s\n", (folder / "index.html").c_str());
@@ -188,7 +190,10 @@ void register_demo_command(CLI::App& app) {
   command
       ->add_option("--material", options->material, "Built-in sample material (see `carbtf sample --help`)")
       ->capture_default_str();
-  command->add_option("--size", options->size, "Sample images: texels per side (smaller runs faster but models the material less closely: 128 takes about a third of the time)")
+  command
+      ->add_option("--size", options->size,
+                   "Sample images: texels per side (smaller runs faster but models the material less "
+                   "closely: 128 takes about a third of the time)")
       ->check(CLI::Range(32u, 512u))
       ->capture_default_str();
   command->add_option("--texture-size", options->texture_size, "Synthesized subspace images: texels per side")

@@ -24,8 +24,10 @@ void register_devices_command(CLI::App& app) {
         notes = "unsuitable: " + d.unsuitable_reason;
       } else {
         notes = (selected.ok() && d.index == chosen ? "default; " : "") + std::string("storage range ") +
-                std::to_string(d.max_storage_buffer_range >> 20) + " MiB, subgroup " + std::to_string(d.subgroup_size) +
-                (d.timestamp_valid_bits ? ", timestamps" : ", no timestamps") + (d.shader_float64 ? ", float64" : "");
+                std::to_string(d.max_storage_buffer_range >> 20) + " MiB, subgroup " +
+                std::to_string(d.subgroup_size) +
+                (d.timestamp_valid_bits ? ", timestamps" : ", no timestamps") +
+                (d.shader_float64 ? ", float64" : "");
       }
       std::printf("%-3u %-40s %-15s %-8s %s\n", d.index, d.name.c_str(), device_type_name(d.type), version,
                   notes.c_str());

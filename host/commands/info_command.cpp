@@ -1,6 +1,6 @@
 // `carbtf info PATH`: what a BTF dataset holds.
-#include <array>
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -77,19 +77,27 @@ void run_material_info(const std::string& path) {
   std::printf("source:       %s\n", setting(material, "source").c_str());
   std::printf("image size:   %s\n", setting(material, "image_size").c_str());
   std::printf("directions:   %zu lights x %zu views\n", material.lights.size(), material.views.size());
-  const std::string level_range =
-      fewest_levels == levels ? std::to_string(levels) : std::to_string(fewest_levels) + " to " + std::to_string(levels);
-  std::printf("subspaces:    %zu, %s pyramid levels, %zu CAR bands (%.1f neighbours on average; %zu repaired, %zu constant, "
-              "%zu white noise)\n",
-              material.subspaces.size(), level_range.c_str(), bands, bands ? static_cast<double>(neighbours) / static_cast<double>(bands) : 0.0, repaired,
-              constant, white);
+  const std::string level_range = fewest_levels == levels
+                                      ? std::to_string(levels)
+                                      : std::to_string(fewest_levels) + " to " + std::to_string(levels);
+  std::printf(
+      "subspaces:    %zu, %s pyramid levels, %zu CAR bands (%.1f neighbours on average; %zu repaired, %zu "
+      "constant, "
+      "%zu white noise)\n",
+      material.subspaces.size(), level_range.c_str(), bands,
+      bands ? static_cast<double>(neighbours) / static_cast<double>(bands) : 0.0, repaired, constant, white);
   if (material.range.tile_size > 0) {
     const JoinSteps joins = measure_join_steps(material.range);
-    std::printf("range tiles:  %u tiles of %u x %u texels from %u patches; cuts %s, height step across them %.2fx the "
-                "relief's (%.3f against %.3f texels)\n",
-                range_tile_count(material.range), material.range.tile_size, material.range.tile_size, 2 * material.range.edge_colours,
-                material.range.feather ? ("feathered over " + std::to_string(2 * material.range.feather + 1) + " texels").c_str() : "hard",
-                joins.elsewhere > 0 ? joins.across / joins.elsewhere : 0.0, joins.across, joins.elsewhere);
+    std::printf(
+        "range tiles:  %u tiles of %u x %u texels from %u patches; cuts %s, height step across them %.2fx "
+        "the "
+        "relief's (%.3f against %.3f texels)\n",
+        range_tile_count(material.range), material.range.tile_size, material.range.tile_size,
+        2 * material.range.edge_colours,
+        material.range.feather
+            ? ("feathered over " + std::to_string(2 * material.range.feather + 1) + " texels").c_str()
+            : "hard",
+        joins.elsewhere > 0 ? joins.across / joins.elsewhere : 0.0, joins.across, joins.elsewhere);
   } else {
     std::printf("range tiles:  none\n");
   }
@@ -105,7 +113,8 @@ void run_material_info(const std::string& path) {
     if (tone_planes(material.range) == 3) {
       std::printf("tone colour:  per texel (R, G and B planes)\n");
     } else if (chroma != std::array<float, 3>{1.0f, 1.0f, 1.0f}) {
-      std::printf("tone colour:  red, green and blue follow it by %.2f, %.2f and %.2f\n", chroma[0], chroma[1], chroma[2]);
+      std::printf("tone colour:  red, green and blue follow it by %.2f, %.2f and %.2f\n", chroma[0],
+                  chroma[1], chroma[2]);
     } else {
       std::printf("tone colour:  grey\n");
     }
@@ -117,8 +126,8 @@ void run_material_info(const std::string& path) {
       std::printf("shadows:      none\n");
     }
     if (material.range.specular_strength > 0.0f) {
-      std::printf("highlights:   a specular lobe on the relief, strength %.4g, gloss %.0f\n", material.range.specular_strength,
-                  material.range.specular_gloss);
+      std::printf("highlights:   a specular lobe on the relief, strength %.4g, gloss %.0f\n",
+                  material.range.specular_strength, material.range.specular_gloss);
     } else {
       std::printf("highlights:   none\n");
     }
@@ -129,22 +138,29 @@ void run_material_info(const std::string& path) {
     std::vector<std::uint8_t> codes = material.pair_gains;
     std::sort(codes.begin(), codes.end());
     const auto gain = [](std::uint8_t code) { return static_cast<double>(pair_gain_of_code(code)); };
-    std::printf("pair gains:   per light, view and colour channel, %.2fx to %.2fx (half of them within %.2fx to %.2fx)\n", gain(codes.front()),
-                gain(codes.back()), gain(codes[codes.size() / 4]), gain(codes[codes.size() * 3 / 4]));
+    std::printf(
+        "pair gains:   per light, view and colour channel, %.2fx to %.2fx (half of them within %.2fx to "
+        "%.2fx)\n",
+        gain(codes.front()), gain(codes.back()), gain(codes[codes.size() / 4]),
+        gain(codes[codes.size() * 3 / 4]));
   }
-  std::printf("file size:    %zu bytes (%.1f KiB)\n", bytes.size(), static_cast<double>(bytes.size()) / 1024.0);
+  std::printf("file size:    %zu bytes (%.1f KiB)\n", bytes.size(),
+              static_cast<double>(bytes.size()) / 1024.0);
   std::printf("  %-6s %10s %7s\n", "chunk", "bytes", "share");
   std::printf("  %-6s %10d %6.1f%%\n", "header", 12, 1200.0 / static_cast<double>(bytes.size()));
   for (const MaterialChunkInfo& c : chunks) {
-    const std::string deflated = c.inflated_bytes > 0 ? " (deflated from " + std::to_string(c.inflated_bytes) + ")" : std::string();
+    const std::string deflated =
+        c.inflated_bytes > 0 ? " (deflated from " + std::to_string(c.inflated_bytes) + ")" : std::string();
     std::printf("  %-6s %10llu %6.1f%%%s%s\n", c.tag.c_str(), static_cast<unsigned long long>(c.total_bytes),
-                100.0 * static_cast<double>(c.total_bytes) / static_cast<double>(bytes.size()), deflated.c_str(),
-                c.known ? "" : " (unknown, skipped)");
+                100.0 * static_cast<double>(c.total_bytes) / static_cast<double>(bytes.size()),
+                deflated.c_str(), c.known ? "" : " (unknown, skipped)");
   }
   unsigned width = 0, height = 0;
   if (std::sscanf(setting(material, "image_size").c_str(), "%ux%u", &width, &height) == 2) {
-    const double raw = static_cast<double>(material.lights.size() * material.views.size()) * width * height * 3.0;
-    std::printf("raw 8-bit:    %.1f MiB; compression ratio 1 : %.0f\n", raw / 1048576.0, raw / static_cast<double>(bytes.size()));
+    const double raw =
+        static_cast<double>(material.lights.size() * material.views.size()) * width * height * 3.0;
+    std::printf("raw 8-bit:    %.1f MiB; compression ratio 1 : %.0f\n", raw / 1048576.0,
+                raw / static_cast<double>(bytes.size()));
   }
 }
 
@@ -165,10 +181,13 @@ void run_info(const std::string& path) {
   std::printf("colour space: %s\n", color_encoding_name(dataset.encoding()));
   std::printf("images:       %zu of %zu light/view pairs (%zu missing)\n", pairs - missing, pairs, missing);
   if (!dataset.mask.empty()) {
-    const auto inside = std::count_if(dataset.mask.begin(), dataset.mask.end(), [](std::uint8_t m) { return m != 0; });
-    std::printf("mask:         %zd of %zu pixels\n", static_cast<std::ptrdiff_t>(inside), dataset.mask.size());
+    const auto inside =
+        std::count_if(dataset.mask.begin(), dataset.mask.end(), [](std::uint8_t m) { return m != 0; });
+    std::printf("mask:         %zd of %zu pixels\n", static_cast<std::ptrdiff_t>(inside),
+                dataset.mask.size());
   }
-  std::printf("in memory:    %.1f MiB (loaded in %.2f s)\n", dataset.storage_bytes() / 1048576.0, seconds_since(start));
+  std::printf("in memory:    %.1f MiB (loaded in %.2f s)\n", dataset.storage_bytes() / 1048576.0,
+              seconds_since(start));
   for (const std::string& w : warnings) std::printf("warning:      %s\n", w.c_str());
 }
 
@@ -176,9 +195,14 @@ void run_info(const std::string& path) {
 
 void register_info_command(CLI::App& app) {
   auto path = std::make_shared<std::string>();
-  auto* command = app.add_subcommand("info", "Summarise a BTF dataset (directions, image size, colour space, missing pairs) "
-                                             "or a .cbtf material (model summary and size per chunk)");
-  command->add_option("path", *path, "A UBO2003 folder or .zip, a manifest .csv, a photometric-stereo folder, a Bonn UBO2014 .btf file, or a .cbtf material")
+  auto* command =
+      app.add_subcommand("info",
+                         "Summarise a BTF dataset (directions, image size, colour space, missing pairs) "
+                         "or a .cbtf material (model summary and size per chunk)");
+  command
+      ->add_option("path", *path,
+                   "A UBO2003 folder or .zip, a manifest .csv, a photometric-stereo folder, a Bonn UBO2014 "
+                   ".btf file, or a .cbtf material")
       ->required();
   command->callback([path] { run_info(*path); });
 }

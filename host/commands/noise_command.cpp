@@ -6,8 +6,8 @@
 
 #include "carbtf/analysis/field_statistics.hpp"
 #include "carbtf/analysis/image_io.hpp"
-#include "carbtf/reference/noise.hpp"
 #include "carbtf/engine/synthesis/noise_generator.hpp"
+#include "carbtf/reference/noise.hpp"
 #include "cli/cli_support.hpp"
 #include "commands/commands.hpp"
 
@@ -26,7 +26,8 @@ struct NoiseOptions {
 
 void run_noise(const NoiseOptions& options) {
   if (!is_supported_image_extension(options.out)) {
-    throw CommandError(options.out + ": unsupported image extension (use .png, .jpg, .bmp, .exr, .tif or .pfm)");
+    throw CommandError(options.out +
+                       ": unsupported image extension (use .png, .jpg, .bmp, .exr, .tif or .pfm)");
   }
   check_output_file_path(options.out, "--out");
   std::vector<float> values;
@@ -50,8 +51,11 @@ void run_noise(const NoiseOptions& options) {
   write_field_image(options.out, values, options.size, options.size);
   std::printf("wrote %s: %ux%u N(0,1) field %u, seed %llu, on %s in %.1f ms (mean %.4f, std %.4f)%s\n",
               options.out.c_str(), options.size, options.size, options.field,
-              static_cast<unsigned long long>(options.seed), where.c_str(), seconds * 1e3, stats.mean, std::sqrt(stats.variance),
-              is_float_image_extension(options.out) ? "" : "; 8-bit files map [-4, 4] to [0, 255], .exr keeps the floats");
+              static_cast<unsigned long long>(options.seed), where.c_str(), seconds * 1e3, stats.mean,
+              std::sqrt(stats.variance),
+              is_float_image_extension(options.out)
+                  ? ""
+                  : "; 8-bit files map [-4, 4] to [0, 255], .exr keeps the floats");
 }
 
 }  // namespace
@@ -67,8 +71,10 @@ void register_noise_command(CLI::App& app) {
   command->add_option("--field", options->field, "Field id (each band of each subspace has its own)")
       ->check(non_negative())
       ->capture_default_str();
-  command->add_option("--out", options->out, "Output image: .png/.jpg/.bmp (8-bit, [-4,4] -> [0,255]) or "
-                                             ".exr/.tif/.pfm (32-bit float)")
+  command
+      ->add_option("--out", options->out,
+                   "Output image: .png/.jpg/.bmp (8-bit, [-4,4] -> [0,255]) or "
+                   ".exr/.tif/.pfm (32-bit float)")
       ->capture_default_str();
   command->add_flag("--reference", options->reference, "Compute on the CPU reference instead of Vulkan");
   add_device_options(*command, options->device);

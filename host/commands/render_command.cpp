@@ -104,9 +104,9 @@ void run_render(const RenderOptions& options) {
 
   std::printf("[2/3] range map, lookup tables and render pipeline\n");
   std::fflush(stdout);
-  const MaterialRender model = prepare_material_render(*context, material, *synthesizer, options.seed,
-                                                       options.parallax, width, height, mesh, !options.hand_filtering,
-                                                       options.pair_coupling);
+  const MaterialRender model =
+      prepare_material_render(*context, material, *synthesizer, options.seed, options.parallax, width, height,
+                              mesh, !options.hand_filtering, options.pair_coupling);
 
   std::printf("[3/3] rendering %ux%u, %zu triangles, %zu light(s)\n", width, height, mesh.indices.size() / 3,
               scene.lights.size());

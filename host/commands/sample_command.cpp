@@ -7,11 +7,11 @@
 
 #include "carbtf/analysis/btf/directions.hpp"
 #include "carbtf/analysis/btf/ubo2014_writer.hpp"
-#include "carbtf/analysis/sample/height_field_renderer.hpp"
 #include "carbtf/analysis/image_io.hpp"
+#include "carbtf/analysis/sample/height_field_renderer.hpp"
+#include "carbtf/analysis/sample/sample_btf.hpp"
 #include "carbtf/analysis/sample/sample_materials.hpp"
 #include "cli/cli_support.hpp"
-#include "carbtf/analysis/sample/sample_btf.hpp"
 #include "commands/commands.hpp"
 
 namespace carbtf::cli {
@@ -31,9 +31,12 @@ struct SampleOptions {
 // The 81 x 81 images in memory, then one UBO2014 .btf file of them.
 std::filesystem::path write_ubo2014_sample(const Surface& surface, const SampleOptions& options) {
   const std::filesystem::path path = std::filesystem::path(options.out) / "btf.btf";
-  BtfDataset dataset(ubo2003_directions(), ubo2003_directions(), surface.size, surface.size, ColorEncoding::linear_half);
+  BtfDataset dataset(ubo2003_directions(), ubo2003_directions(), surface.size, surface.size,
+                     ColorEncoding::linear_half);
   render_btf(surface, dataset.lights(), dataset.views(), {},
-             [&](std::uint32_t l, std::uint32_t v, std::span<const float> image) { dataset.set_linear({l, v}, image); });
+             [&](std::uint32_t l, std::uint32_t v, std::span<const float> image) {
+               dataset.set_linear({l, v}, image);
+             });
   Ubo2014WriteOptions write;
   write.layout = options.format == "btf-raw" ? ubo2014::Layout::bdi : ubo2014::Layout::dfmf;
   write.components = options.components;
@@ -97,15 +100,19 @@ void register_sample_command(CLI::App& app) {
   command->add_option("--size", options->size, "Image width and height (64, 128 or 256 are typical)")
       ->check(CLI::Range(16u, 1024u))
       ->capture_default_str();
-  command->add_option("--out", options->out, "Output folder: btf/ (or btf.zip, or btf.btf), ground_truth/, material.json")
+  command
+      ->add_option("--out", options->out,
+                   "Output folder: btf/ (or btf.zip, or btf.btf), ground_truth/, material.json")
       ->required();
-  command->add_option("--format", options->format,
-                      "Image format; btf-dfmf and btf-raw write one Bonn UBO2014 file, btf.btf, in its DFMF "
-                      "(factorised, YUV) or raw layout")
+  command
+      ->add_option("--format", options->format,
+                   "Image format; btf-dfmf and btf-raw write one Bonn UBO2014 file, btf.btf, in its DFMF "
+                   "(factorised, YUV) or raw layout")
       ->check(CLI::IsMember({"jpg", "png", "exr", "btf-dfmf", "btf-raw"}))
       ->capture_default_str();
-  command->add_option("--components", options->components,
-                      "btf-dfmf: components per colour channel (0: one per light/view pair, exact)")
+  command
+      ->add_option("--components", options->components,
+                   "btf-dfmf: components per colour channel (0: one per light/view pair, exact)")
       ->check(CLI::Range(0u, 6561u))
       ->capture_default_str();
   command->add_flag("--zip", options->zip, "Write the images into btf.zip instead of a folder");

@@ -7,10 +7,10 @@
 #include <numbers>
 
 #include "carbtf/analysis/image_io.hpp"
-#include "carbtf/reference/subspace_synthesis.hpp"
 #include "carbtf/engine/material/material_directions.hpp"
 #include "carbtf/engine/material/material_file.hpp"
 #include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
+#include "carbtf/reference/subspace_synthesis.hpp"
 #include "cli/cli_support.hpp"
 #include "commands/commands.hpp"
 #include "report/pictures.hpp"
@@ -62,8 +62,9 @@ void run_synth(const SynthOptions& options) {
   request.scheme = options.scheme;
   for (std::uint32_t s : request.subspaces) {
     if (s >= material.subspaces.size()) {
-      throw CommandError("--subspaces: subspace " + std::to_string(s) + " does not exist; " + options.material + " has " +
-                         std::to_string(material.subspaces.size()) + " (0 to " + std::to_string(material.subspaces.size() - 1) + ")");
+      throw CommandError("--subspaces: subspace " + std::to_string(s) + " does not exist; " +
+                         options.material + " has " + std::to_string(material.subspaces.size()) + " (0 to " +
+                         std::to_string(material.subspaces.size() - 1) + ")");
     }
   }
   Interpolation interpolation;
@@ -71,15 +72,16 @@ void run_synth(const SynthOptions& options) {
     constexpr double kDegree = std::numbers::pi / 180.0;
     MaterialDirections directions;
     check(MaterialDirections::build(material, directions), "cannot interpolate the material's directions");
-    interpolation.weights = directions.weights(options.light[0] * kDegree, options.light[1] * kDegree, options.view[0] * kDegree,
-                                               options.view[1] * kDegree);
+    interpolation.weights = directions.weights(options.light[0] * kDegree, options.light[1] * kDegree,
+                                               options.view[0] * kDegree, options.view[1] * kDegree);
     interpolation.subspaces = directions.subspaces_of(interpolation.weights);
     if (request.subspaces.empty()) {
       request.subspaces = interpolation.subspaces;  // only what the interpolated image needs
     } else {
       for (std::uint32_t s : interpolation.subspaces) {
         if (std::find(request.subspaces.begin(), request.subspaces.end(), s) == request.subspaces.end()) {
-          throw CommandError("the (light, view) image needs subspace " + std::to_string(s) + ", which --subspaces leaves out");
+          throw CommandError("the (light, view) image needs subspace " + std::to_string(s) +
+                             ", which --subspaces leaves out");
         }
       }
     }
@@ -98,8 +100,8 @@ void run_synth(const SynthOptions& options) {
   std::string where;
   double gpu_ms = 0.0;
   if (on_cpu) {
-    std::printf("synthesizing %zu subspace images of %ux%u on the CPU reference (%s)...\n", listed.size(), request.width,
-                request.height, options.float64 ? "float64" : "float32");
+    std::printf("synthesizing %zu subspace images of %ux%u on the CPU reference (%s)...\n", listed.size(),
+                request.width, request.height, options.float64 ? "float64" : "float32");
     std::fflush(stdout);
     if (options.float64) {
       const auto f64 = reference::synthesize_subspaces_f64(material, listed, request);
@@ -109,7 +111,8 @@ void run_synth(const SynthOptions& options) {
       images = reference::synthesize_subspaces(material, listed, request);
     }
     if (!interpolation.subspaces.empty()) {
-      interpolated.resize(std::size_t{request.width} * request.height * material.subspaces[interpolation.subspaces[0]].channels);
+      interpolated.resize(std::size_t{request.width} * request.height *
+                          material.subspaces[interpolation.subspaces[0]].channels);
       reference::interpolate_subspaces(material, interpolation.weights, images, interpolated);
     }
     where = "the CPU reference";
@@ -130,20 +133,24 @@ void run_synth(const SynthOptions& options) {
     where = context->device_info().name + " (" + car_scheme_name(synthesizer->scheme()) + " CAR scheme)";
   }
   const double seconds = seconds_since(start);
-  for (std::uint32_t s : listed) require_finite(images[s], options.material + ": synthesized subspace image " + std::to_string(s));
+  for (std::uint32_t s : listed)
+    require_finite(images[s], options.material + ": synthesized subspace image " + std::to_string(s));
   require_finite(interpolated, options.material + ": interpolated image");
 
   for (std::uint32_t s : listed)
-    write_png_and_exr(out, "subspace_" + two_digits(s), images[s], material.subspaces[s].channels, request.width, request.height);
-  std::printf("synthesized %zu of %zu subspace images, %ux%u each (%.1f Mtexels), seed %llu, on %s in %.1f ms%s\n",
-              listed.size(), material.subspaces.size(), request.width, request.height,
-              static_cast<double>(listed.size()) * request.width * request.height * 1e-6,
-              static_cast<unsigned long long>(request.seed), where.c_str(), seconds * 1e3,
-              gpu_ms > 0 ? (" (GPU time " + std::to_string(static_cast<int>(std::lround(gpu_ms))) + " ms)").c_str() : "");
+    write_png_and_exr(out, "subspace_" + two_digits(s), images[s], material.subspaces[s].channels,
+                      request.width, request.height);
+  std::printf(
+      "synthesized %zu of %zu subspace images, %ux%u each (%.1f Mtexels), seed %llu, on %s in %.1f ms%s\n",
+      listed.size(), material.subspaces.size(), request.width, request.height,
+      static_cast<double>(listed.size()) * request.width * request.height * 1e-6,
+      static_cast<unsigned long long>(request.seed), where.c_str(), seconds * 1e3,
+      gpu_ms > 0 ? (" (GPU time " + std::to_string(static_cast<int>(std::lround(gpu_ms))) + " ms)").c_str()
+                 : "");
   std::printf("wrote %s/subspace_NN.png (sRGB) and .exr (linear)\n", out.string().c_str());
   if (!interpolated.empty()) {
-    write_png_and_exr(out, "interpolated", interpolated, material.subspaces[interpolation.subspaces[0]].channels, request.width,
-                     request.height);
+    write_png_and_exr(out, "interpolated", interpolated,
+                      material.subspaces[interpolation.subspaces[0]].channels, request.width, request.height);
     std::printf("wrote %s/interpolated.png and .exr: light (%g, %g) deg, view (%g, %g) deg, weights:%s\n",
                 out.string().c_str(), options.light[0], options.light[1], options.view[0], options.view[1],
                 describe_weights(interpolation.weights).c_str());
@@ -155,29 +162,44 @@ void run_synth(const SynthOptions& options) {
 void register_synth_command(CLI::App& app) {
   auto options = std::make_shared<SynthOptions>();
   auto* command = app.add_subcommand(
-      "synth", "Synthesize subspace images of a material at any size (PNG sRGB and EXR linear), and the image of one "
-               "(light, view) by 9-weight interpolation");
-  command->add_option("material", options->material, "Material file (.cbtf) from `carbtf analyze`")->required();
+      "synth",
+      "Synthesize subspace images of a material at any size (PNG sRGB and EXR linear), and the image of one "
+      "(light, view) by 9-weight interpolation");
+  command->add_option("material", options->material, "Material file (.cbtf) from `carbtf analyze`")
+      ->required();
   command->add_option("--out", options->out, "Output folder")->capture_default_str();
-  command->add_option("--size", options->size, "Width and height in texels")->check(CLI::Range(1u, 16384u))->capture_default_str();
+  command->add_option("--size", options->size, "Width and height in texels")
+      ->check(CLI::Range(1u, 16384u))
+      ->capture_default_str();
   command->add_option("--width", options->width, "Width, overriding --size")->check(CLI::Range(1u, 16384u));
-  command->add_option("--height", options->height, "Height, overriding --size")->check(CLI::Range(1u, 16384u));
-  command->add_option("--row0", options->row0,
-                      "First row of the block of the unbounded texture (noise is addressed by absolute position, so blocks of one seed continue each other once the burn-in has decayed)")
+  command->add_option("--height", options->height, "Height, overriding --size")
+      ->check(CLI::Range(1u, 16384u));
+  command
+      ->add_option("--row0", options->row0,
+                   "First row of the block of the unbounded texture (noise is addressed by absolute "
+                   "position, so blocks of one seed continue each other once the burn-in has decayed)")
       ->capture_default_str();
   command->add_option("--col0", options->col0, "First column of the block")->capture_default_str();
-  command->add_option("--seed", options->seed, "Seed (64-bit): same seed, same images, on the CPU and the GPU")
+  command
+      ->add_option("--seed", options->seed, "Seed (64-bit): same seed, same images, on the CPU and the GPU")
       ->check(non_negative())
       ->capture_default_str();
-  command->add_option("--margin", options->margin, "The most CAR burn-in rows and columns a band gets (each takes what its stability needs, docs/design.md 4.4)")
+  command
+      ->add_option("--margin", options->margin,
+                   "The most CAR burn-in rows and columns a band gets (each takes what its stability needs, "
+                   "docs/design.md 4.4)")
       ->check(CLI::Range(0u, 4096u))
       ->capture_default_str();
-  command->add_option("--subspaces", options->subspaces,
-                      "Comma-separated subspace indices to synthesize (default: all, or with --light/--view only those "
-                      "the interpolated image needs)")
+  command
+      ->add_option(
+          "--subspaces", options->subspaces,
+          "Comma-separated subspace indices to synthesize (default: all, or with --light/--view only those "
+          "the interpolated image needs)")
       ->delimiter(',')
       ->check(non_negative());
-  command->add_option("--light", options->light, "Light direction THETA,PHI in degrees: also write the interpolated image")
+  command
+      ->add_option("--light", options->light,
+                   "Light direction THETA,PHI in degrees: also write the interpolated image")
       ->delimiter(',')
       ->expected(2)
       ->check(CLI::Range(-360.0, 360.0));
@@ -185,13 +207,17 @@ void register_synth_command(CLI::App& app) {
       ->delimiter(',')
       ->expected(2)
       ->check(CLI::Range(-360.0, 360.0));
-  command->add_flag("--periodic", options->periodic, "Tileable images (closed meshes, repeated textures): the last "
-                    "eighth of each side (4 to 64 texels) folds onto the first, keeping the texture's statistics");
+  command->add_flag(
+      "--periodic", options->periodic,
+      "Tileable images (closed meshes, repeated textures): the last "
+      "eighth of each side (4 to 64 texels) folds onto the first, keeping the texture's statistics");
   add_car_scheme_option(*command, options->scheme);
-  command->add_flag("--float64", options->float64, "With --device cpu: the float64 reference (the accuracy reference)");
-  command->add_option("--device", options->device.device,
-                      "cpu: the CPU reference; gpu: the best Vulkan device; else a Vulkan device index or part of its name, "
-                      "as `carbtf devices` lists them (default: $CARBTF_DEVICE, else the best device)");
+  command->add_flag("--float64", options->float64,
+                    "With --device cpu: the float64 reference (the accuracy reference)");
+  command->add_option(
+      "--device", options->device.device,
+      "cpu: the CPU reference; gpu: the best Vulkan device; else a Vulkan device index or part of its name, "
+      "as `carbtf devices` lists them (default: $CARBTF_DEVICE, else the best device)");
   command->add_flag("--validation", options->device.validation,
                     "Enable the Vulkan validation layer; any message it reports fails the command");
   command->callback([options] { run_synth(*options); });

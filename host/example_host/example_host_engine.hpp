@@ -17,11 +17,11 @@
 #include <string>
 #include <vector>
 
-#include "carbtf/engine/vulkan/context.hpp"
 #include "carbtf/engine/material/material.hpp"
 #include "carbtf/engine/render/material_binding.hpp"
 #include "carbtf/engine/render/mesh.hpp"
 #include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
+#include "carbtf/engine/vulkan/context.hpp"
 
 namespace carbtf::example {
 

@@ -19,7 +19,8 @@
 namespace {
 
 // Linear RGBA pixels (the host's float target, row 0 at the top) as an 8-bit sRGB binary PPM.
-bool write_ppm(const std::string& path, const std::vector<float>& rgba, std::uint32_t width, std::uint32_t height) {
+bool write_ppm(const std::string& path, const std::vector<float>& rgba, std::uint32_t width,
+               std::uint32_t height) {
   std::ofstream file(path, std::ios::binary);
   file << "P6\n" << width << " " << height << "\n255\n";
   std::vector<unsigned char> bytes(std::size_t{width} * height * 3);

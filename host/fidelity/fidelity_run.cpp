@@ -8,11 +8,11 @@
 #include <numbers>
 #include <sstream>
 
+#include "carbtf/analysis/report/figures.hpp"
 #include "carbtf/engine/render/material_binding.hpp"
 #include "carbtf/engine/render/mesh.hpp"
 #include "carbtf/engine/render/mesh_renderer.hpp"
 #include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
-#include "carbtf/analysis/report/figures.hpp"
 #include "cli/cli_support.hpp"
 #include "scene/material_render.hpp"
 #include "scene/measured_render.hpp"
@@ -49,7 +49,9 @@ struct Rectangle {
 };
 
 Rectangle covered_rectangle(const std::vector<float>& rgba, std::uint32_t width, std::uint32_t height) {
-  auto covered = [&](std::uint32_t r, std::uint32_t c) { return rgba[(std::size_t{r} * width + c) * 4 + 3] > 0.999f; };
+  auto covered = [&](std::uint32_t r, std::uint32_t c) {
+    return rgba[(std::size_t{r} * width + c) * 4 + 3] > 0.999f;
+  };
   Rectangle best;
   const std::uint32_t cr = height / 2, cc = width / 2;
   // Grow rows outwards from the centre; for each row span, the common column span.
@@ -64,7 +66,8 @@ Rectangle covered_rectangle(const std::vector<float>& rgba, std::uint32_t width,
       right = std::min(right, rr);
     }
     const Rectangle candidate{cr - half, left, right - left, 2 * half + 1};
-    if (std::uint64_t{candidate.width} * candidate.height >= std::uint64_t{best.width} * best.height) best = candidate;
+    if (std::uint64_t{candidate.width} * candidate.height >= std::uint64_t{best.width} * best.height)
+      best = candidate;
   }
   return best;
 }
@@ -74,7 +77,8 @@ RgbField crop_rgba(const std::vector<float>& rgba, std::uint32_t width, const Re
   for (std::uint32_t r = 0; r < rect.height; ++r) {
     for (std::uint32_t c = 0; c < rect.width; ++c) {
       for (int k = 0; k < 3; ++k) {
-        out.rgb[(std::size_t{r} * rect.width + c) * 3 + k] = rgba[((std::size_t{rect.row0 + r}) * width + rect.col0 + c) * 4 + k];
+        out.rgb[(std::size_t{r} * rect.width + c) * 3 + k] =
+            rgba[((std::size_t{rect.row0 + r}) * width + rect.col0 + c) * 4 + k];
       }
     }
   }
@@ -102,14 +106,18 @@ std::vector<FidelityPair> default_fidelity_pairs(const Material& material) {
     FidelityPair p;
     p.light = nearest(material.lights, w.light_theta, w.light_phi);
     p.view = nearest(material.views, w.view_theta, w.view_phi);
-    p.label = "light " + degrees_text(material.lights[p.light]) + " view " + degrees_text(material.views[p.view]);
-    const bool duplicate = std::any_of(pairs.begin(), pairs.end(), [&](const FidelityPair& q) { return q.light == p.light && q.view == p.view; });
+    p.label =
+        "light " + degrees_text(material.lights[p.light]) + " view " + degrees_text(material.views[p.view]);
+    const bool duplicate = std::any_of(pairs.begin(), pairs.end(), [&](const FidelityPair& q) {
+      return q.light == p.light && q.view == p.view;
+    });
     if (!duplicate) pairs.push_back(p);
   }
   return pairs;
 }
 
-std::vector<FidelityPair> spread_fidelity_pairs(const Material& material, const BtfDataset& dataset, std::size_t count) {
+std::vector<FidelityPair> spread_fidelity_pairs(const Material& material, const BtfDataset& dataset,
+                                                std::size_t count) {
   // R2 (Roberts 2018): the plastic number's inverse powers as the two steps.
   const double plastic = 1.32471795724474602596;
   const double step_light = 1.0 / plastic, step_view = 1.0 / (plastic * plastic);
@@ -121,23 +129,30 @@ std::vector<FidelityPair> spread_fidelity_pairs(const Material& material, const 
     const double x = 0.5 + step_light * static_cast<double>(i), y = 0.5 + step_view * static_cast<double>(i);
     const auto light = static_cast<std::uint32_t>((x - std::floor(x)) * static_cast<double>(lights));
     const auto view = static_cast<std::uint32_t>((y - std::floor(y)) * static_cast<double>(views));
-    if (light >= lights || view >= views || taken[light * views + view] || !dataset.has_image({light, view})) continue;
+    if (light >= lights || view >= views || taken[light * views + view] || !dataset.has_image({light, view}))
+      continue;
     // A view so oblique that the plane's image is too thin to score well: its side shrinks by cos theta,
     // and at an azimuth between the axes the rectangle inside the slanted plane shrinks further (at 75
     // degrees, 256^2 images gave halves of 22 x 45 pixels, where two crops of one image differ by as
     // much as a model does). Views covering under a third of the frame's side are skipped.
     const double side = std::min(dataset.width(), dataset.height());
-    if (std::cos(static_cast<double>(material.views[view].theta)) * side < std::max(side / 3.0, kMinCoveredSide + 2.0)) continue;
+    if (std::cos(static_cast<double>(material.views[view].theta)) * side <
+        std::max(side / 3.0, kMinCoveredSide + 2.0))
+      continue;
     taken[light * views + view] = true;
-    pairs.push_back({light, view, "light " + degrees_text(material.lights[light]) + " view " + degrees_text(material.views[view])});
+    pairs.push_back(
+        {light, view,
+         "light " + degrees_text(material.lights[light]) + " view " + degrees_text(material.views[view])});
   }
   return pairs;
 }
 
 std::vector<PairFidelity> run_fidelity(Context& context, const Material& material, const BtfDataset& dataset,
-                                       const std::vector<FidelityPair>& pairs, const FidelityRunOptions& options) {
+                                       const std::vector<FidelityPair>& pairs,
+                                       const FidelityRunOptions& options) {
   for (const FidelityPair& p : pairs) {
-    if (p.light >= material.lights.size() || p.view >= material.views.size() || !dataset.has_image({p.light, p.view})) {
+    if (p.light >= material.lights.size() || p.view >= material.views.size() ||
+        !dataset.has_image({p.light, p.view})) {
       throw CommandError("fidelity: the measurement has no image of " + p.label);
     }
   }
@@ -155,10 +170,11 @@ std::vector<PairFidelity> run_fidelity(Context& context, const Material& materia
   // factors (relit relief, tone, smooth texture) apart, a render-pass effect, not the model's
   // (measured: leather 45/45 0.255 -> 0.458, coast_sand_rocks 45/60 0.271 -> 0.108).
   check(synthesizer->prepare(material, request), "cannot plan the synthesis");
-  check(context.submit_and_wait([&](VkCommandBuffer cb) { return synthesizer->record(cb); }), "synthesis failed");
+  check(context.submit_and_wait([&](VkCommandBuffer cb) { return synthesizer->record(cb); }),
+        "synthesis failed");
   const Mesh plane = make_plane();
-  const MaterialRender model = prepare_material_render(context, material, *synthesizer, options.seed, options.parallax_scale, width, height, plane,
-                                                       false);
+  const MaterialRender model = prepare_material_render(context, material, *synthesizer, options.seed,
+                                                       options.parallax_scale, width, height, plane, false);
   RenderTargetInfo target;  // the measurement's render, alike
   target.width = width;
   target.height = height;
@@ -177,10 +193,14 @@ std::vector<PairFidelity> run_fidelity(Context& context, const Material& materia
     scene.lights = {{false, unit_vector_degrees(light.theta * kDegrees, light.phi * kDegrees), {1, 1, 1}}};
     RenderedImage model_frame;
     check(model.renderer->render(scene, model_frame), "rendering the model failed");
-    const RenderedImage measured_frame = render_measured(context, material, dataset, {{p.light, p.view}}, plane, scene, target, 1);
-    const std::vector<float> model_rgba = rgba_floats(model_frame), measured_rgba = rgba_floats(measured_frame);
+    const RenderedImage measured_frame =
+        render_measured(context, material, dataset, {{p.light, p.view}}, plane, scene, target, 1);
+    const std::vector<float> model_rgba = rgba_floats(model_frame),
+                             measured_rgba = rgba_floats(measured_frame);
     const Rectangle rect = covered_rectangle(measured_rgba, width, height);
-    if (std::min(rect.width, rect.height) < kMinCoveredSide || std::max(rect.width, rect.height) < 2 * kMinCoveredSide) throw CommandError("fidelity: the plane covers too little of the frame at " + p.label);
+    if (std::min(rect.width, rect.height) < kMinCoveredSide ||
+        std::max(rect.width, rect.height) < 2 * kMinCoveredSide)
+      throw CommandError("fidelity: the plane covers too little of the frame at " + p.label);
     PairFidelity result;
     result.pair = p;
     result.model = crop_rgba(model_rgba, width, rect);
@@ -189,8 +209,9 @@ std::vector<PairFidelity> run_fidelity(Context& context, const Material& materia
     result.result = calibrated_fidelity(result.model, result.measured, options.seed);
     result.gaussian = phase_randomised(result.measured, options.seed);
     if (options.progress) {
-      std::printf("  %-40s s %6.3f   rel %6.3f (Gaussian reference %6.3f)   %s\n", p.label.c_str(), result.result.structure, result.result.rel,
-                  result.result.gaussian_rel, verdict(result.result));
+      std::printf("  %-40s s %6.3f   rel %6.3f (Gaussian reference %6.3f)   %s\n", p.label.c_str(),
+                  result.result.structure, result.result.rel, result.result.gaussian_rel,
+                  verdict(result.result));
       std::fflush(stdout);
     }
     results.push_back(std::move(result));
@@ -224,9 +245,12 @@ FidelitySummaryLine summarize(const std::vector<PairFidelity>& results) {
 std::string summary_text(const FidelitySummaryLine& s) {
   char text[400];
   std::snprintf(text, sizeof text,
-                "s mean %.3f, worst %.3f (0: the measurement itself, 1: no better than a Gaussian field); rel mean %.3f, worst %.3f "
-                "(1: white noise), the Gaussian reference's %.3f; the model beats the Gaussian reference on %zu of %zu pairs",
-                s.mean_structure, s.worst_structure, s.mean_rel, s.worst_rel, s.mean_gaussian_rel, s.beats_gaussian, s.pairs);
+                "s mean %.3f, worst %.3f (0: the measurement itself, 1: no better than a Gaussian field); "
+                "rel mean %.3f, worst %.3f "
+                "(1: white noise), the Gaussian reference's %.3f; the model beats the Gaussian reference on "
+                "%zu of %zu pairs",
+                s.mean_structure, s.worst_structure, s.mean_rel, s.worst_rel, s.mean_gaussian_rel,
+                s.beats_gaussian, s.pairs);
   return text;
 }
 
@@ -235,12 +259,12 @@ std::string fidelity_markdown(const std::vector<PairFidelity>& results) {
   std::ostringstream md;
   md << "| pair | s | rel | Gaussian reference rel | the model beats it |\n|---|---|---|---|---|\n";
   for (const PairFidelity& r : results) {
-    md << "| " << r.pair.label << " | " << r.result.structure << " | " << r.result.rel << " | " << r.result.gaussian_rel << " | "
-       << (r.result.beats_gaussian() ? "yes" : "no") << " |\n";
+    md << "| " << r.pair.label << " | " << r.result.structure << " | " << r.result.rel << " | "
+       << r.result.gaussian_rel << " | " << (r.result.beats_gaussian() ? "yes" : "no") << " |\n";
   }
-  md << "| mean | " << summary.mean_structure << " | " << summary.mean_rel << " | " << summary.mean_gaussian_rel << " | "
-     << summary.beats_gaussian << " of " << summary.pairs << " |\n| worst | " << summary.worst_structure << " | " << summary.worst_rel
-     << " | | |\n";
+  md << "| mean | " << summary.mean_structure << " | " << summary.mean_rel << " | "
+     << summary.mean_gaussian_rel << " | " << summary.beats_gaussian << " of " << summary.pairs
+     << " |\n| worst | " << summary.worst_structure << " | " << summary.worst_rel << " | | |\n";
   return md.str();
 }
 
@@ -259,7 +283,9 @@ RgbField fidelity_grid(const std::vector<PairFidelity>& results) {
   grid.width = 3 * cell_w + 2 * gap;
   grid.height = caption + static_cast<std::uint32_t>(results.size()) * (row_caption + cell_h + gap);
   grid.rgb.assign(std::size_t{grid.width} * grid.height * 3, 1.0f);
-  for (std::uint32_t column = 0; column < 3; ++column) draw_text(grid.rgb, grid.width, grid.height, kTitles[column], static_cast<int>(column * (cell_w + gap)), 2, scale);
+  for (std::uint32_t column = 0; column < 3; ++column)
+    draw_text(grid.rgb, grid.width, grid.height, kTitles[column], static_cast<int>(column * (cell_w + gap)),
+              2, scale);
   for (std::size_t row = 0; row < results.size(); ++row) {
     const PairFidelity& r = results[row];
     const std::uint32_t top = caption + static_cast<std::uint32_t>(row) * (row_caption + cell_h + gap);
@@ -272,9 +298,10 @@ RgbField fidelity_grid(const std::vector<PairFidelity>& results) {
     for (std::uint32_t column = 0; column < 3; ++column) {
       const RgbField& cell = *cells[column];
       for (std::uint32_t y = 0; y < cell.height; ++y) {
-        const std::size_t to = (std::size_t(top + row_caption + y) * grid.width + column * (cell_w + gap)) * 3;
-        std::copy_n(cell.rgb.begin() + static_cast<std::ptrdiff_t>(std::size_t{y} * cell.width * 3), std::size_t{cell.width} * 3,
-                    grid.rgb.begin() + static_cast<std::ptrdiff_t>(to));
+        const std::size_t to =
+            (std::size_t(top + row_caption + y) * grid.width + column * (cell_w + gap)) * 3;
+        std::copy_n(cell.rgb.begin() + static_cast<std::ptrdiff_t>(std::size_t{y} * cell.width * 3),
+                    std::size_t{cell.width} * 3, grid.rgb.begin() + static_cast<std::ptrdiff_t>(to));
       }
     }
   }
@@ -283,16 +310,18 @@ RgbField fidelity_grid(const std::vector<PairFidelity>& results) {
 
 std::string fidelity_csv(const std::vector<PairFidelity>& results, const Material& material) {
   std::ostringstream csv;
-  csv << "light,view,light_theta,light_phi,view_theta,view_phi,rel,structure,gaussian_rel,floor,ceiling,gaussian_distance,model_distance";
+  csv << "light,view,light_theta,light_phi,view_theta,view_phi,rel,structure,gaussian_rel,floor,ceiling,"
+         "gaussian_distance,model_distance";
   for (const char* name : DistributionDistance::kGroupNames) csv << ',' << name;
   for (const char* name : DistributionDistance::kGroupNames) csv << ",gaussian_" << name;
   csv << '\n';
   for (const PairFidelity& r : results) {
     const MaterialDirection& l = material.lights[r.pair.light];
     const MaterialDirection& v = material.views[r.pair.view];
-    csv << r.pair.light << ',' << r.pair.view << ',' << l.theta * kDegrees << ',' << l.phi * kDegrees << ',' << v.theta * kDegrees << ','
-        << v.phi * kDegrees << ',' << r.result.rel << ',' << r.result.structure << ',' << r.result.gaussian_rel << ',' << r.result.floor << ','
-        << r.result.ceiling << ',' << r.result.gaussian << ',' << r.result.model;
+    csv << r.pair.light << ',' << r.pair.view << ',' << l.theta * kDegrees << ',' << l.phi * kDegrees << ','
+        << v.theta * kDegrees << ',' << v.phi * kDegrees << ',' << r.result.rel << ',' << r.result.structure
+        << ',' << r.result.gaussian_rel << ',' << r.result.floor << ',' << r.result.ceiling << ','
+        << r.result.gaussian << ',' << r.result.model;
     for (double g : r.result.parts.groups) csv << ',' << g;
     for (double g : r.result.gaussian_parts.groups) csv << ',' << g;
     csv << '\n';

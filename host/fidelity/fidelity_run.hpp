@@ -1,8 +1,8 @@
 // Fidelity of a material against the measured BTF it models, as a person would judge it (docs/design.md 5,
 // issue 13): the model and the measured images are drawn through the same render pass (a plane,
 // orthographic, the measured view and light), and the calibrated texture measure
-// (analysis/quality/texture_references.hpp, on texture_distributions.hpp) compares them, beside the best stationary Gaussian texture.
-// Serves `carbtf fidelity` and the demo.
+// (analysis/quality/texture_references.hpp, on texture_distributions.hpp) compares them, beside the best
+// stationary Gaussian texture. Serves `carbtf fidelity` and the demo.
 #pragma once
 
 #include <cstdint>
@@ -11,8 +11,8 @@
 
 #include "carbtf/analysis/btf/btf_dataset.hpp"
 #include "carbtf/analysis/quality/texture_references.hpp"
-#include "carbtf/engine/vulkan/context.hpp"
 #include "carbtf/engine/material/material.hpp"
+#include "carbtf/engine/vulkan/context.hpp"
 
 namespace carbtf::cli {
 
@@ -30,9 +30,10 @@ std::vector<FidelityPair> default_fidelity_pairs(const Material& material);
 // `count` measured pairs spread evenly over all lights x views (the R2 low-discrepancy sequence over
 // their indices), the same for every run: a broader sample than the default five, on which a few pairs
 // can sway a verdict (the specular lobe costs coast_sand_rocks on the five, most at the mirror pair, and
-// helps it over 16 spread pairs). Views that cover under a third of the frame (over 70.5 degrees) are skipped; fewer
-// where the dataset has fewer images, none where no view can be scored.
-std::vector<FidelityPair> spread_fidelity_pairs(const Material& material, const BtfDataset& dataset, std::size_t count);
+// helps it over 16 spread pairs). Views that cover under a third of the frame (over 70.5 degrees) are
+// skipped; fewer where the dataset has fewer images, none where no view can be scored.
+std::vector<FidelityPair> spread_fidelity_pairs(const Material& material, const BtfDataset& dataset,
+                                                std::size_t count);
 
 struct PairFidelity {
   FidelityPair pair;
@@ -43,15 +44,16 @@ struct PairFidelity {
 };
 
 struct FidelityRunOptions {
-  std::uint64_t seed = 1;        // synthesis and reference noise
+  std::uint64_t seed = 1;  // synthesis and reference noise
   float parallax_scale = 1.0f;
-  bool progress = true;          // a line per pair on stdout
+  bool progress = true;  // a line per pair on stdout
 };
 
 // Synthesizes every subspace image at the measurement's size and scores each pair. Throws
 // CommandError on engine failures and when a pair's image is missing from the dataset.
 std::vector<PairFidelity> run_fidelity(Context& context, const Material& material, const BtfDataset& dataset,
-                                       const std::vector<FidelityPair>& pairs, const FidelityRunOptions& options = {});
+                                       const std::vector<FidelityPair>& pairs,
+                                       const FidelityRunOptions& options = {});
 
 // "beats the Gaussian reference" or "does not beat the Gaussian reference": the verdict of one pair.
 const char* verdict(const CalibratedFidelity& f);

@@ -30,9 +30,9 @@ void write_demo_report(const std::filesystem::path& folder, const DemoFigures& f
   report.image("sphere.png",
                "model, " + std::to_string(f.texture_size) + "^2 synthesized texture, two directional lights",
                960);
-  report.image("sphere_back.png",
-               "the same from behind, where the texture coordinates wrap: the periodic synthesis leaves no seam",
-               960);
+  report.image(
+      "sphere_back.png",
+      "the same from behind, where the texture coordinates wrap: the periodic synthesis leaves no seam", 960);
   report.heading("Fidelity: model beside measurement");
   report.paragraph(
       "The model and the measured images drawn through the same render pass (a plane seen orthographically "
@@ -43,7 +43,8 @@ void write_demo_report(const std::filesystem::path& folder, const DemoFigures& f
       "distributions (Lab marginals, oriented band responses and local energy per octave, and the coherence "
       "of local energy across octaves and orientations that only structure has). The structure score s is 0 "
       "for the measurement against another region of itself and 1 for the third column, the measurement with "
-      "random Fourier phases: the same spectrum without a crease, thread or rock, the best any Gaussian field "
+      "random Fourier phases: the same spectrum without a crease, thread or rock, the best any Gaussian "
+      "field "
       "can do. Below 1 the model beats it; rel is the same distance with white noise of the same colours at "
       "1.");
   report.image("fidelity_grid.png", "rows: pairs; columns: measured | model | Gaussian reference", 3 * 160);
@@ -51,13 +52,15 @@ void write_demo_report(const std::filesystem::path& folder, const DemoFigures& f
       {"pair", "s (model)", "rel (model)", "rel (Gaussian reference)", "model beats it"}};
   for (const PairFidelity& r : fidelity) {
     fidelity_rows.push_back({r.pair.label, format("%.3f", r.result.structure), format("%.3f", r.result.rel),
-                             format("%.3f", r.result.gaussian_rel), r.result.beats_gaussian() ? "yes" : "no"});
+                             format("%.3f", r.result.gaussian_rel),
+                             r.result.beats_gaussian() ? "yes" : "no"});
   }
-  fidelity_rows.push_back({"mean (worst)",
-                           format("%.3f", summary.mean_structure) + " (" + format("%.3f", summary.worst_structure) + ")",
-                           format("%.3f", summary.mean_rel) + " (" + format("%.3f", summary.worst_rel) + ")",
-                           format("%.3f", summary.mean_gaussian_rel),
-                           std::to_string(summary.beats_gaussian) + " of " + std::to_string(summary.pairs)});
+  fidelity_rows.push_back(
+      {"mean (worst)",
+       format("%.3f", summary.mean_structure) + " (" + format("%.3f", summary.worst_structure) + ")",
+       format("%.3f", summary.mean_rel) + " (" + format("%.3f", summary.worst_rel) + ")",
+       format("%.3f", summary.mean_gaussian_rel),
+       std::to_string(summary.beats_gaussian) + " of " + std::to_string(summary.pairs)});
   report.table(fidelity_rows);
   report.heading("Analysis");
   report.image_row({{"analysis/index_table.png", "subspace index table (lights x views)"},

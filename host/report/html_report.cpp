@@ -12,11 +12,20 @@ std::string html_escape(const std::string& text) {
   std::string out;
   for (char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -24,9 +33,13 @@ std::string html_escape(const std::string& text) {
 
 HtmlReport::HtmlReport(std::string title) : title_(std::move(title)) {}
 
-void HtmlReport::heading(const std::string& text) { body_ += "<h2>" + html_escape(text) + "</h2>\n"; }
+void HtmlReport::heading(const std::string& text) {
+  body_ += "<h2>" + html_escape(text) + "</h2>\n";
+}
 
-void HtmlReport::paragraph(const std::string& text) { body_ += "<p>" + html_escape(text) + "</p>\n"; }
+void HtmlReport::paragraph(const std::string& text) {
+  body_ += "<p>" + html_escape(text) + "</p>\n";
+}
 
 void HtmlReport::table(const std::vector<std::vector<std::string>>& rows) {
   body_ += "<table>\n";
@@ -44,7 +57,8 @@ namespace {
 
 std::string figure_html(const std::string& file, const std::string& caption, int display_width) {
   return "<figure><img src=\"" + html_escape(file) + "\" width=\"" + std::to_string(display_width) +
-         "\" style=\"image-rendering:pixelated\"><figcaption>" + html_escape(caption) + "</figcaption></figure>\n";
+         "\" style=\"image-rendering:pixelated\"><figcaption>" + html_escape(caption) +
+         "</figcaption></figure>\n";
 }
 
 }  // namespace
@@ -53,14 +67,16 @@ void HtmlReport::image(const std::string& file, const std::string& caption, int 
   body_ += figure_html(file, caption, display_width);
 }
 
-void HtmlReport::image_row(const std::vector<std::pair<std::string, std::string>>& images, int display_width) {
+void HtmlReport::image_row(const std::vector<std::pair<std::string, std::string>>& images,
+                           int display_width) {
   body_ += "<div style=\"display:flex;flex-wrap:wrap;gap:12px\">\n";
   for (const auto& [file, caption] : images) body_ += figure_html(file, caption, display_width);
   body_ += "</div>\n";
 }
 
 void HtmlReport::histogram_chart(const std::vector<double>& centres, const std::vector<double>& heights,
-                                 const std::vector<std::pair<double, double>>& curve, const std::string& caption) {
+                                 const std::vector<std::pair<double, double>>& curve,
+                                 const std::string& caption) {
   if (centres.empty() || centres.size() != heights.size()) return;
   const double width = 520, height = 260, margin = 30;
   const double x0 = centres.front(), x1 = centres.back();
@@ -74,7 +90,8 @@ void HtmlReport::histogram_chart(const std::vector<double>& centres, const std::
                     "\" height=\"" + std::to_string(int(height)) + "\" style=\"background:#fff\">\n";
   const double bar = (width - 2 * margin) / static_cast<double>(centres.size());
   for (std::size_t i = 0; i < centres.size(); ++i) {
-    std::snprintf(buffer, sizeof buffer, "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"#8ab\"/>\n",
+    std::snprintf(buffer, sizeof buffer,
+                  "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"#8ab\"/>\n",
                   sx(centres[i]) - bar / 2, sy(heights[i]), bar, sy(0) - sy(heights[i]));
     svg += buffer;
   }
@@ -84,8 +101,9 @@ void HtmlReport::histogram_chart(const std::vector<double>& centres, const std::
     svg += buffer;
   }
   svg += "\"/>\n";
-  std::snprintf(buffer, sizeof buffer, "<line x1=\"%.0f\" y1=\"%.1f\" x2=\"%.0f\" y2=\"%.1f\" stroke=\"#333\"/>\n", margin,
-                sy(0), width - margin, sy(0));
+  std::snprintf(buffer, sizeof buffer,
+                "<line x1=\"%.0f\" y1=\"%.1f\" x2=\"%.0f\" y2=\"%.1f\" stroke=\"#333\"/>\n", margin, sy(0),
+                width - margin, sy(0));
   svg += buffer;
   for (int tick = static_cast<int>(x0); tick <= static_cast<int>(x1); ++tick) {
     std::snprintf(buffer, sizeof buffer,
@@ -103,7 +121,8 @@ bool HtmlReport::write(const std::filesystem::path& folder, std::string& error) 
   out << "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>" << html_escape(title_)
       << "</title>\n<style>body{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}"
          "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:4px 10px;text-align:left}"
-         "figure{display:inline-block;margin:1em}figcaption{font-size:90%;color:#555}</style></head>\n<body>\n<h1>"
+         "figure{display:inline-block;margin:1em}figcaption{font-size:90%;color:#555}</style></"
+         "head>\n<body>\n<h1>"
       << html_escape(title_) << "</h1>\n"
       << body_ << "</body></html>\n";
   if (const Status s = write_file_whole(file.string(), out.str()); !s.ok()) {

@@ -45,9 +45,9 @@ std::vector<float> side_by_side(const std::vector<float>& left, const std::vecto
   return both;
 }
 
-
-void write_png_and_exr(const std::filesystem::path& folder, const std::string& stem, const std::vector<float>& values,
-                       std::uint32_t channels, std::uint32_t width, std::uint32_t height) {
+void write_png_and_exr(const std::filesystem::path& folder, const std::string& stem,
+                       const std::vector<float>& values, std::uint32_t channels, std::uint32_t width,
+                       std::uint32_t height) {
   const std::vector<float> rgb = channels_to_rgb(values, channels, std::size_t{width} * height);
   write_rgb_image(folder / (stem + ".png"), rgb, width, height, true);
   write_rgb_image(folder / (stem + ".exr"), rgb, width, height, true);

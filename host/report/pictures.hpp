@@ -19,12 +19,13 @@ std::vector<float> channels_to_rgb(const std::vector<float>& values, std::uint32
 std::vector<float> rendered_rgb(const RenderedImage& frame);
 
 // Two RGB images of width x height side by side: `left` | `right`, 2 * width wide.
-std::vector<float> side_by_side(const std::vector<float>& left, const std::vector<float>& right, std::uint32_t width,
-                                std::uint32_t height);
+std::vector<float> side_by_side(const std::vector<float>& left, const std::vector<float>& right,
+                                std::uint32_t width, std::uint32_t height);
 
 // `values` (`channels` per pixel, as channels_to_rgb) written as FOLDER/STEM.png (sRGB) and .exr (linear).
-void write_png_and_exr(const std::filesystem::path& folder, const std::string& stem, const std::vector<float>& values,
-                       std::uint32_t channels, std::uint32_t width, std::uint32_t height);
+void write_png_and_exr(const std::filesystem::path& folder, const std::string& stem,
+                       const std::vector<float>& values, std::uint32_t channels, std::uint32_t width,
+                       std::uint32_t height);
 
 // " (light 3, view 7) 0.25 (light 4, view 7) 0.75": the pairs of an interpolation with non-zero weight.
 std::string describe_weights(const PairWeights& weights);

@@ -5,12 +5,12 @@
 #include <cstdint>
 #include <memory>
 
-#include "carbtf/engine/vulkan/context.hpp"
 #include "carbtf/engine/render/material_binding.hpp"
 #include "carbtf/engine/render/mesh.hpp"
 #include "carbtf/engine/render/mesh_renderer.hpp"
 #include "carbtf/engine/render/scene_pruning.hpp"
 #include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
+#include "carbtf/engine/vulkan/context.hpp"
 
 namespace carbtf::cli {
 
@@ -23,8 +23,9 @@ struct MaterialRender {
 // MaterialBindingInfo::hardware_filtering (false where the picture is scored, so that figures do not
 // depend on the device's sampler precision); `coupling`: MaterialBindingInfo::pair_coupling. Throws
 // CommandError on failure.
-MaterialRender prepare_material_render(Context& context, const Material& material, const SubspaceSynthesizer& synthesizer,
-                                       std::uint64_t seed, float parallax_scale, std::uint32_t width, std::uint32_t height,
+MaterialRender prepare_material_render(Context& context, const Material& material,
+                                       const SubspaceSynthesizer& synthesizer, std::uint64_t seed,
+                                       float parallax_scale, std::uint32_t width, std::uint32_t height,
                                        const Mesh& mesh, bool hardware_filtering,
                                        PairCoupling coupling = PairCoupling::product);
 
@@ -35,6 +36,7 @@ std::unique_ptr<ScenePruner> make_scene_pruner(const Material& material);
 
 // Plans, records and runs one synthesis of `request` on `synthesizer`, waiting for it; the wall time in
 // milliseconds. Throws CommandError on failure.
-double timed_synthesis(Context& context, SubspaceSynthesizer& synthesizer, const Material& material, const SynthesisRequest& request);
+double timed_synthesis(Context& context, SubspaceSynthesizer& synthesizer, const Material& material,
+                       const SynthesisRequest& request);
 
 }  // namespace carbtf::cli

@@ -8,10 +8,10 @@
 #include <vector>
 
 #include "carbtf/analysis/btf/btf_dataset.hpp"
-#include "carbtf/engine/vulkan/context.hpp"
 #include "carbtf/engine/material/material.hpp"
 #include "carbtf/engine/render/mesh.hpp"
 #include "carbtf/engine/render/mesh_renderer.hpp"
+#include "carbtf/engine/vulkan/context.hpp"
 
 namespace carbtf::cli {
 
@@ -21,17 +21,18 @@ namespace carbtf::cli {
 // SynthesisRequest::mip_levels (0: all), so that the measurement is filtered as the model is;
 // `coupling` (MaterialBindingInfo::pair_coupling) so that it is interpolated as the model is.
 RenderedImage render_measured(Context& context, const Material& material, const BtfDataset& dataset,
-                              const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs, const Mesh& mesh,
-                              const RenderScene& scene, const RenderTargetInfo& target, std::uint32_t mip_levels = 0,
-                              PairCoupling coupling = PairCoupling::product);
+                              const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs,
+                              const Mesh& mesh, const RenderScene& scene, const RenderTargetInfo& target,
+                              std::uint32_t mip_levels = 0, PairCoupling coupling = PairCoupling::product);
 
 // render --compare: the measured BTF rendered as above into an RGBA32F target of the model frame's size,
 // written beside the model's frame `out` as OUT_measured and OUT_compare (model | measured), with a line
 // saying so. Checks validation after the render.
 void write_measured_comparison(Context& context, const Material& material, const BtfDataset& dataset,
-                               const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs, const Mesh& mesh,
-                               const RenderScene& scene, const std::vector<float>& model_rgb, std::uint32_t width,
-                               std::uint32_t height, const std::filesystem::path& out,
+                               const std::vector<std::pair<std::uint32_t, std::uint32_t>>& pairs,
+                               const Mesh& mesh, const RenderScene& scene,
+                               const std::vector<float>& model_rgb, std::uint32_t width, std::uint32_t height,
+                               const std::filesystem::path& out,
                                PairCoupling coupling = PairCoupling::product);
 
 }  // namespace carbtf::cli

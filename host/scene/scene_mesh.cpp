@@ -52,7 +52,8 @@ void check_obj_numbers(const std::filesystem::path& path) {
           char* end = nullptr;
           errno = 0;
           const long long index = std::strtoll(part.c_str(), &end, 10);
-          if (end != part.c_str() + part.size() || errno == ERANGE || index == 0 || index > INT32_MAX || index < -INT32_MAX) {
+          if (end != part.c_str() + part.size() || errno == ERANGE || index == 0 || index > INT32_MAX ||
+              index < -INT32_MAX) {
             throw CommandError(where + "face index '" + part + "' is not a non-zero 32-bit integer");
           }
         }
@@ -94,18 +95,23 @@ Mesh load_obj_mesh(const std::filesystem::path& path) {
       mesh.indices.push_back(found->second);
       return;
     }
-    if (index.vertex_index < 0 || 3 * static_cast<std::size_t>(index.vertex_index) + 2 >= attrib.vertices.size()) {
+    if (index.vertex_index < 0 ||
+        3 * static_cast<std::size_t>(index.vertex_index) + 2 >= attrib.vertices.size()) {
       throw CommandError(name + ": a face refers to a vertex position that does not exist");
     }
-    if (index.texcoord_index < 0 || 2 * static_cast<std::size_t>(index.texcoord_index) + 1 >= attrib.texcoords.size()) {
+    if (index.texcoord_index < 0 ||
+        2 * static_cast<std::size_t>(index.texcoord_index) + 1 >= attrib.texcoords.size()) {
       throw CommandError(name + ": a face has no texture coordinates (vt); the material needs them");
     }
     MeshVertex v{};
-    for (int k = 0; k < 3; ++k) v.position[k] = attrib.vertices[3 * static_cast<std::size_t>(index.vertex_index) + k];
+    for (int k = 0; k < 3; ++k)
+      v.position[k] = attrib.vertices[3 * static_cast<std::size_t>(index.vertex_index) + k];
     v.uv[0] = attrib.texcoords[2 * static_cast<std::size_t>(index.texcoord_index)];
     v.uv[1] = 1.0f - attrib.texcoords[2 * static_cast<std::size_t>(index.texcoord_index) + 1];
-    if (index.normal_index >= 0 && 3 * static_cast<std::size_t>(index.normal_index) + 2 < attrib.normals.size()) {
-      for (int k = 0; k < 3; ++k) v.normal[k] = attrib.normals[3 * static_cast<std::size_t>(index.normal_index) + k];
+    if (index.normal_index >= 0 &&
+        3 * static_cast<std::size_t>(index.normal_index) + 2 < attrib.normals.size()) {
+      for (int k = 0; k < 3; ++k)
+        v.normal[k] = attrib.normals[3 * static_cast<std::size_t>(index.normal_index) + k];
       if (!usable_normal(v.normal)) zero_normals = true;
     } else {
       has_normals = false;
@@ -118,7 +124,8 @@ Mesh load_obj_mesh(const std::filesystem::path& path) {
   for (const tinyobj::shape_t& shape : reader.GetShapes()) {
     std::size_t first = 0;
     for (const unsigned int corners : shape.mesh.num_face_vertices) {
-      if (first + corners > shape.mesh.indices.size()) throw CommandError(name + ": a face lists more corners than the file holds");
+      if (first + corners > shape.mesh.indices.size())
+        throw CommandError(name + ": a face lists more corners than the file holds");
       // A fan from the first corner: exact for the convex polygons OBJ exporters write.
       for (std::size_t k = 1; k + 1 < corners; ++k) {
         for (std::size_t corner : {first, first + k, first + k + 1}) add_corner(shape.mesh.indices[corner]);
@@ -128,7 +135,9 @@ Mesh load_obj_mesh(const std::filesystem::path& path) {
   }
   if (mesh.indices.empty()) throw CommandError(name + ": the OBJ file has no faces");
   if (zero_normals && has_normals) {
-    std::fprintf(stderr, "carbtf: warning: %s: some normals (vn) are zero, NaN or infinite; all normals are recomputed from the faces\n",
+    std::fprintf(stderr,
+                 "carbtf: warning: %s: some normals (vn) are zero, NaN or infinite; all normals are "
+                 "recomputed from the faces\n",
                  name.c_str());
   }
   if (!has_normals || zero_normals) {

@@ -15,13 +15,13 @@
 #include <cmath>
 #include <filesystem>
 
-#include "scratch_folder.hpp"
-#include "test_materials.hpp"
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <sstream>
-#include <iterator>
+#include "scratch_folder.hpp"
+#include "test_materials.hpp"
 
 #include "carbtf/analysis/btf/btf_reader.hpp"
 #include "carbtf/analysis/btf/ubo2003_names.hpp"
@@ -94,8 +94,8 @@ void write_sample(const fs::path& out, const std::string& extension, bool zip) {
 }
 
 // Largest and RMS difference, in 8-bit sRGB steps, between a loaded image and the rendered one.
-void srgb_difference(const BtfDataset& dataset, LightView pair, const std::vector<float>& rendered, double& max_steps,
-                     double& rms_steps) {
+void srgb_difference(const BtfDataset& dataset, LightView pair, const std::vector<float>& rendered,
+                     double& max_steps, double& rms_steps) {
   std::vector<float> loaded(dataset.pixel_count() * 3);
   dataset.linear_rgb(pair, loaded);
   double sum = 0;
@@ -157,7 +157,8 @@ TEST_CASE("a sample written as a UBO2003 folder and as a zip reads back the same
         REQUIRE(dataset->views().size() == 81);
         REQUIRE(dataset->width() == 16);
         REQUIRE(dataset->missing_pairs().empty());
-        CHECK(dataset->encoding() == (extension == ".exr" ? ColorEncoding::linear_half : ColorEncoding::srgb8));
+        CHECK(dataset->encoding() ==
+              (extension == ".exr" ? ColorEncoding::linear_half : ColorEncoding::srgb8));
       }
       double worst_max = 0, worst_rms = 0;
       for (const auto& [key, rendered] : sample.images) {
@@ -196,7 +197,8 @@ TEST_CASE("a partial dataset loads with a warning listing what is missing", "[bt
   CHECK_FALSE(dataset.has_image({5, 0}));
   CHECK(dataset.has_image({6, 0}));
   REQUIRE(warnings.size() == 1);
-  CHECK_THAT(warnings[0], Catch::Contains("82 of 6561") && Catch::Contains("light theta 15, phi 240 / view theta 0, phi 0"));
+  CHECK_THAT(warnings[0], Catch::Contains("82 of 6561") &&
+                              Catch::Contains("light theta 15, phi 240 / view theta 0, phi 0"));
   std::vector<float> out(dataset.pixel_count() * 3);
   CHECK_THROWS_AS(dataset.linear_rgb({5, 0}, out), std::out_of_range);
   fs::remove_all(folder);
@@ -322,7 +324,8 @@ TEST_CASE("bad input: an empty zip, and a file that is no zip", "[btf][bad-input
   const fs::path folder = scratch_folder("emptyzip");
   zip_t* archive = zip_open((folder / "empty.zip").c_str(), ZIP_CREATE | ZIP_TRUNCATE, nullptr);
   zip_source_t* source = zip_source_buffer(archive, "hello", 5, 0);
-  REQUIRE(zip_file_add(archive, "README.txt", source, 0) >= 0);  // libzip writes no file for an archive with no entries
+  REQUIRE(zip_file_add(archive, "README.txt", source, 0) >=
+          0);  // libzip writes no file for an archive with no entries
   REQUIRE(zip_close(archive) == 0);
   require_input_error(folder / "empty.zip", {"README.txt", "not an image file"});
   // A valid archive with no entries at all: just the 22-byte end-of-central-directory record.
@@ -348,7 +351,8 @@ std::vector<std::uint8_t> zip_of_one_png(const fs::path& folder, bool stored) {
   zip_source_t* source = zip_source_buffer(archive, png.data(), png.size(), 0);
   const zip_int64_t index = zip_file_add(archive, name_of(0, 0).c_str(), source, 0);
   REQUIRE(index >= 0);
-  REQUIRE(zip_set_file_compression(archive, static_cast<zip_uint64_t>(index), stored ? ZIP_CM_STORE : ZIP_CM_DEFLATE, 0) == 0);
+  REQUIRE(zip_set_file_compression(archive, static_cast<zip_uint64_t>(index),
+                                   stored ? ZIP_CM_STORE : ZIP_CM_DEFLATE, 0) == 0);
   REQUIRE(zip_close(archive) == 0);
   std::ifstream file(path, std::ios::binary);
   return {std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
@@ -367,7 +371,8 @@ std::vector<std::size_t> records(const std::vector<std::uint8_t>& bytes, std::ui
 
 }  // namespace
 
-TEST_CASE("bad input: a zip member whose data does not match its CRC-32 is refused, naming the member", "[btf][bad-input][zip]") {
+TEST_CASE("bad input: a zip member whose data does not match its CRC-32 is refused, naming the member",
+          "[btf][bad-input][zip]") {
   const fs::path folder = scratch_folder("zipcrc");
   for (const bool stored : {true, false}) {
     INFO((stored ? "stored" : "deflated") << " member");
@@ -382,7 +387,8 @@ TEST_CASE("bad input: a zip member whose data does not match its CRC-32 is refus
     std::vector<std::uint8_t> bad_crc = good;
     bad_crc[local[0] + 14] ^= 0x01;
     bad_crc[central[0] + 16] ^= 0x01;
-    std::ofstream(folder / "crcbad.zip", std::ios::binary).write(reinterpret_cast<const char*>(bad_crc.data()), static_cast<std::streamsize>(bad_crc.size()));
+    std::ofstream(folder / "crcbad.zip", std::ios::binary)
+        .write(reinterpret_cast<const char*>(bad_crc.data()), static_cast<std::streamsize>(bad_crc.size()));
     require_input_error(folder / "crcbad.zip", {"crcbad.zip:" + name_of(0, 0) + ": CRC-32 mismatch"});
 
     if (stored) {
@@ -392,18 +398,22 @@ TEST_CASE("bad input: a zip member whose data does not match its CRC-32 is refus
       std::memcpy(&extra_length, good.data() + local[0] + 28, 2);
       std::vector<std::uint8_t> bad_data = good;
       bad_data[local[0] + 30 + name_length + extra_length + 20] ^= 0x40;
-      std::ofstream(folder / "databad.zip", std::ios::binary).write(reinterpret_cast<const char*>(bad_data.data()), static_cast<std::streamsize>(bad_data.size()));
+      std::ofstream(folder / "databad.zip", std::ios::binary)
+          .write(reinterpret_cast<const char*>(bad_data.data()),
+                 static_cast<std::streamsize>(bad_data.size()));
       require_input_error(folder / "databad.zip", {"databad.zip:" + name_of(0, 0) + ": CRC-32 mismatch"});
     }
   }
   fs::remove_all(folder);
 }
 
-TEST_CASE("bad input: a manifest whose direction table would be too large is refused before it is allocated", "[btf][manifest][bad-input]") {
+TEST_CASE("bad input: a manifest whose direction table would be too large is refused before it is allocated",
+          "[btf][manifest][bad-input]") {
   const fs::path folder = scratch_folder("manifest_large");
   // 10,000 rows at 10,000 distinct light and view directions: a table of 10^8 pairs.
   std::ostringstream many;
-  for (int i = 0; i < 10000; ++i) many << "a.png," << 0.008 * i << "," << 0.03 * i << "," << 0.008 * i << "," << 0.05 * i << "\n";
+  for (int i = 0; i < 10000; ++i)
+    many << "a.png," << 0.008 * i << "," << 0.03 * i << "," << 0.008 * i << "," << 0.05 * i << "\n";
   std::ofstream(folder / "many.csv") << many.str();
   require_input_error(folder / "many.csv", {"many.csv", "more than 1024 distinct light directions"});
 
@@ -411,7 +421,8 @@ TEST_CASE("bad input: a manifest whose direction table would be too large is ref
   std::ostringstream sparse;
   for (int i = 0; i < 300; ++i) sparse << "a.png," << 0.25 * i << ",0," << 0.25 * i << ",90\n";
   std::ofstream(folder / "sparse.csv") << sparse.str();
-  require_input_error(folder / "sparse.csv", {"sparse.csv", "measures 300 of the 300 x 300 = 90000", "at least 1 in 4"});
+  require_input_error(folder / "sparse.csv",
+                      {"sparse.csv", "measures 300 of the 300 x 300 = 90000", "at least 1 in 4"});
   fs::remove_all(folder);
 }
 
@@ -482,7 +493,9 @@ TEST_CASE("linear_to_srgb8 gives the rounded sRGB code of the power law exactly"
         const std::uint32_t middle = low + (high - low) / 2;
         (by_power(std::bit_cast<float>(middle)) == code ? high : low) = middle;
       }
-      for (std::uint32_t b = high - std::min<std::uint32_t>(high - zero, 2048); b <= std::min(high + 2048, one); ++b) check_bits(b);
+      for (std::uint32_t b = high - std::min<std::uint32_t>(high - zero, 2048);
+           b <= std::min(high + 2048, one); ++b)
+        check_bits(b);
       previous = code;
     }
     check_bits(bits);
@@ -544,7 +557,8 @@ std::vector<Direction> write_ps_set(const fs::path& folder, std::size_t count, f
 
 }  // namespace
 
-TEST_CASE("a photometric-stereo set loads with its lights, intensities and mask", "[btf][photometric-stereo]") {
+TEST_CASE("a photometric-stereo set loads with its lights, intensities and mask",
+          "[btf][photometric-stereo]") {
   const fs::path folder = scratch_folder("ps");
   const std::vector<Direction> lights = write_ps_set(folder, 12, 0.5f);
   std::vector<std::string> warnings;
@@ -570,7 +584,8 @@ TEST_CASE("a photometric-stereo set loads with its lights, intensities and mask"
   fs::remove_all(folder);
 }
 
-TEST_CASE("bad input: a light file whose line count does not match the images", "[btf][photometric-stereo][bad-input]") {
+TEST_CASE("bad input: a light file whose line count does not match the images",
+          "[btf][photometric-stereo][bad-input]") {
   const fs::path folder = scratch_folder("ps_bad");
   write_ps_set(folder, 6, 1.0f);
   std::ofstream(folder / "light_directions.txt", std::ios::app) << "0 0 1\n";
@@ -587,7 +602,7 @@ TEST_CASE("sample materials are deterministic for a seed and differ between seed
     CHECK(a.height == b.height);
     CHECK(a.albedo == b.albedo);
     const auto [lo, hi] = std::minmax_element(a.height.begin(), a.height.end());
-    CHECK(*hi - *lo > 0.5f);  // a real relief, in texels
+    CHECK(*hi - *lo > 0.5f);           // a real relief, in texels
     if (name != "coast_sand_rocks") {  // the scan is fixed; procedural surfaces follow the seed
       const Surface c = make_sample_surface(name, 32, 12);
       CHECK((c.height != a.height || c.albedo != a.albedo));  // the weave's geometry is regular by design
@@ -638,14 +653,16 @@ std::vector<std::byte> png_claiming(std::uint32_t width, std::uint32_t height) {
 
 }  // namespace
 
-TEST_CASE("bad input: an image header claiming 16384x16384 is refused before any pixel is decoded", "[btf][bad-input]") {
+TEST_CASE("bad input: an image header claiming 16384x16384 is refused before any pixel is decoded",
+          "[btf][bad-input]") {
   // Decoding would take 16384^2 x 3 floats (3 GiB); the check reads the header only.
   const std::vector<std::byte> bomb = png_claiming(16384, 16384);
   CHECK(bomb.size() < 100);
   check_input_error([&] { decode_rgb_image("bomb.png", bomb); }, "bomb.png", "claims 16384x16384 pixels");
   // Within the cap but not the dataset's size: refused from the header too.
   const ImageShape first{64, 64, true};
-  check_input_error([&] { decode_rgb_image("other.png", png_claiming(4000, 4000), &first); }, "other.png", "but the others are 64x64");
+  check_input_error([&] { decode_rgb_image("other.png", png_claiming(4000, 4000), &first); }, "other.png",
+                    "but the others are 64x64");
 }
 
 TEST_CASE("bad input: an image is read only by the reader its name gives", "[btf][bad-input]") {
@@ -655,9 +672,12 @@ TEST_CASE("bad input: an image is read only by the reader its name gives", "[btf
   CHECK(decode_rgb_image("x.png", png).width == 8);
   // No other installed reader (FFmpeg's video readers among them) is tried on what the name does not
   // promise: a name the fuzzer found, with a NUL byte before a QuickTime extension, reached FFmpeg.
-  check_input_error([&] { decode_rgb_image("clip.qt", png); }, "clip.qt", "is not named as an image carbtf reads (.png");
-  check_input_error([&] { decode_rgb_image(std::string("c.png\0.qt", 9), png); }, "c.png?.qt", "is not named as an image carbtf reads");
-  check_input_error([&] { decode_rgb_image("mislabelled.png", jpeg); }, "mislabelled.png", "not a readable image");
+  check_input_error([&] { decode_rgb_image("clip.qt", png); }, "clip.qt",
+                    "is not named as an image carbtf reads (.png");
+  check_input_error([&] { decode_rgb_image(std::string("c.png\0.qt", 9), png); }, "c.png?.qt",
+                    "is not named as an image carbtf reads");
+  check_input_error([&] { decode_rgb_image("mislabelled.png", jpeg); }, "mislabelled.png",
+                    "not a readable image");
 }
 
 TEST_CASE("bad input: a FIFO in a dataset folder is refused, not waited on", "[btf][bad-input]") {

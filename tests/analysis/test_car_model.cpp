@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "carbtf/analysis/model/car_fit.hpp"
+#include "carbtf/engine/internal/synthesis_layout.hpp"
 #include "carbtf/reference/car_synthesis.hpp"
 #include "carbtf/reference/noise.hpp"
-#include "carbtf/engine/internal/synthesis_layout.hpp"
 
 namespace carbtf {
 namespace {
@@ -22,7 +22,8 @@ CarBandModel true_model(int candidate, std::vector<float> gamma, float sigma, fl
   return model;
 }
 
-Plane synthesize_plane(const CarBandModel& model, std::uint32_t size, std::uint64_t seed, std::uint32_t margin = 64) {
+Plane synthesize_plane(const CarBandModel& model, std::uint32_t size, std::uint64_t seed,
+                       std::uint32_t margin = 64) {
   reference::CarFieldBlock block;
   block.seed = seed;
   block.width = block.height = size;
@@ -66,7 +67,10 @@ const std::vector<KnownModel>& known_models() {
 
 }  // namespace
 
-TEST_CASE("the CAR estimator recovers gamma and sigma^2 of synthetic fields within 5 standard errors and stores gamma to that precision", "[car]") {
+TEST_CASE(
+    "the CAR estimator recovers gamma and sigma^2 of synthetic fields within 5 standard errors and stores "
+    "gamma to that precision",
+    "[car]") {
   for (const KnownModel& known : known_models()) {
     const CarBandModel truth = true_model(known.candidate, known.gamma, 0.7f, 2.0f);
     REQUIRE(car_spectral_radius(truth.neighbourhood, {known.gamma.begin(), known.gamma.end()}) < 0.95);
@@ -79,7 +83,8 @@ TEST_CASE("the CAR estimator recovers gamma and sigma^2 of synthetic fields with
     REQUIRE(fit.model.flags == 0u);
     REQUIRE(fit.model.gamma.size() == known.gamma.size());
     for (std::size_t k = 0; k < known.gamma.size(); ++k) {
-      INFO("gamma " << k << ": fitted " << fit.model.gamma[k] << ", true " << known.gamma[k] << ", se " << fit.gamma_standard_error[k]);
+      INFO("gamma " << k << ": fitted " << fit.model.gamma[k] << ", true " << known.gamma[k] << ", se "
+                    << fit.gamma_standard_error[k]);
       CHECK(std::abs(fit.model.gamma[k] - known.gamma[k]) <= 5.0 * fit.gamma_standard_error[k]);
       CHECK(fit.gamma_standard_error[k] < 0.01);
       // Stored to the precision of its estimate: a multiple of the power-of-two step at most 1/8 of
@@ -124,7 +129,9 @@ TEST_CASE("stiff and extreme bands give bounded models, and repairs are reported
   auto random_plane = [&](std::uint64_t seed) {
     Plane plane(size, size);
     for (std::uint32_t r = 0; r < size; ++r)
-      for (std::uint32_t c = 0; c < size; ++c) plane(r, c) = reference::gaussian_noise(seed, 0, static_cast<std::int32_t>(r), static_cast<std::int32_t>(c));
+      for (std::uint32_t c = 0; c < size; ++c)
+        plane(r, c) =
+            reference::gaussian_noise(seed, 0, static_cast<std::int32_t>(r), static_cast<std::int32_t>(c));
     return plane;
   };
   auto require_bounded = [&](const CarFit& fit, const char* what) {
@@ -193,7 +200,8 @@ TEST_CASE("stiff and extreme bands give bounded models, and repairs are reported
       const CarFit scaled = fit_car_band(field * scale);
       INFO("scale " << scale);
       REQUIRE(scaled.candidate == unit.candidate);
-      for (std::size_t k = 0; k < unit.model.gamma.size(); ++k) CHECK(scaled.model.gamma[k] == Approx(unit.model.gamma[k]).epsilon(1e-5));
+      for (std::size_t k = 0; k < unit.model.gamma.size(); ++k)
+        CHECK(scaled.model.gamma[k] == Approx(unit.model.gamma[k]).epsilon(1e-5));
       CHECK(scaled.model.sigma == Approx(unit.model.sigma * scale).epsilon(1e-5));
       require_bounded(scaled, "scaled");
     }

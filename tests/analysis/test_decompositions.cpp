@@ -13,11 +13,15 @@ namespace {
 Plane noise_plane(Eigen::Index rows, Eigen::Index cols, std::uint32_t field) {
   Plane plane(rows, cols);
   for (Eigen::Index r = 0; r < rows; ++r)
-    for (Eigen::Index c = 0; c < cols; ++c) plane(r, c) = reference::gaussian_noise(5, field, static_cast<std::int32_t>(r), static_cast<std::int32_t>(c));
+    for (Eigen::Index c = 0; c < cols; ++c)
+      plane(r, c) =
+          reference::gaussian_noise(5, field, static_cast<std::int32_t>(r), static_cast<std::int32_t>(c));
   return plane;
 }
 
-double max_abs_difference(const Plane& a, const Plane& b) { return (a - b).abs().maxCoeff(); }
+double max_abs_difference(const Plane& a, const Plane& b) {
+  return (a - b).abs().maxCoeff();
+}
 
 }  // namespace
 
@@ -25,11 +29,14 @@ TEST_CASE("colour PCA decorrelates and reconstructs exactly", "[decomposition]")
   for (int channels : {1, 3, 6}) {
     std::vector<Plane> image;
     const Plane shared = noise_plane(40, 33, 100);
-    for (int c = 0; c < channels; ++c) image.push_back(0.3 + 0.8 * shared * (c + 1) + 0.2 * noise_plane(40, 33, c));
+    for (int c = 0; c < channels; ++c)
+      image.push_back(0.3 + 0.8 * shared * (c + 1) + 0.2 * noise_plane(40, 33, c));
     const ColourPca pca = fit_colour_pca(image);
     const std::vector<Plane> bands = to_bands(pca, image);
     // Orthonormal basis and uncorrelated bands.
-    REQUIRE((pca.basis.transpose() * pca.basis - Eigen::MatrixXd::Identity(channels, channels)).cwiseAbs().maxCoeff() < 1e-12);
+    REQUIRE((pca.basis.transpose() * pca.basis - Eigen::MatrixXd::Identity(channels, channels))
+                .cwiseAbs()
+                .maxCoeff() < 1e-12);
     for (int i = 0; i < channels; ++i)
       for (int j = 0; j < i; ++j) CHECK(std::abs((bands[i] * bands[j]).mean()) < 1e-10);
     const std::vector<Plane> restored = from_bands(pca, bands);

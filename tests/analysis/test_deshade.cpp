@@ -33,7 +33,8 @@ double correlation(const std::vector<double>& a, const std::vector<double>& b) {
 TEST_CASE("the relit factor of a tilted facet is the render pass's", "[deshade]") {
   Plane ramp(8, 8);
   for (Eigen::Index r = 0; r < 8; ++r)
-    for (Eigen::Index c = 0; c < 8; ++c) ramp(r, c) = 0.5 * static_cast<double>(c) + 0.25 * static_cast<double>(r);
+    for (Eigen::Index c = 0; c < 8; ++c)
+      ramp(r, c) = 0.5 * static_cast<double>(c) + 0.25 * static_cast<double>(r);
   // Height rises to the right (dx = 0.5) and downwards (dy = -0.25, y up): N ~ (-0.5, 0.25, 1).
   const double s = std::sqrt(0.5);
   const Plane factor = relit_factor(ramp, {s, 0.0, s}, 0.2);
@@ -46,7 +47,8 @@ TEST_CASE("the relit factor of a tilted facet is the render pass's", "[deshade]"
   CHECK(relit_factor(ramp, {1.0, 0.0, 0.0}, 0.2)(4, 4) == 0.0);
 }
 
-TEST_CASE("the relit factor follows the shading of a rendered sample, and dividing it out flattens it", "[deshade]") {
+TEST_CASE("the relit factor follows the shading of a rendered sample, and dividing it out flattens it",
+          "[deshade]") {
   constexpr std::uint32_t size = 64;
   const Surface surface = make_sample_surface("coast_sand_rocks", size, 2);
   Plane height(size, size);
@@ -58,12 +60,15 @@ TEST_CASE("the relit factor follows the shading of a rendered sample, and dividi
     RenderOptions options;
     options.progress = false;
     render_btf(surface, {light}, {Direction::from_degrees(0.0, 0.0)}, options,
-               [&](std::uint32_t, std::uint32_t, std::span<const float> rgb) { image.assign(rgb.begin(), rgb.end()); });
+               [&](std::uint32_t, std::uint32_t, std::span<const float> rgb) {
+                 image.assign(rgb.begin(), rgb.end());
+               });
     const Plane factor = relit_factor(height, light.vector(), std::cos(75.0 * 3.14159265358979 / 180.0));
     std::vector<double> shading, relit;
     std::vector<Plane> channels(1, Plane(size, size));
     for (std::uint32_t p = 0; p < size * size; ++p) {
-      const double albedo = 0.2126 * surface.albedo[p * 3] + 0.7152 * surface.albedo[p * 3 + 1] + 0.0722 * surface.albedo[p * 3 + 2];
+      const double albedo = 0.2126 * surface.albedo[p * 3] + 0.7152 * surface.albedo[p * 3 + 1] +
+                            0.0722 * surface.albedo[p * 3 + 2];
       const double luminance = 0.2126 * image[p * 3] + 0.7152 * image[p * 3 + 1] + 0.0722 * image[p * 3 + 2];
       shading.push_back(luminance / std::max(albedo, 1e-3));
       relit.push_back(factor(p / size, p % size));

@@ -45,10 +45,12 @@ TEST_CASE("division-free cos(2 pi t) and sqrt are accurate to a few float ulps",
   double worst_cos = 0, worst_sqrt = 0;
   for (std::uint32_t k = 0; k < (1u << 24); k += 331) {
     const float t = static_cast<float>(k) * 0x1p-24f;
-    worst_cos = std::max(worst_cos, std::abs(reference::noise_cos2pi(t) - std::cos(2 * std::numbers::pi * t)));
+    worst_cos =
+        std::max(worst_cos, std::abs(reference::noise_cos2pi(t) - std::cos(2 * std::numbers::pi * t)));
     const float v = 34.0f * t;  // -2 ln u reaches 33.3
     if (v > 0) {
-      worst_sqrt = std::max(worst_sqrt, std::abs(reference::noise_sqrt(v) - std::sqrt(double{v})) / std::sqrt(double{v}));
+      worst_sqrt = std::max(worst_sqrt,
+                            std::abs(reference::noise_sqrt(v) - std::sqrt(double{v})) / std::sqrt(double{v}));
     }
   }
   INFO("cos abs error " << worst_cos << ", sqrt relative error " << worst_sqrt);
@@ -70,7 +72,8 @@ TEST_CASE("each noise sample equals double-precision Box-Muller of its quad's Ph
       const std::uint32_t pair = (column & 3u) / 2u;
       const double u = ((words[2 * pair] >> 8) + 1.0) * 0x1p-24, v = (words[2 * pair + 1] >> 8) * 0x1p-24;
       const double angle = 2 * std::numbers::pi * v;
-      const double exact = std::sqrt(-2 * std::log(u)) * ((column & 1u) == 0 ? std::cos(angle) : std::sin(angle));
+      const double exact =
+          std::sqrt(-2 * std::log(u)) * ((column & 1u) == 0 ? std::cos(angle) : std::sin(angle));
       worst = std::max(worst, std::abs(reference::gaussian_noise(seed, 3, row, col) - exact));
     }
   }
@@ -166,8 +169,8 @@ TEST_CASE("a noise block equals the same region of a larger field, on any thread
               std::bit_cast<std::uint32_t>(whole[(r + 17) * n + c + 9]));
       // The row cursor's four-at-a-time draws are the per-sample function's.
       REQUIRE(std::bit_cast<std::uint32_t>(block[r * 40 + c]) ==
-              std::bit_cast<std::uint32_t>(reference::gaussian_noise(5, 2, -30 + 17 + static_cast<std::int32_t>(r),
-                                                                     -50 + 9 + static_cast<std::int32_t>(c))));
+              std::bit_cast<std::uint32_t>(reference::gaussian_noise(
+                  5, 2, -30 + 17 + static_cast<std::int32_t>(r), -50 + 9 + static_cast<std::int32_t>(c))));
     }
   }
 }

@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <array>
-#include <functional>
 #include <cmath>
+#include <functional>
 #include <mutex>
 #include <numeric>
 
@@ -29,21 +29,25 @@ NormalMap top_view_stereo(const Surface& surface, bool jpeg) {
   std::vector<std::vector<float>> images(lights.size());
   RenderOptions render;
   render.progress = false;
-  render_btf(surface, lights, {Direction{}}, render, [&](std::uint32_t light, std::uint32_t, std::span<const float> image) {
-    if (!jpeg) {
-      images[light].assign(image.begin(), image.end());
-      return;
-    }
-    const RgbImage decoded = decode_rgb_image("light.jpg", encode_rgb_image("light.jpg", image, surface.size, surface.size));
-    for (std::uint8_t v : decoded.srgb8) images[light].push_back(srgb_to_linear(v / 255.0f));
-  });
+  render_btf(surface, lights, {Direction{}}, render,
+             [&](std::uint32_t light, std::uint32_t, std::span<const float> image) {
+               if (!jpeg) {
+                 images[light].assign(image.begin(), image.end());
+                 return;
+               }
+               const RgbImage decoded = decode_rgb_image(
+                   "light.jpg", encode_rgb_image("light.jpg", image, surface.size, surface.size));
+               for (std::uint8_t v : decoded.srgb8) images[light].push_back(srgb_to_linear(v / 255.0f));
+             });
   std::vector<std::span<const float>> spans(images.begin(), images.end());
   std::vector<std::array<double, 3>> vectors;
   for (const Direction& d : lights) vectors.push_back(d.vector());
   return photometric_stereo(spans, vectors, surface.size, surface.size, {}, {0.0, 0.0, 1.0});
 }
 
-double mean(const std::vector<double>& v) { return std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size()); }
+double mean(const std::vector<double>& v) {
+  return std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
+}
 
 // Texels no light casts a shadow on: every light above the texel's tangent plane reaches it, so the
 // measurements there follow the photometric-stereo model (up to the specular lobe).
@@ -62,32 +66,37 @@ std::vector<std::uint8_t> unshadowed_texels(const Surface& surface, const std::v
 
 }  // namespace
 
-TEST_CASE("photometric stereo on each sample material's top view is within 3 degrees of the truth", "[range]") {
+TEST_CASE("photometric stereo on each sample material's top view is within 3 degrees of the truth",
+          "[range]") {
   for (const bool jpeg : {false, true}) {
-  for (const std::string& name : sample_material_names()) {
-    const Surface surface = make_sample_surface(name, 96, 3);
-    const NormalMap map = top_view_stereo(surface, jpeg);
-    const std::vector<float> truth = surface_normals(surface);
-    std::vector<std::uint8_t> judged = unshadowed_texels(surface, truth);
-    const auto unshadowed_count = std::count(judged.begin(), judged.end(), 1);
-    for (std::size_t i = 0; i < judged.size(); ++i) judged[i] &= map.valid[i];
-    const auto valid_count = std::count(judged.begin(), judged.end(), 1);
-    const std::vector<double> all_errors = angular_errors_degrees(map.normals, truth, map.valid);
-    const std::vector<double> errors = angular_errors_degrees(map.normals, truth, judged);
-    INFO("all valid texels: mean error " << mean(all_errors) << " deg; unshadowed texels " << unshadowed_count << " of " << judged.size());
-    REQUIRE(unshadowed_count >= static_cast<long>(judged.size() / 4));
-    std::vector<double> sorted = errors;
-    std::sort(sorted.begin(), sorted.end());
-    INFO((jpeg ? "JPEG " : "float ") << name << ": valid " << valid_count << " of " << map.valid.size() << ", mean error " << mean(errors) << " deg, median "
-              << sorted[sorted.size() / 2] << ", p99 " << sorted[sorted.size() * 99 / 100]);
-    CHECK(valid_count >= unshadowed_count * 99 / 100);
-    CHECK(mean(errors) < 3.0);
-  }
+    for (const std::string& name : sample_material_names()) {
+      const Surface surface = make_sample_surface(name, 96, 3);
+      const NormalMap map = top_view_stereo(surface, jpeg);
+      const std::vector<float> truth = surface_normals(surface);
+      std::vector<std::uint8_t> judged = unshadowed_texels(surface, truth);
+      const auto unshadowed_count = std::count(judged.begin(), judged.end(), 1);
+      for (std::size_t i = 0; i < judged.size(); ++i) judged[i] &= map.valid[i];
+      const auto valid_count = std::count(judged.begin(), judged.end(), 1);
+      const std::vector<double> all_errors = angular_errors_degrees(map.normals, truth, map.valid);
+      const std::vector<double> errors = angular_errors_degrees(map.normals, truth, judged);
+      INFO("all valid texels: mean error " << mean(all_errors) << " deg; unshadowed texels "
+                                           << unshadowed_count << " of " << judged.size());
+      REQUIRE(unshadowed_count >= static_cast<long>(judged.size() / 4));
+      std::vector<double> sorted = errors;
+      std::sort(sorted.begin(), sorted.end());
+      INFO((jpeg ? "JPEG " : "float ")
+           << name << ": valid " << valid_count << " of " << map.valid.size() << ", mean error "
+           << mean(errors) << " deg, median " << sorted[sorted.size() / 2] << ", p99 "
+           << sorted[sorted.size() * 99 / 100]);
+      CHECK(valid_count >= unshadowed_count * 99 / 100);
+      CHECK(mean(errors) < 3.0);
+    }
   }
 }
 
 TEST_CASE("integrating the normals of a periodic height field gives the heights back", "[range]") {
-  auto check_recovery = [](const Surface& surface, double max_relative, double rms_relative, double min_correlation) {
+  auto check_recovery = [](const Surface& surface, double max_relative, double rms_relative,
+                           double min_correlation) {
     const std::uint32_t n = surface.size;
     const Plane heights = integrate_normals(surface_normals(surface), n, n);
     Plane truth(n, n);
@@ -96,8 +105,10 @@ TEST_CASE("integrating the normals of a periodic height field gives the heights 
     const double range = truth.maxCoeff() - truth.minCoeff();
     const double max_error = (heights - truth).abs().maxCoeff();
     const double rms_error = std::sqrt((heights - truth).square().mean());
-    const double correlation = (heights * truth).sum() / std::sqrt(heights.square().sum() * truth.square().sum());
-    INFO("max error " << max_error << ", RMS " << rms_error << " of range " << range << ", correlation " << correlation);
+    const double correlation =
+        (heights * truth).sum() / std::sqrt(heights.square().sum() * truth.square().sum());
+    INFO("max error " << max_error << ", RMS " << rms_error << " of range " << range << ", correlation "
+                      << correlation);
     CHECK(correlation > min_correlation);
     CHECK(max_error < max_relative * range);
     CHECK(rms_error < rms_relative * range);
@@ -107,7 +118,8 @@ TEST_CASE("integrating the normals of a periodic height field gives the heights 
     smooth.size = 64;
     for (std::uint32_t r = 0; r < 64; ++r)
       for (std::uint32_t c = 0; c < 64; ++c)
-        smooth.height.push_back(static_cast<float>(3.0 * std::sin(2 * M_PI * c / 64.0) + 2.0 * std::cos(2 * M_PI * 2 * r / 64.0) +
+        smooth.height.push_back(static_cast<float>(3.0 * std::sin(2 * M_PI * c / 64.0) +
+                                                   2.0 * std::cos(2 * M_PI * 2 * r / 64.0) +
                                                    std::sin(2 * M_PI * (c + 3 * r) / 64.0)));
     check_recovery(smooth, 0.01, 0.005, 0.9999);
   }
@@ -130,7 +142,8 @@ TEST_CASE("Wang range tiles lay out seamlessly and block by block", "[range]") {
     const std::uint16_t* cut = tiles.cuts.data() + q * half;
     REQUIRE(cut[0] == 0);
     REQUIRE(cut[half - 1] == half);
-    for (std::uint32_t v = 1; v + 1 < half; ++v) REQUIRE((cut[v] >= std::max<int>(1, cut[v - 1]) && cut[v] <= half - 1));
+    for (std::uint32_t v = 1; v + 1 < half; ++v)
+      REQUIRE((cut[v] >= std::max<int>(1, cut[v - 1]) && cut[v] <= half - 1));
   }
 
   const std::uint32_t size = 512;
@@ -141,7 +154,8 @@ TEST_CASE("Wang range tiles lay out seamlessly and block by block", "[range]") {
   std::size_t across_count = 0, inside_count = 0;
   for (std::uint32_t r = 0; r + 1 < size; ++r) {
     for (std::uint32_t c = 0; c + 1 < size; ++c) {
-      const double step = std::abs(map[r * size + c + 1] - map[r * size + c]) + std::abs(map[(r + 1) * size + c] - map[r * size + c]);
+      const double step = std::abs(map[r * size + c + 1] - map[r * size + c]) +
+                          std::abs(map[(r + 1) * size + c] - map[r * size + c]);
       const bool edge = (c + 1) % tiles.tile_size == 0 || (r + 1) % tiles.tile_size == 0;
       (edge ? across : inside) += step;
       ++(edge ? across_count : inside_count);
@@ -209,7 +223,8 @@ TEST_CASE("the relief tone is tiled under the heights' layout, texel for texel",
   // A tone of three colour planes, each its own function of the height: each channel enlarges to its
   // own function (a plane laid out or filled on its own, or read from another plane, would break it).
   const std::array<std::function<double(double)>, 3> channel_of{
-      tone_of, [&](double h) { return 2.0 - 0.5 * tone_of(h); }, [&](double h) { return 0.5 + 0.25 * tone_of(h); }};
+      tone_of, [&](double h) { return 2.0 - 0.5 * tone_of(h); },
+      [&](double h) { return 0.5 + 0.25 * tone_of(h); }};
   std::vector<Plane> planes;
   for (const auto& f : channel_of) planes.push_back(heights.unaryExpr(f));
   const RangeTiles coloured = build_range_tiles(heights, options, planes);
@@ -218,8 +233,10 @@ TEST_CASE("the relief tone is tiled under the heights' layout, texel for texel",
   for (std::size_t k = 0; k < 3; ++k) {
     enlarge_range_map(coloured, 5, -13, 7, size, size, toned, tone_channel(k));
     double channel_worst = 0.0;
-    for (std::size_t i = 0; i < map.size(); ++i) channel_worst = std::max(channel_worst, std::abs(toned[i] - channel_of[k](map[i])));
-    INFO("channel " << k << ": worst |tone - f(height)| " << channel_worst << ", tone step " << coloured.tone_scale);
+    for (std::size_t i = 0; i < map.size(); ++i)
+      channel_worst = std::max(channel_worst, std::abs(toned[i] - channel_of[k](map[i])));
+    INFO("channel " << k << ": worst |tone - f(height)| " << channel_worst << ", tone step "
+                    << coloured.tone_scale);
     // Each channel is rounded down or up, whichever keeps the colour (range_tile_builder.hpp).
     CHECK(channel_worst <= coloured.tone_scale + 1e-4);
   }
@@ -231,7 +248,8 @@ TEST_CASE("the relief tone is tiled under the heights' layout, texel for texel",
   enlarge_range_map(plain, 5, 0, 0, size, size, toned, RangeChannel::tone);
   CHECK(std::all_of(toned.begin(), toned.end(), [](float t) { return t == 1.0f; }));
   const Plane small = Plane::Ones(64, 64);
-  CHECK_THROWS_AS(build_range_tiles(heights, options, std::span<const Plane>(&small, 1)), std::invalid_argument);
+  CHECK_THROWS_AS(build_range_tiles(heights, options, std::span<const Plane>(&small, 1)),
+                  std::invalid_argument);
 }
 
 TEST_CASE("a tone of three colour planes is rounded to keep its colour", "[range][tone]") {
@@ -263,14 +281,19 @@ TEST_CASE("a tone of three colour planes is rounded to keep its colour", "[range
     enlarge_range_map(tiles, 5, 0, 0, size, size, shown[k], tone_channel(k));
   }
   double stored = 0.0;
-  for (std::size_t i = 0; i < shown[0].size(); ++i) stored += colour_error(shown[0][i], shown[1][i], shown[2][i]) / static_cast<double>(shown[0].size());
+  for (std::size_t i = 0; i < shown[0].size(); ++i)
+    stored += colour_error(shown[0][i], shown[1][i], shown[2][i]) / static_cast<double>(shown[0].size());
   // Each channel to its nearest level on its own, over every texel of the map.
-  auto nearest = [&](double v) { return offset + step * std::clamp(std::round((v - offset) / step), 0.0, top); };
+  auto nearest = [&](double v) {
+    return offset + step * std::clamp(std::round((v - offset) / step), 0.0, top);
+  };
   double independent = 0.0;
   for (Eigen::Index i = 0; i < green.size(); ++i) {
-    independent += colour_error(nearest(planes[0](i)), nearest(planes[1](i)), nearest(planes[2](i))) / static_cast<double>(green.size());
+    independent += colour_error(nearest(planes[0](i)), nearest(planes[1](i)), nearest(planes[2](i))) /
+                   static_cast<double>(green.size());
   }
-  INFO("RMS colour error (log ratio): stored " << std::sqrt(stored) << ", rounded channel by channel " << std::sqrt(independent));
+  INFO("RMS colour error (log ratio): stored " << std::sqrt(stored) << ", rounded channel by channel "
+                                               << std::sqrt(independent));
   // Measured: 0.045 against 0.057 (the brightness error counts too, at a quarter).
   CHECK(std::sqrt(stored) < 0.85 * std::sqrt(independent));
 }
@@ -305,7 +328,8 @@ bool all_tiles_differ(const RangeTiles& tiles) {
   return true;
 }
 
-TEST_CASE("a periodic relief gets patches in step with its period and a stochastic one keeps its variety", "[range]") {
+TEST_CASE("a periodic relief gets patches in step with its period and a stochastic one keeps its variety",
+          "[range]") {
   // A weave-like relief: a checkerboard of bumps, 16 texels a period, which divides the 64-texel tile.
   // Patches cut at random places are out of step, so every cut would have to hide a phase jump. At
   // 400^2 the places are too many to score them all, and a sample of them is scored.
@@ -316,14 +340,15 @@ TEST_CASE("a periodic relief gets patches in step with its period and a stochast
   for (Eigen::Index size : {160, 400}) {
     Plane weave(size, size);
     for (Eigen::Index r = 0; r < size; ++r) {
-      for (Eigen::Index c = 0; c < size; ++c) weave(r, c) = 5.0 * std::sin(2 * pi * c / 16.0) * std::sin(2 * pi * r / 16.0);
+      for (Eigen::Index c = 0; c < size; ++c)
+        weave(r, c) = 5.0 * std::sin(2 * pi * c / 16.0) * std::sin(2 * pi * r / 16.0);
     }
     for (std::uint64_t seed : {1u, 2u, 3u}) {
       options.seed = seed;
       const RangeTiles tiles = build_range_tiles(weave, options);
       const double worst = worst_period_break(tiles, 16);
-      INFO(size << "^2, seed " << seed << ": the enlarged map changes by up to " << worst << " under a one-period shift; step "
-                << tiles.height_scale);
+      INFO(size << "^2, seed " << seed << ": the enlarged map changes by up to " << worst
+                << " under a one-period shift; step " << tiles.height_scale);
       CHECK(worst <= 2.0 * tiles.height_scale + 1e-6);
     }
   }

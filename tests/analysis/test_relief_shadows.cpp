@@ -25,7 +25,8 @@ using test::top_view_dataset;
 double x_derivative_skewness(const Plane& grey) {
   std::vector<double> d;
   for (Eigen::Index r = 0; r < grey.rows(); ++r)
-    for (Eigen::Index c = 0; c + 1 < grey.cols(); ++c) d.push_back(std::cbrt(std::max(grey(r, c + 1), 0.0)) - std::cbrt(std::max(grey(r, c), 0.0)));
+    for (Eigen::Index c = 0; c + 1 < grey.cols(); ++c)
+      d.push_back(std::cbrt(std::max(grey(r, c + 1), 0.0)) - std::cbrt(std::max(grey(r, c), 0.0)));
   double mean = 0.0;
   for (double v : d) mean += v;
   mean /= static_cast<double>(d.size());
@@ -41,7 +42,8 @@ double x_derivative_skewness(const Plane& grey) {
 
 }  // namespace
 
-TEST_CASE("cast shadows are kept where they explain a shadowed relief, in the measured order", "[tone][shadows]") {
+TEST_CASE("cast shadows are kept where they explain a shadowed relief, in the measured order",
+          "[tone][shadows]") {
   constexpr std::uint32_t size = 64;
   const Surface surface = make_sample_surface("leather", size, 3);
   const BtfDataset dataset = top_view_dataset(surface);
@@ -61,14 +63,18 @@ TEST_CASE("cast shadows are kept where they explain a shadowed relief, in the me
   dataset.linear_rgb({light, 0}, rgb);
   Plane measured(size, size);
   for (std::size_t p = 0; p < dataset.pixel_count(); ++p)
-    measured(static_cast<Eigen::Index>(p / size), static_cast<Eigen::Index>(p % size)) = rgb[3 * p] + rgb[3 * p + 1] + rgb[3 * p + 2];
+    measured(static_cast<Eigen::Index>(p / size), static_cast<Eigen::Index>(p % size)) =
+        rgb[3 * p] + rgb[3 * p + 1] + rgb[3 * p + 2];
   const std::vector<float> horizons = range_map_horizons(heights, fit.scale);
-  const Plane unshadowed = relit_factor(heights, dataset.lights()[light].vector(), z_floor) * relief_tone(dataset, 0, heights, z_floor);
-  const Plane shadowed =
-      relit_factor(heights, dataset.lights()[light].vector(), z_floor, horizons) * relief_tone(dataset, 0, heights, z_floor, horizons);
-  const double skew_measured = x_derivative_skewness(measured), skew_unshadowed = x_derivative_skewness(unshadowed),
+  const Plane unshadowed = relit_factor(heights, dataset.lights()[light].vector(), z_floor) *
+                           relief_tone(dataset, 0, heights, z_floor);
+  const Plane shadowed = relit_factor(heights, dataset.lights()[light].vector(), z_floor, horizons) *
+                         relief_tone(dataset, 0, heights, z_floor, horizons);
+  const double skew_measured = x_derivative_skewness(measured),
+               skew_unshadowed = x_derivative_skewness(unshadowed),
                skew_shadowed = x_derivative_skewness(shadowed);
-  INFO("x derivative skewness: measured " << skew_measured << ", without shadows " << skew_unshadowed << ", with " << skew_shadowed);
+  INFO("x derivative skewness: measured " << skew_measured << ", without shadows " << skew_unshadowed
+                                          << ", with " << skew_shadowed);
   CHECK(std::abs(skew_shadowed - skew_measured) < std::abs(skew_unshadowed - skew_measured));
 }
 

@@ -18,7 +18,8 @@ namespace carbtf {
 using test::heights_of;
 using test::top_view_dataset;
 
-TEST_CASE("a relief's specular lobe is fitted with about the renderer's strength and gloss", "[tone][specular]") {
+TEST_CASE("a relief's specular lobe is fitted with about the renderer's strength and gloss",
+          "[tone][specular]") {
   constexpr std::uint32_t size = 64;
   Surface surface = make_sample_surface("fabric", size, 3);
   surface.specular = 0.06f;
@@ -27,11 +28,13 @@ TEST_CASE("a relief's specular lobe is fitted with about the renderer's strength
   const double z_floor = std::max(std::cos(75.0 * std::numbers::pi / 180.0), 1e-3);
 
   const BtfDataset dataset = top_view_dataset(surface);
-  const SpecularFit fit = fit_relief_specular(dataset, 0, heights, relief_tone(dataset, 0, heights, z_floor), z_floor);
+  const SpecularFit fit =
+      fit_relief_specular(dataset, 0, heights, relief_tone(dataset, 0, heights, z_floor), z_floor);
   // The renderer's lobe: irradiance * N.L * specular * (gloss + 8) / (8 pi) * (N.H)^gloss.
-  const double truth = RenderOptions{}.irradiance * surface.specular * (surface.gloss + 8.0) / (8.0 * std::numbers::pi);
-  INFO("strength " << fit.lobe.strength << " (renderer " << truth << "), gloss " << fit.lobe.gloss << ": error " << fit.error
-                   << ", without the lobe " << fit.error_without);
+  const double truth =
+      RenderOptions{}.irradiance * surface.specular * (surface.gloss + 8.0) / (8.0 * std::numbers::pi);
+  INFO("strength " << fit.lobe.strength << " (renderer " << truth << "), gloss " << fit.lobe.gloss
+                   << ": error " << fit.error << ", without the lobe " << fit.error_without);
   CHECK(fit.error <= (1.0 - kSpecularFitGain) * fit.error_without);
   CHECK(fit.lobe.strength > truth / 1.5);
   CHECK(fit.lobe.strength < truth * 1.5);
@@ -45,8 +48,10 @@ TEST_CASE("a relief without highlights gets no specular lobe", "[tone][specular]
   const Plane heights = heights_of(surface);
   const double z_floor = std::max(std::cos(75.0 * std::numbers::pi / 180.0), 1e-3);
   const BtfDataset dataset = top_view_dataset(surface);
-  const SpecularFit fit = fit_relief_specular(dataset, 0, heights, relief_tone(dataset, 0, heights, z_floor), z_floor);
-  INFO("strength " << fit.lobe.strength << ", gloss " << fit.lobe.gloss << ": error " << fit.error << ", without " << fit.error_without);
+  const SpecularFit fit =
+      fit_relief_specular(dataset, 0, heights, relief_tone(dataset, 0, heights, z_floor), z_floor);
+  INFO("strength " << fit.lobe.strength << ", gloss " << fit.lobe.gloss << ": error " << fit.error
+                   << ", without " << fit.error_without);
   CHECK(fit.lobe.strength == 0.0);
   CHECK(fit.error == fit.error_without);
 }

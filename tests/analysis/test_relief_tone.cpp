@@ -24,7 +24,9 @@ double correlation(const Plane& a, const Plane& b) {
   return (da * db).sum() / std::sqrt(da.square().sum() * db.square().sum());
 }
 
-double deviation(const Plane& a) { return std::sqrt((a - a.mean()).square().mean()); }
+double deviation(const Plane& a) {
+  return std::sqrt((a - a.mean()).square().mean());
+}
 
 }  // namespace
 
@@ -53,7 +55,8 @@ TEST_CASE("the relief tone follows a crease-darkened albedo and stays flat witho
     for (int k = 0; k < 3; ++k) uniform.albedo[3 * p + static_cast<std::size_t>(k)] = 0.5f;
   }
   const Plane flat_tone = relief_tone(top_view_dataset(uniform), 0, heights, z_floor);
-  INFO("tone deviation with the crease albedo " << deviation(tone) << ", with a uniform albedo " << deviation(flat_tone));
+  INFO("tone deviation with the crease albedo " << deviation(tone) << ", with a uniform albedo "
+                                                << deviation(flat_tone));
   // What is left with a uniform albedo is occlusion and shadow, which the relit factor cannot give;
   // the darker crease albedo adds to it, and darkens the tone exactly where the albedo is dark.
   CHECK(deviation(flat_tone) < deviation(tone));
@@ -66,7 +69,8 @@ TEST_CASE("the relief tone follows a crease-darkened albedo and stays flat witho
     dark_flat += flat_tone(i);
     ++count;
   }
-  INFO("mean tone where the albedo is below its mean: " << dark / count << ", with a uniform albedo " << dark_flat / count);
+  INFO("mean tone where the albedo is below its mean: " << dark / count << ", with a uniform albedo "
+                                                        << dark_flat / count);
   CHECK(dark / count < dark_flat / count - 0.05);
 }
 
@@ -74,12 +78,12 @@ TEST_CASE("clamping the remainder bounds each channel around its median", "[tone
   std::vector<Plane> channels(2, Plane(8, 8));
   for (Eigen::Index i = 0; i < 64; ++i) {
     channels[0](i / 8, i % 8) = static_cast<double>(i % 4);  // upper median 2, MAD 1
-    channels[1](i / 8, i % 8) = i == 5 ? 100.0 : 1.0;         // one spike on a flat field
+    channels[1](i / 8, i % 8) = i == 5 ? 100.0 : 1.0;        // one spike on a flat field
   }
   clamp_remainder(channels, 1.0);
   CHECK(channels[0].minCoeff() == Approx(2.0 - 1.4826));  // the zeros are raised
-  CHECK(channels[0].maxCoeff() == 3.0);                    // within 2 + 1.4826: untouched
-  CHECK(channels[1].maxCoeff() == 1.0);  // MAD 0: the spike is clamped to the median
+  CHECK(channels[0].maxCoeff() == 3.0);                   // within 2 + 1.4826: untouched
+  CHECK(channels[1].maxCoeff() == 1.0);                   // MAD 0: the spike is clamped to the median
 }
 
 TEST_CASE("the smooth texture is scaled so that the render keeps the measured mean", "[tone]") {
@@ -94,7 +98,8 @@ TEST_CASE("the smooth texture is scaled so that the render keeps the measured me
       tone(r, c) = 1.0 + 0.5 * std::sin(0.4 * static_cast<double>(c));
       relit(r, c) = 1.0 + 0.3 * std::cos(0.3 * static_cast<double>(r + c));
       const double relief = tone(r, c) * relit(r, c);
-      for (int k = 0; k < 3; ++k) measured[static_cast<std::size_t>(k)](r, c) = (0.2 + 0.1 * k) * relief * relief;
+      for (int k = 0; k < 3; ++k)
+        measured[static_cast<std::size_t>(k)](r, c) = (0.2 + 0.1 * k) * relief * relief;
     }
   }
   std::vector<Plane> smooth = measured;
@@ -109,17 +114,20 @@ TEST_CASE("the smooth texture is scaled so that the render keeps the measured me
   for (const Plane& channel : measured) target += channel.mean();
   REQUIRE(render_mean(smooth) < 0.97 * target);  // the case is one the scaling has to mend
   const std::vector<Plane> before = smooth;
-  match_render_mean(smooth, measured, weighted_tone(std::span<const Plane>(&tone, 1), 1.0, {1.0f, 1.0f, 1.0f}), relit);
+  match_render_mean(smooth, measured,
+                    weighted_tone(std::span<const Plane>(&tone, 1), 1.0, {1.0f, 1.0f, 1.0f}), relit);
   CHECK(render_mean(smooth) == Approx(target).epsilon(1e-12));
   // One gain for all channels: the colour's chroma stays the smooth texture's.
   const double gain = smooth[0].mean() / before[0].mean();
   CHECK(gain > 1.0);
-  for (std::size_t k = 0; k < 3; ++k) CHECK(((smooth[k] - gain * before[k]).abs() < 1e-12 * gain * before[k].abs().maxCoeff()).all());
+  for (std::size_t k = 0; k < 3; ++k)
+    CHECK(((smooth[k] - gain * before[k]).abs() < 1e-12 * gain * before[k].abs().maxCoeff()).all());
 
   // Nothing to match: a black measurement leaves the texture as it was.
   std::vector<Plane> black(3, Plane::Zero(n, n));
   std::vector<Plane> unchanged = before;
-  match_render_mean(unchanged, black, weighted_tone(std::span<const Plane>(&tone, 1), 1.0, {1.0f, 1.0f, 1.0f}), relit);
+  match_render_mean(unchanged, black,
+                    weighted_tone(std::span<const Plane>(&tone, 1), 1.0, {1.0f, 1.0f, 1.0f}), relit);
   for (std::size_t k = 0; k < 3; ++k) CHECK((unchanged[k] == before[k]).all());
 }
 
@@ -152,7 +160,8 @@ TEST_CASE("a two-colour weave gets a coloured tone and a leather a grey one", "[
 
 namespace carbtf {
 
-TEST_CASE("the tone's colour planes follow each thread's colour, and only a weave's colour counts as visible", "[tone]") {
+TEST_CASE("the tone's colour planes follow each thread's colour, and only a weave's colour counts as visible",
+          "[tone]") {
   constexpr std::uint32_t size = 64;
   const double z_floor = std::max(std::cos(75.0 * M_PI / 180.0), 1e-3);
   auto planes_of = [&](const Surface& surface) {

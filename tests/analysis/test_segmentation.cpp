@@ -5,12 +5,12 @@
 #include <set>
 
 #include "carbtf/analysis/btf/btf_dataset.hpp"
-#include "carbtf/reference/noise.hpp"
 #include "carbtf/analysis/sample/height_field_renderer.hpp"
 #include "carbtf/analysis/sample/sample_materials.hpp"
 #include "carbtf/analysis/segmentation/btf_segmentation.hpp"
 #include "carbtf/analysis/segmentation/kmeans.hpp"
 #include "carbtf/analysis/segmentation/lab_histogram.hpp"
+#include "carbtf/reference/noise.hpp"
 
 #include "test_top_view.hpp"
 
@@ -35,12 +35,13 @@ TEST_CASE("Lab conversion and the cumulative histogram feature", "[segmentation]
   const std::vector<float> grey(4 * 4 * 3, 0.18f);
   const std::vector<float> feature = lab_cumulative_histogram(grey, 4, 4, 10);
   REQUIRE(feature.size() == 30u);
-  CHECK(feature[9] == 1.0f);   // cumulative: rises to 1
-  CHECK(feature[3] == 0.0f);   // L* of 18% grey is about 49.5: bins below 40 are empty
+  CHECK(feature[9] == 1.0f);  // cumulative: rises to 1
+  CHECK(feature[3] == 0.0f);  // L* of 18% grey is about 49.5: bins below 40 are empty
   CHECK(feature[4] == 1.0f);
 }
 
-TEST_CASE("k-means finds separated clusters, deterministically for a seed and any thread count", "[segmentation]") {
+TEST_CASE("k-means finds separated clusters, deterministically for a seed and any thread count",
+          "[segmentation]") {
   Eigen::MatrixXd samples(300, 2);
   for (int i = 0; i < 300; ++i) {
     const int blob = i % 3;
@@ -56,7 +57,8 @@ TEST_CASE("k-means finds separated clusters, deterministically for a seed and an
   const KMeansResult two = kmeans(samples, options);
   REQUIRE(one.labels == two.labels);
   REQUIRE(one.centroids == two.centroids);
-  for (int i = 0; i < 300; ++i) CHECK(one.labels[static_cast<std::size_t>(i)] == one.labels[static_cast<std::size_t>(i % 3)]);
+  for (int i = 0; i < 300; ++i)
+    CHECK(one.labels[static_cast<std::size_t>(i)] == one.labels[static_cast<std::size_t>(i % 3)]);
   CHECK(one.sizes == std::vector<std::uint32_t>{100, 100, 100});
   CHECK(one.nearest == std::vector<std::uint32_t>{one.nearest[0], one.nearest[1], one.nearest[2]});
   CHECK(one.nearest[0] < one.nearest[1]);  // numbered by nearest member
@@ -68,7 +70,8 @@ TEST_CASE("k-means finds separated clusters, deterministically for a seed and an
   }
 }
 
-TEST_CASE("segmentation of a sample material is deterministic and separates top from grazing pairs", "[segmentation]") {
+TEST_CASE("segmentation of a sample material is deterministic and separates top from grazing pairs",
+          "[segmentation]") {
   const BtfDataset dataset = rendered_dataset("leather", 24);
   SegmentationOptions options;
   options.progress = false;

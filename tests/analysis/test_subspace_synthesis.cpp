@@ -7,9 +7,9 @@
 #include <cstring>
 
 #include "carbtf/analysis/analyze.hpp"
-#include "carbtf/reference/subspace_synthesis.hpp"
 #include "carbtf/analysis/sample/height_field_renderer.hpp"
 #include "carbtf/analysis/sample/sample_materials.hpp"
+#include "carbtf/reference/subspace_synthesis.hpp"
 #include "carbtf/reference/synthetic_material.hpp"
 #include "test_support.hpp"
 #include "test_top_view.hpp"
@@ -262,7 +262,8 @@ TEST_CASE("block initialization values are refused where they cannot hold", "[sy
 
 namespace carbtf {
 
-TEST_CASE("a synthesized subspace image keeps the measured contrast through the pyramid collapse", "[synthesis][calibration]") {
+TEST_CASE("a synthesized subspace image keeps the measured contrast through the pyramid collapse",
+          "[synthesis][calibration]") {
   // Before the collapse calibration the leather sample's synthesized images kept 54-69% of the measured
   // variance in every band although each band kept its own: the loss is in the collapse.
   constexpr std::uint32_t size = 64;
@@ -285,7 +286,8 @@ TEST_CASE("a synthesized subspace image keeps the measured contrast through the 
     reference::synthesize_subspace(m, s, block, std::span<float>(image));
     auto luminance_variance = [](const std::vector<float>& rgb) {
       std::vector<double> y(rgb.size() / 3);
-      for (std::size_t p = 0; p < y.size(); ++p) y[p] = 0.2126 * rgb[p * 3] + 0.7152 * rgb[p * 3 + 1] + 0.0722 * rgb[p * 3 + 2];
+      for (std::size_t p = 0; p < y.size(); ++p)
+        y[p] = 0.2126 * rgb[p * 3] + 0.7152 * rgb[p * 3 + 1] + 0.0722 * rgb[p * 3 + 2];
       double mean = 0.0, square = 0.0;
       for (double v : y) mean += v;
       mean /= static_cast<double>(y.size());
@@ -327,14 +329,16 @@ TEST_CASE("each subspace image takes the pyramid level count whose model looks n
     return levels;
   };
   const auto log_has = [](const AnalysisResult& result, const std::string& text) {
-    return std::any_of(result.log.begin(), result.log.end(), [&](const std::string& line) { return line.find(text) != std::string::npos; });
+    return std::any_of(result.log.begin(), result.log.end(),
+                       [&](const std::string& line) { return line.find(text) != std::string::npos; });
   };
 
   const AnalysisResult chosen = analyze_btf(dataset, options);
   const std::vector<std::uint32_t> chosen_levels = level_counts(chosen);
   INFO("levels per subspace: " << Catch::Detail::stringify(chosen_levels));
   CHECK(std::count(chosen_levels.begin(), chosen_levels.end(), 2u) >= 1);
-  CHECK(std::all_of(chosen_levels.begin(), chosen_levels.end(), [](std::uint32_t l) { return l == 2u || l == 3u; }));
+  CHECK(std::all_of(chosen_levels.begin(), chosen_levels.end(),
+                    [](std::uint32_t l) { return l == 2u || l == 3u; }));
   // 6 clamps x 2 level counts, then 6 noise gains on every band and 6 on the chroma bands
   CHECK(log_has(chosen, "2 pyramid levels, noise gain"));
   CHECK(log_has(chosen, "chosen of 24 candidates"));

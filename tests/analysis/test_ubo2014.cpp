@@ -111,7 +111,6 @@ BtfDataset write_and_read(const Ubo2014WriteOptions& options, const std::string&
 
 }  // namespace ubo2014_tests
 
-
 TEST_CASE("UBO2014 files read back value for value in both layouts", "[ubo2014]") {
   using namespace ubo2014_tests;  // here, not at file scope: one unity source
   const BtfDataset& folder = ubo2003_folder_dataset();

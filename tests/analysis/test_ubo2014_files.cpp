@@ -154,7 +154,6 @@ void require_input_error(const fs::path& path, const std::vector<std::string>& f
 
 }  // namespace ubo2014_file_tests
 
-
 TEST_CASE("UBO2014 files laid out by hand decode in the format's order", "[btf][ubo2014]") {
   using namespace ubo2014_file_tests;  // here, not at file scope: one unity source
   std::vector<std::string> warnings;

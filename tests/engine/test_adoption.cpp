@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "carbtf/reference/noise.hpp"
 #include "carbtf/engine/synthesis/noise_generator.hpp"
+#include "carbtf/reference/noise.hpp"
 #include "test_support.hpp"
 
 using namespace carbtf;
@@ -22,7 +22,8 @@ struct HostMessages {
   std::vector<std::string> texts;
 };
 
-VKAPI_ATTR VkBool32 VKAPI_CALL host_callback(VkDebugUtilsMessageSeverityFlagBitsEXT, VkDebugUtilsMessageTypeFlagsEXT,
+VKAPI_ATTR VkBool32 VKAPI_CALL host_callback(VkDebugUtilsMessageSeverityFlagBitsEXT,
+                                             VkDebugUtilsMessageTypeFlagsEXT,
                                              const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
   auto* messages = static_cast<HostMessages*>(user);
   messages->count++;

@@ -70,7 +70,9 @@ TEST_CASE("a deliberate validation error is caught by the messenger", "[engine][
   ContextCreateInfo info;
   info.enable_validation = true;
   int callback_errors = 0;
-  info.on_message = [&](MessageSeverity severity, const char*) { callback_errors += severity == MessageSeverity::error; };
+  info.on_message = [&](MessageSeverity severity, const char*) {
+    callback_errors += severity == MessageSeverity::error;
+  };
   std::unique_ptr<Context> context;
   REQUIRE(Context::create(info, context).ok());
   REQUIRE(context->validation_report().clean());
@@ -93,10 +95,12 @@ TEST_CASE("a deliberate validation error is caught by the messenger", "[engine][
 TEST_CASE("buffers, images and timers are created, named and destroyed cleanly", "[engine][validation]") {
   test::ValidatedContext context;
   Buffer device_buffer, readback;
-  REQUIRE(Buffer::create(*context, {1 << 20, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::device_local, "test"},
+  REQUIRE(Buffer::create(*context,
+                         {1 << 20, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUsage::device_local, "test"},
                          device_buffer)
               .ok());
-  REQUIRE(Buffer::create(*context, {4096, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::host_readback, "readback"},
+  REQUIRE(Buffer::create(*context,
+                         {4096, VK_BUFFER_USAGE_TRANSFER_DST_BIT, MemoryUsage::host_readback, "readback"},
                          readback)
               .ok());
   CHECK(device_buffer.size() == (1 << 20));
@@ -112,18 +116,21 @@ TEST_CASE("buffers, images and timers are created, named and destroyed cleanly",
 
   GpuTimer timer;
   REQUIRE(GpuTimer::create(*context, 2, timer).ok());
-  REQUIRE(context->submit_and_wait([&](VkCommandBuffer cmd) {
-    timer.record_reset(cmd);
-    timer.record_timestamp(cmd, 0, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT);
-    context->vk().vkCmdFillBuffer(cmd, readback.handle(), 0, 4096, 0x3f800000u);
-    timer.record_timestamp(cmd, 1, VK_PIPELINE_STAGE_TRANSFER_BIT);
-    auto barrier = vk_struct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
-    barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-    context->vk().vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier,
-                                       0, nullptr, 0, nullptr);
-    return Status{};
-  }).ok());
+  REQUIRE(context
+              ->submit_and_wait([&](VkCommandBuffer cmd) {
+                timer.record_reset(cmd);
+                timer.record_timestamp(cmd, 0, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT);
+                context->vk().vkCmdFillBuffer(cmd, readback.handle(), 0, 4096, 0x3f800000u);
+                timer.record_timestamp(cmd, 1, VK_PIPELINE_STAGE_TRANSFER_BIT);
+                auto barrier = vk_struct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
+                barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+                barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+                context->vk().vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                                                   VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0, nullptr, 0,
+                                                   nullptr);
+                return Status{};
+              })
+              .ok());
   REQUIRE(readback.invalidate_for_host_read().ok());
   CHECK(static_cast<const float*>(readback.mapped())[1023] == 1.0f);
   double ms = -1;

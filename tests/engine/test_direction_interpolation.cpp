@@ -30,7 +30,9 @@ double l1(const std::vector<double>& a, const std::vector<double>& b) {
 }
 
 // The direction whose projection is (x, y).
-std::pair<double, double> unproject(double x, double y) { return {std::hypot(x, y) * 0.5 * std::numbers::pi, std::atan2(y, x)}; }
+std::pair<double, double> unproject(double x, double y) {
+  return {std::hypot(x, y) * 0.5 * std::numbers::pi, std::atan2(y, x)};
+}
 
 }  // namespace
 
@@ -76,7 +78,8 @@ TEST_CASE("interpolation weights sum to 1 and are exact at measured directions",
   SECTION("nine pair weights") {
     DirectionTriangulation views;
     REQUIRE(build_direction_triangulation(directions, views).ok());
-    const PairWeights exact = pair_weights(tri, views, directions[20].theta, directions[20].phi, directions[50].theta, directions[50].phi);
+    const PairWeights exact = pair_weights(tri, views, directions[20].theta, directions[20].phi,
+                                           directions[50].theta, directions[50].phi);
     double at_pair = 0.0, sum = 0.0;
     for (int k = 0; k < 9; ++k) {
       sum += exact.weight[k];
@@ -106,7 +109,8 @@ TEST_CASE("interpolation weights are continuous across triangle edges and the la
     const double eps = 1e-7 / std::hypot(nx, ny);
     const auto [t1, p1] = unproject(mx + eps * nx, my + eps * ny);
     const auto [t2, p2] = unproject(mx - eps * nx, my - eps * ny);
-    const double jump = l1(dense(direction_weights(tri, t1, p1), directions.size()), dense(direction_weights(tri, t2, p2), directions.size()));
+    const double jump = l1(dense(direction_weights(tri, t1, p1), directions.size()),
+                           dense(direction_weights(tri, t2, p2), directions.size()));
     INFO("edge " << edge.first << "-" << edge.second);
     CHECK(jump < 1e-5);
     interior += count == 2;
@@ -148,7 +152,8 @@ double l1(const PairMap& a, const PairMap& b) {
 
 }  // namespace
 
-TEST_CASE("the staircase coupling keeps the light's and the view's weights in at most 5 pairs", "[interpolation]") {
+TEST_CASE("the staircase coupling keeps the light's and the view's weights in at most 5 pairs",
+          "[interpolation]") {
   const auto directions = test::ubo2003_material_directions();
   DirectionTriangulation tri;
   REQUIRE(build_direction_triangulation(directions, tri).ok());
@@ -169,7 +174,8 @@ TEST_CASE("the staircase coupling keeps the light's and the view's weights in at
     }
     REQUIRE(nonzero <= 5);
     // The sums over views are the light's weights and the sums over lights the view's, as for the product.
-    const std::vector<double> light_dense = dense(light, directions.size()), view_dense = dense(view, directions.size());
+    const std::vector<double> light_dense = dense(light, directions.size()),
+                              view_dense = dense(view, directions.size());
     std::vector<double> light_sums(directions.size(), 0.0), view_sums(directions.size(), 0.0);
     for (const auto& [pair, w] : by_pair(staircase)) {
       light_sums[pair.first] += w;
@@ -183,8 +189,10 @@ TEST_CASE("the staircase coupling keeps the light's and the view's weights in at
     std::rotate(light_turned.weight.begin(), light_turned.weight.begin() + 1, light_turned.weight.end());
     std::swap(view_turned.index[0], view_turned.index[2]);
     std::swap(view_turned.weight[0], view_turned.weight[2]);
-    REQUIRE(l1(by_pair(couple_pair_weights(light_turned, view_turned, PairCoupling::staircase)), by_pair(staircase)) < 1e-7);
-    largest_difference_from_product = std::max(largest_difference_from_product, l1(by_pair(staircase), by_pair(product)));
+    REQUIRE(l1(by_pair(couple_pair_weights(light_turned, view_turned, PairCoupling::staircase)),
+               by_pair(staircase)) < 1e-7);
+    largest_difference_from_product =
+        std::max(largest_difference_from_product, l1(by_pair(staircase), by_pair(product)));
   }
   // Another interpolation than the product's between the measured pairs (at the centroids of both
   // triangles the product spreads 1/9 over 9 pairs, the staircase 1/3 over 3).
@@ -193,8 +201,9 @@ TEST_CASE("the staircase coupling keeps the light's and the view's weights in at
   SECTION("exact at the measured pairs") {
     for (std::uint32_t i = 0; i < directions.size(); i += 7) {
       for (std::uint32_t j = 0; j < directions.size(); j += 5) {
-        const PairMap m = by_pair(pair_weights(tri, tri, directions[i].theta, directions[i].phi, directions[j].theta,
-                                               directions[j].phi, PairCoupling::staircase));
+        const PairMap m =
+            by_pair(pair_weights(tri, tri, directions[i].theta, directions[i].phi, directions[j].theta,
+                                 directions[j].phi, PairCoupling::staircase));
         INFO("light " << i << ", view " << j);
         REQUIRE(m.size() == 1u);
         REQUIRE(m.begin()->first == std::make_pair(i, j));
@@ -241,8 +250,8 @@ TEST_CASE("degenerate direction sets", "[interpolation]") {
   CHECK_FALSE(build_direction_triangulation(empty, tri).ok());
 }
 
-
-TEST_CASE("MaterialDirections builds both sets once and answers weights and the subspaces they need", "[interpolation]") {
+TEST_CASE("MaterialDirections builds both sets once and answers weights and the subspaces they need",
+          "[interpolation]") {
   Material m = synthetic_material(3, 1);
   MaterialDirections directions;
   REQUIRE(MaterialDirections::build(m, directions, 16).ok());
@@ -260,7 +269,8 @@ TEST_CASE("MaterialDirections builds both sets once and answers weights and the 
   std::vector<std::uint32_t> needed;
   for (std::size_t k = 0; k < 9; ++k) {
     const std::uint32_t s = subspace_of(m, got.light[k], got.view[k]);
-    if (got.weight[k] != 0.0f && std::find(needed.begin(), needed.end(), s) == needed.end()) needed.push_back(s);
+    if (got.weight[k] != 0.0f && std::find(needed.begin(), needed.end(), s) == needed.end())
+      needed.push_back(s);
   }
   CHECK(directions.subspaces_of(got) == needed);
   const std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs = {{6, 6}, {0, 0}, {6, 6}, {1, 0}};

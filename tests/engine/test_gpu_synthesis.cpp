@@ -6,10 +6,10 @@
 #include <cmath>
 #include <limits>
 
+#include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
 #include "carbtf/reference/conformance_procedure.hpp"
 #include "carbtf/reference/subspace_synthesis.hpp"
 #include "carbtf/reference/synthetic_material.hpp"
-#include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
 #include "test_support.hpp"
 
 using namespace carbtf;
@@ -42,7 +42,8 @@ SynthesizedImages gpu_synthesize(SubspaceSynthesizer& synthesizer, const Materia
 // The GPU interpolation of the prepared images at `query` (light theta, phi, view theta, phi) against
 // the CPU blend of `images`, bit for bit; returns the query's weights.
 PairWeights require_gpu_interpolation_equal(SubspaceSynthesizer& synthesizer, const Material& m,
-                                            const SynthesizedImages& images, const std::array<double, 4>& query) {
+                                            const SynthesizedImages& images,
+                                            const std::array<double, 4>& query) {
   DirectionTriangulation lights, views;
   REQUIRE(build_direction_triangulation(m.lights, lights).ok());
   REQUIRE(build_direction_triangulation(m.views, views).ok());
@@ -87,7 +88,8 @@ TEST_CASE("GPU subspace images equal the CPU float32 reference bit for bit, in b
   context.require_clean();
 }
 
-TEST_CASE("each unrolled tap count of the CAR kernels (4, 8, 12 and 16 taps) equals the CPU", "[gpu_synthesis][gpu]") {
+TEST_CASE("each unrolled tap count of the CAR kernels (4, 8, 12 and 16 taps) equals the CPU",
+          "[gpu_synthesis][gpu]") {
   test::ValidatedContext context;
   auto synthesizer = make_synthesizer(*context);
   // Every band of a material has the same neighbourhood, so its batch runs the kernel of that count:
@@ -95,7 +97,8 @@ TEST_CASE("each unrolled tap count of the CAR kernels (4, 8, 12 and 16 taps) equ
   std::vector<CarNeighbour> sixteen = wide_neighbourhood();
   for (std::int8_t dc = -1; dc <= 2; ++dc) sixteen.push_back({-3, dc});
   const std::vector<std::vector<CarNeighbour>> neighbourhoods = {
-      neighbourhood_shapes()[1], neighbourhood_shapes()[2], neighbourhood_shapes()[3], wide_neighbourhood(), sixteen};
+      neighbourhood_shapes()[1], neighbourhood_shapes()[2], neighbourhood_shapes()[3], wide_neighbourhood(),
+      sixteen};
   SynthesisRequest request;
   request.seed = 0x7a95ULL;
   request.width = 96;
@@ -105,7 +108,8 @@ TEST_CASE("each unrolled tap count of the CAR kernels (4, 8, 12 and 16 taps) equ
   for (const auto& neighbourhood : neighbourhoods) {
     Material m = synthetic_material(2, 2);
     for (SubspaceModel& subspace : m.subspaces) {
-      for (CarBandModel& band : subspace.bands) band = spread_band(neighbourhood, 0.6f, band.sigma, band.mean);
+      for (CarBandModel& band : subspace.bands)
+        band = spread_band(neighbourhood, 0.6f, band.sigma, band.mean);
     }
     REQUIRE(validate_material(m).ok());
     for (CarScheme scheme : {CarScheme::serial, CarScheme::wavefront}) {
@@ -114,7 +118,8 @@ TEST_CASE("each unrolled tap count of the CAR kernels (4, 8, 12 and 16 taps) equ
       const SynthesizedImages images = gpu_synthesize(*synthesizer, m, request);
       for (std::uint32_t s = 0; s < 2; ++s) {
         INFO("subspace " << s);
-        test::require_bitwise_equal(images.images[s], cpu_subspace(m, s, request), std::size_t{request.width} * 3);
+        test::require_bitwise_equal(images.images[s], cpu_subspace(m, s, request),
+                                    std::size_t{request.width} * 3);
       }
     }
   }
@@ -232,7 +237,8 @@ TEST_CASE("results larger than one readback band come back whole and release() f
   const SynthesizedImages images = gpu_synthesize(*synthesizer, m, request);
   for (std::uint32_t s = 0; s < 3; ++s) {
     INFO("subspace " << s);
-    test::require_bitwise_equal(images.images[s], cpu_subspace(m, s, request), std::size_t{request.width} * 3);
+    test::require_bitwise_equal(images.images[s], cpu_subspace(m, s, request),
+                                std::size_t{request.width} * 3);
   }
   const PairWeights weights = require_gpu_interpolation_equal(*synthesizer, m, images, {0.3, 0.4, 0.9, 2.0});
 
@@ -418,18 +424,21 @@ namespace {
 // that does not conform, in that stage only.
 class OneWrongValue final : public reference::SynthesisUnderTest {
  public:
-  OneWrongValue(SubspaceSynthesizer& synthesizer, SynthesisStage wrong_stage) : gpu_(synthesizer), wrong_stage_(wrong_stage) {}
+  OneWrongValue(SubspaceSynthesizer& synthesizer, SynthesisStage wrong_stage)
+      : gpu_(synthesizer), wrong_stage_(wrong_stage) {}
   Status run(const Material& material, const SynthesisRequest& request) override {
     stage_ = request.capture;
     return gpu_.run(material, request);
   }
-  Status read_band(std::uint32_t subspace, std::uint32_t level, std::uint32_t channel, std::vector<float>& out, std::uint32_t& rows,
-                   std::uint32_t& cols) override {
+  Status read_band(std::uint32_t subspace, std::uint32_t level, std::uint32_t channel,
+                   std::vector<float>& out, std::uint32_t& rows, std::uint32_t& cols) override {
     const Status status = gpu_.read_band(subspace, level, channel, out, rows, cols);
-    if (status.ok() && stage_ == wrong_stage_ && subspace == 0 && level == 0 && channel == 0) out[out.size() / 2] += 0.5f;
+    if (status.ok() && stage_ == wrong_stage_ && subspace == 0 && level == 0 && channel == 0)
+      out[out.size() / 2] += 0.5f;
     return status;
   }
-  Status synthesize(const Material& material, const SynthesisRequest& request, SynthesizedImages& out, SynthesisTiming* timing) override {
+  Status synthesize(const Material& material, const SynthesisRequest& request, SynthesizedImages& out,
+                    SynthesisTiming* timing) override {
     return gpu_.synthesize(material, request, out, timing);
   }
   Status interpolate(const Material& material, const PairWeights& weights, std::vector<float>& out) override {
@@ -463,8 +472,9 @@ TEST_CASE("the conformance procedure finds the GPU exact in every stage and name
   CHECK(exact.failures(1e-5) == 0);
   CHECK(exact.float32_vs_float64.max_relative < 1e-3);
 
-  const std::pair<SynthesisStage, const char*> wrong[] = {{SynthesisStage::noise, "noise"}, {SynthesisStage::car, "band fields"},
-                                                         {SynthesisStage::collapse, "collapse"}};
+  const std::pair<SynthesisStage, const char*> wrong[] = {{SynthesisStage::noise, "noise"},
+                                                          {SynthesisStage::car, "band fields"},
+                                                          {SynthesisStage::collapse, "collapse"}};
   for (const auto& [stage, name] : wrong) {
     INFO("wrong " << name);
     OneWrongValue faulty(*synthesizer, stage);
@@ -478,13 +488,15 @@ TEST_CASE("the conformance procedure finds the GPU exact in every stage and name
   context.require_clean();
 }
 
-TEST_CASE("the float32 growth study reports the GPU equal to the CPU float32 reference", "[gpu_synthesis][gpu][conformance]") {
+TEST_CASE("the float32 growth study reports the GPU equal to the CPU float32 reference",
+          "[gpu_synthesis][gpu][conformance]") {
   test::ValidatedContext context;
   auto synthesizer = make_synthesizer(*context);
   reference::SynthesisAdapter<SubspaceSynthesizer> gpu(*synthesizer);
   std::vector<std::uint32_t> reported;
-  const auto rows = reference::float32_growth({32, 64}, {.seed = 2, .margin = 32}, gpu,
-                                              [&](const reference::GrowthRow& row) { reported.push_back(row.size); });
+  const auto rows =
+      reference::float32_growth({32, 64}, {.seed = 2, .margin = 32}, gpu,
+                                [&](const reference::GrowthRow& row) { reported.push_back(row.size); });
   REQUIRE(rows.size() == 2);
   CHECK(reported == std::vector<std::uint32_t>{32, 64});
   for (const auto& row : rows) {

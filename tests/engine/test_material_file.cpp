@@ -5,16 +5,16 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <limits>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <random>
 
-#include "carbtf/reference/noise.hpp"
-#include "carbtf/reference/synthetic_material.hpp"
 #include "carbtf/engine/material/car_stability.hpp"
 #include "carbtf/engine/material/material_file.hpp"
 #include "carbtf/engine/material/range_tiles.hpp"
+#include "carbtf/reference/noise.hpp"
+#include "carbtf/reference/synthetic_material.hpp"
 #include "material_bytes.hpp"
 #include "scratch_folder.hpp"
 #include "test_range_tiles.hpp"
@@ -24,11 +24,14 @@ namespace {
 
 using test::fix_crcs;
 
-// A valid material exercising every chunk: odd counts, negative and extreme floats, every neighbourhood shape.
+// A valid material exercising every chunk: odd counts, negative and extreme floats, every neighbourhood
+// shape.
 Material sample_material() {
   Material m;
-  for (int i = 0; i < 7; ++i) m.lights.push_back({0.2f * static_cast<float>(i), 0.9f * static_cast<float>(i)});
-  for (int i = 0; i < 5; ++i) m.views.push_back({0.3f * static_cast<float>(i), -1.5f + static_cast<float>(i)});
+  for (int i = 0; i < 7; ++i)
+    m.lights.push_back({0.2f * static_cast<float>(i), 0.9f * static_cast<float>(i)});
+  for (int i = 0; i < 5; ++i)
+    m.views.push_back({0.3f * static_cast<float>(i), -1.5f + static_cast<float>(i)});
   const auto candidates = neighbourhood_shapes();
   for (std::uint32_t s = 0; s < 3; ++s) {
     SubspaceModel sub;
@@ -43,7 +46,8 @@ Material sample_material() {
     for (std::uint32_t b = 0; b < sub.levels * 3; ++b) {
       CarBandModel band;
       band.neighbourhood = candidates[(s * 3 + b) % candidates.size()];
-      for (std::size_t k = 0; k < band.neighbourhood.size(); ++k) band.gamma.push_back(0.01f * static_cast<float>(k) - 0.03f);
+      for (std::size_t k = 0; k < band.neighbourhood.size(); ++k)
+        band.gamma.push_back(0.01f * static_cast<float>(k) - 0.03f);
       band.sigma = 0.5f + static_cast<float>(b);
       band.mean = -2.0f;
       band.band_std = 1.25f;
@@ -52,10 +56,15 @@ Material sample_material() {
     }
     m.subspaces.push_back(sub);
   }
-  for (std::size_t i = 0; i < m.lights.size() * m.views.size(); ++i) m.subspace_index.push_back(static_cast<std::uint8_t>(i % 3));
-  const auto noise = [](std::uint32_t r, std::uint32_t c) { return double{reference::gaussian_noise(1, 0, static_cast<std::int32_t>(r), static_cast<std::int32_t>(c))}; };
-  m.range = test::windowed_range_tiles(noise, [&](std::uint32_t r, std::uint32_t c) { return std::abs(noise(r, c)) * 0.5 + 0.5; },
-                                       {.map_rows = 24, .map_cols = 20, .tile_size = 8});
+  for (std::size_t i = 0; i < m.lights.size() * m.views.size(); ++i)
+    m.subspace_index.push_back(static_cast<std::uint8_t>(i % 3));
+  const auto noise = [](std::uint32_t r, std::uint32_t c) {
+    return double{
+        reference::gaussian_noise(1, 0, static_cast<std::int32_t>(r), static_cast<std::int32_t>(c))};
+  };
+  m.range = test::windowed_range_tiles(
+      noise, [&](std::uint32_t r, std::uint32_t c) { return std::abs(noise(r, c)) * 0.5 + 0.5; },
+      {.map_rows = 24, .map_cols = 20, .tile_size = 8});
   m.settings = {{"source", "unit test"}, {"seed", "1"}, {"empty", ""}};
   return m;
 }
@@ -128,7 +137,8 @@ TEST_CASE("material file errors name the file and the problem", "[material_file]
   CHECK_THAT(message({'P', 'K', 3, 4, 0, 0}), Catch::Contains("not a carbtf material file"));
   auto newer = good;
   newer[4] = 2;
-  CHECK_THAT(message(newer), Catch::Contains("format 2." + std::to_string(kMaterialFormatMinor) + " is not supported"));
+  CHECK_THAT(message(newer),
+             Catch::Contains("format 2." + std::to_string(kMaterialFormatMinor) + " is not supported"));
   CHECK_THAT(message(std::vector<std::uint8_t>(good.begin(), good.end() - 7)), Catch::Contains("truncated"));
   auto flipped = good;
   flipped[40] ^= 0x10;
@@ -160,9 +170,9 @@ std::vector<std::uint8_t> deflated(const Material& m) {
 // An optional chunk `tag`: absent from `m` as given, which reads back with `is_default`; present once
 // `set` fills it, and read back whole, plain and deflated. Returns the plain bytes of the set material
 // and the offset of the chunk's first payload word, for the caller's hostile values.
-std::pair<std::vector<std::uint8_t>, std::size_t> checked_optional_chunk(Material m, const std::string& tag,
-                                                                         const std::function<void(Material&)>& set,
-                                                                         const std::function<bool(const Material&)>& is_default) {
+std::pair<std::vector<std::uint8_t>, std::size_t> checked_optional_chunk(
+    Material m, const std::string& tag, const std::function<void(Material&)>& set,
+    const std::function<bool(const Material&)>& is_default) {
   const std::vector<std::uint8_t> without = encoded(m);
   CHECK(std::search(without.begin(), without.end(), tag.begin(), tag.end()) == without.end());
   Material back;
@@ -174,15 +184,16 @@ std::pair<std::vector<std::uint8_t>, std::size_t> checked_optional_chunk(Materia
     CHECK(back == m);
   }
   std::vector<std::uint8_t> bytes = encoded(m);
-  const auto at = static_cast<std::size_t>(std::search(bytes.begin(), bytes.end(), tag.begin(), tag.end()) - bytes.begin());
+  const auto at = static_cast<std::size_t>(std::search(bytes.begin(), bytes.end(), tag.begin(), tag.end()) -
+                                           bytes.begin());
   REQUIRE(at < bytes.size());
   return {std::move(bytes), at + 8};  // after the tag and the size
 }
 
 // Each of `hostile` written as the float at bytes[at] (CRCs fixed): the file is refused with a message
 // naming it and holding every part of `expected`.
-void check_refused_floats(std::vector<std::uint8_t>& bytes, std::size_t at, std::initializer_list<float> hostile,
-                          std::initializer_list<std::string> expected) {
+void check_refused_floats(std::vector<std::uint8_t>& bytes, std::size_t at,
+                          std::initializer_list<float> hostile, std::initializer_list<std::string> expected) {
   Material back;
   for (const float value : hostile) {
     std::memcpy(&bytes[at], &value, 4);
@@ -193,7 +204,8 @@ void check_refused_floats(std::vector<std::uint8_t>& bytes, std::size_t at, std:
   }
 }
 
-TEST_CASE("deflated chunks read back exactly, and a lying one is refused before it costs", "[material_file][deflate]") {
+TEST_CASE("deflated chunks read back exactly, and a lying one is refused before it costs",
+          "[material_file][deflate]") {
   const Material m = sample_material();
   REQUIRE_FALSE(m.range.tone.empty());
   const std::vector<std::uint8_t> plain = encoded(m), packed = deflated(m);
@@ -214,7 +226,8 @@ TEST_CASE("deflated chunks read back exactly, and a lying one is refused before 
     REQUIRE_FALSE(s.ok());
     return s.message();
   };
-  const auto first = static_cast<std::size_t>(std::search(packed.begin(), packed.end(), defl.begin(), defl.end()) - packed.begin());
+  const auto first = static_cast<std::size_t>(
+      std::search(packed.begin(), packed.end(), defl.begin(), defl.end()) - packed.begin());
   const std::size_t size_at = first + 8 + 4;  // after the tag, the chunk size and the inner tag
   SECTION("a claimed size far beyond what the stream can hold") {
     auto bytes = packed;
@@ -246,17 +259,21 @@ Material smooth_relief_material() {
     return 3.0 * std::sin(0.21 * static_cast<double>(r)) * std::cos(0.17 * static_cast<double>(c)) +
            0.05 * reference::gaussian_noise(2, 0, static_cast<std::int32_t>(r), static_cast<std::int32_t>(c));
   };
-  m.range = test::windowed_range_tiles(height, [&](std::uint32_t r, std::uint32_t c) { return 1.0 + 0.1 * height(r, c); },
-                                       {.map_rows = 80, .map_cols = 72, .tile_size = 32});
+  m.range = test::windowed_range_tiles(
+      height, [&](std::uint32_t r, std::uint32_t c) { return 1.0 + 0.1 * height(r, c); },
+      {.map_rows = 80, .map_cols = 72, .tile_size = 32});
   return m;
 }
 
 // The byte offset of the DEFL chunk whose inner tag is `inner`, or npos.
 std::size_t deflated_chunk_at(const std::vector<std::uint8_t>& bytes, const std::string& inner) {
   const std::string defl = "DEFL";
-  for (auto it = bytes.begin(); (it = std::search(it, bytes.end(), defl.begin(), defl.end())) != bytes.end(); ++it) {
+  for (auto it = bytes.begin(); (it = std::search(it, bytes.end(), defl.begin(), defl.end())) != bytes.end();
+       ++it) {
     const auto at = static_cast<std::size_t>(it - bytes.begin());
-    if (at + 12 <= bytes.size() && std::equal(inner.begin(), inner.end(), bytes.begin() + static_cast<std::ptrdiff_t>(at + 8))) return at;
+    if (at + 12 <= bytes.size() &&
+        std::equal(inner.begin(), inner.end(), bytes.begin() + static_cast<std::ptrdiff_t>(at + 8)))
+      return at;
   }
   return std::string::npos;
 }
@@ -265,9 +282,13 @@ std::size_t deflated_chunk_at(const std::vector<std::uint8_t>& bytes, const std:
 // which overlap: what the window filter (format 1.5) is for.
 Material rough_relief_material(bool fill_each_patch = false) {
   Material m = sample_material();
-  const auto noise = [](std::uint32_t r, std::uint32_t c) { return double{reference::gaussian_noise(3, 0, static_cast<std::int32_t>(r), static_cast<std::int32_t>(c))}; };
-  m.range = test::windowed_range_tiles(noise, [&](std::uint32_t r, std::uint32_t c) { return 1.0 + 0.2 * std::abs(noise(r, c)); },
-                                       {.map_rows = 64, .map_cols = 56, .tile_size = 32});
+  const auto noise = [](std::uint32_t r, std::uint32_t c) {
+    return double{
+        reference::gaussian_noise(3, 0, static_cast<std::int32_t>(r), static_cast<std::int32_t>(c))};
+  };
+  m.range = test::windowed_range_tiles(
+      noise, [&](std::uint32_t r, std::uint32_t c) { return 1.0 + 0.2 * std::abs(noise(r, c)); },
+      {.map_rows = 64, .map_cols = 56, .tile_size = 32});
   if (fill_each_patch) fill_unseen_patch_texels(m.range);
   return m;
 }
@@ -285,7 +306,8 @@ std::vector<bool> shown_patch_texels(const RangeTiles& tiles) {
   const std::size_t tile_texels = std::size_t{tiles.tile_size} * tiles.tile_size;
   auto composed = [&](const RangeTiles& t) {
     std::vector<float> all(tile_texels * range_tile_count(t));
-    for (std::uint32_t i = 0; i < range_tile_count(t); ++i) compose_range_tile(t, i, std::span<float>(all).subspan(i * tile_texels, tile_texels));
+    for (std::uint32_t i = 0; i < range_tile_count(t); ++i)
+      compose_range_tile(t, i, std::span<float>(all).subspan(i * tile_texels, tile_texels));
     return all;
   };
   std::vector<bool> shown(tiles.patches.size());
@@ -309,7 +331,8 @@ std::vector<std::uint8_t> deflated_round_trip(const Material& m) {
 
 // The message `packed` is refused with once its `width` bytes at `at` hold `value` (CRCs fixed).
 std::string refused_with(std::vector<std::uint8_t> bytes, std::size_t at, std::uint32_t value, int width) {
-  for (int i = 0; i < width; ++i) bytes[at + static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(value >> (8 * i));
+  for (int i = 0; i < width; ++i)
+    bytes[at + static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(value >> (8 * i));
   fix_crcs(bytes);
   Material damaged;
   const Status s = decode_material(bytes, "bad.cbtf", damaged);
@@ -317,7 +340,8 @@ std::string refused_with(std::vector<std::uint8_t> bytes, std::size_t at, std::u
   return s.message();
 }
 
-TEST_CASE("heights and tone are stored as residuals of a raster predictor and read back exactly", "[material_file][deflate][raster]") {
+TEST_CASE("heights and tone are stored as residuals of a raster predictor and read back exactly",
+          "[material_file][deflate][raster]") {
   const std::vector<std::uint8_t> packed = deflated_round_trip(patch_filled_material());
   CHECK(packed[6] == kMaterialFormatMinor);
   // The encoder keeps the smallest filter; on a smooth relief that is the raster filter (9) for both.
@@ -330,9 +354,16 @@ TEST_CASE("heights and tone are stored as residuals of a raster predictor and re
   CHECK(packed[tone_at + 16] == 9);
   CHECK(packed[tone_at + 21] == 1);  // 1-byte tone
 
-  auto refused = [&](std::size_t at, std::uint32_t value, int width) { return refused_with(packed, at, value, width); };
-  SECTION("an unknown filter") { CHECK_THAT(refused(range_at + 16, 11, 1), Catch::Contains("bad.cbtf: deflated chunk has unknown filter 11")); }
-  SECTION("3-byte values") { CHECK_THAT(refused(range_at + 21, 3, 1), Catch::Contains("raster filter that does not fit")); }
+  auto refused = [&](std::size_t at, std::uint32_t value, int width) {
+    return refused_with(packed, at, value, width);
+  };
+  SECTION("an unknown filter") {
+    CHECK_THAT(refused(range_at + 16, 11, 1),
+               Catch::Contains("bad.cbtf: deflated chunk has unknown filter 11"));
+  }
+  SECTION("3-byte values") {
+    CHECK_THAT(refused(range_at + 21, 3, 1), Catch::Contains("raster filter that does not fit"));
+  }
   SECTION("rasters whose size overflows 64 bits") {
     std::vector<std::uint8_t> bytes = packed;
     for (std::size_t k = 22; k < 34; ++k) bytes[range_at + k] = 0xFF;  // width, height and count 2^32 - 1
@@ -342,12 +373,19 @@ TEST_CASE("heights and tone are stored as residuals of a raster predictor and re
     REQUIRE_FALSE(s.ok());
     CHECK_THAT(s.message(), Catch::Contains("raster filter that does not fit"));
   }
-  SECTION("rasters past the payload's end") { CHECK_THAT(refused(range_at + 30, 1000, 4), Catch::Contains("raster filter that does not fit")); }
-  SECTION("a skip past the payload's end") { CHECK_THAT(refused(range_at + 17, 0xFFFFFFF0u, 4), Catch::Contains("raster filter that does not fit")); }
-  SECTION("a rest stride beyond 8") { CHECK_THAT(refused(range_at + 34, 9, 1), Catch::Contains("rest stride 9")); }
+  SECTION("rasters past the payload's end") {
+    CHECK_THAT(refused(range_at + 30, 1000, 4), Catch::Contains("raster filter that does not fit"));
+  }
+  SECTION("a skip past the payload's end") {
+    CHECK_THAT(refused(range_at + 17, 0xFFFFFFF0u, 4), Catch::Contains("raster filter that does not fit"));
+  }
+  SECTION("a rest stride beyond 8") {
+    CHECK_THAT(refused(range_at + 34, 9, 1), Catch::Contains("rest stride 9"));
+  }
 }
 
-TEST_CASE("patches cut from overlapping places of one map are stored once (the window filter)", "[material_file][deflate][raster]") {
+TEST_CASE("patches cut from overlapping places of one map are stored once (the window filter)",
+          "[material_file][deflate][raster]") {
   const std::vector<std::uint8_t> packed = deflated_round_trip(rough_relief_material());
   const std::size_t range_at = deflated_chunk_at(packed, "RNGE");
   const std::size_t tone_at = deflated_chunk_at(packed, "TONE");
@@ -363,7 +401,8 @@ TEST_CASE("patches cut from overlapping places of one map are stored once (the w
 
   const auto u32_at = [&](std::size_t at) {
     return static_cast<std::uint32_t>(packed[at]) | static_cast<std::uint32_t>(packed[at + 1]) << 8 |
-           static_cast<std::uint32_t>(packed[at + 2]) << 16 | static_cast<std::uint32_t>(packed[at + 3]) << 24;
+           static_cast<std::uint32_t>(packed[at + 2]) << 16 |
+           static_cast<std::uint32_t>(packed[at + 3]) << 24;
   };
   const std::size_t source_at = range_at + 35;  // after the raster filter's parameters
   const std::uint32_t source_width = u32_at(source_at);
@@ -371,7 +410,8 @@ TEST_CASE("patches cut from overlapping places of one map are stored once (the w
   CHECK(std::uint64_t{source_width} * source_height < 4u * 32u * 32u);
   auto refused = [&](std::size_t at, std::uint32_t value) { return refused_with(packed, at, value, 4); };
   SECTION("a window past the source's right edge") {
-    CHECK_THAT(refused(source_at + 8, source_width - 31), Catch::Contains("bad.cbtf: deflated chunk has a window placement outside its"));
+    CHECK_THAT(refused(source_at + 8, source_width - 31),
+               Catch::Contains("bad.cbtf: deflated chunk has a window placement outside its"));
   }
   SECTION("a window past the source's bottom edge, by 2^32") {
     CHECK_THAT(refused(source_at + 12, 0xFFFFFFFFu), Catch::Contains("window placement outside"));
@@ -384,7 +424,8 @@ TEST_CASE("patches cut from overlapping places of one map are stored once (the w
   }
 }
 
-TEST_CASE("patches that agree almost everywhere are encoded within bounded work", "[material_file][deflate][raster]") {
+TEST_CASE("patches that agree almost everywhere are encoded within bounded work",
+          "[material_file][deflate][raster]") {
   // Every offset of these patches agrees until the last texel, which defeats the window search's early
   // exits; its work bound makes it give up, and the file is still exact.
   Material m = sample_material();
@@ -395,19 +436,22 @@ TEST_CASE("patches that agree almost everywhere are encoded within bounded work"
   for (std::size_t p = 0; p < 4; ++p) r.patches[(p + 1) * texels - 1] = static_cast<std::uint16_t>(8 + p);
   r.tone.assign(r.patches.size(), 3);
   r.cuts.assign(std::size_t{range_tile_count(r)} * 4 * (r.tile_size / 2), 1);
-  for (std::size_t i = r.tile_size / 2 - 1; i < r.cuts.size(); i += r.tile_size / 2) r.cuts[i] = static_cast<std::uint16_t>(r.tile_size / 2);
+  for (std::size_t i = r.tile_size / 2 - 1; i < r.cuts.size(); i += r.tile_size / 2)
+    r.cuts[i] = static_cast<std::uint16_t>(r.tile_size / 2);
   for (std::size_t i = 0; i < r.cuts.size(); i += r.tile_size / 2) r.cuts[i] = 0;
   REQUIRE(validate_material(m).ok());
   deflated_round_trip(m);
 }
 
-TEST_CASE("patch texels that no tile shows are filled so they cost nothing and no tile changes", "[material_file][raster]") {
+TEST_CASE("patch texels that no tile shows are filled so they cost nothing and no tile changes",
+          "[material_file][raster]") {
   const Material filled = patch_filled_material();
   const RangeTiles& tiles = filled.range;
   const std::size_t tile_texels = std::size_t{tiles.tile_size} * tiles.tile_size;
   auto composed = [&](const RangeTiles& t, RangeChannel channel) {
     std::vector<float> all(tile_texels * range_tile_count(t));
-    for (std::uint32_t i = 0; i < range_tile_count(t); ++i) compose_range_tile(t, i, std::span<float>(all).subspan(i * tile_texels, tile_texels), channel);
+    for (std::uint32_t i = 0; i < range_tile_count(t); ++i)
+      compose_range_tile(t, i, std::span<float>(all).subspan(i * tile_texels, tile_texels), channel);
     return all;
   };
   const std::vector<bool> shown = shown_patch_texels(tiles);
@@ -427,7 +471,8 @@ TEST_CASE("patch texels that no tile shows are filled so they cost nothing and n
   RangeTiles refilled = unfilled.range;
   fill_unseen_patch_texels(refilled);
   CHECK(refilled == tiles);  // only the shown texels decide the filling
-  for (RangeChannel channel : {RangeChannel::height, RangeChannel::tone}) CHECK(composed(unfilled.range, channel) == composed(tiles, channel));
+  for (RangeChannel channel : {RangeChannel::height, RangeChannel::tone})
+    CHECK(composed(unfilled.range, channel) == composed(tiles, channel));
   CHECK(deflated(filled).size() < deflated(unfilled).size());
 }
 
@@ -480,7 +525,8 @@ TEST_CASE("a relief tone outside its range or of the wrong size is refused", "[m
   Material huge = good;
   huge.range.tone.front() = 255;
   huge.range.tone_scale = 1.0f;  // 255 at the top, beyond kMaxRangeTone
-  Material few_bits = good;  // a 5-bit tone: its scale may be large, as long as the values it reaches are in range
+  Material few_bits =
+      good;  // a 5-bit tone: its scale may be large, as long as the values it reaches are in range
   for (std::uint8_t& t : few_bits.range.tone) t = static_cast<std::uint8_t>(t % 32);
   few_bits.range.tone_offset = 0.1f;
   few_bits.range.tone_scale = 0.12f;
@@ -495,8 +541,11 @@ TEST_CASE("a relief tone outside its range or of the wrong size is refused", "[m
   // One plane or three (R, G, B); two is neither.
   Material two_planes = good, three_planes = good;
   two_planes.range.tone.insert(two_planes.range.tone.end(), good.range.tone.begin(), good.range.tone.end());
-  CHECK_THAT(message(two_planes), Catch::Contains("the relief tone has") && Catch::Contains("one plane or three"));
-  for (int k = 0; k < 2; ++k) three_planes.range.tone.insert(three_planes.range.tone.end(), good.range.tone.begin(), good.range.tone.end());
+  CHECK_THAT(message(two_planes),
+             Catch::Contains("the relief tone has") && Catch::Contains("one plane or three"));
+  for (int k = 0; k < 2; ++k)
+    three_planes.range.tone.insert(three_planes.range.tone.end(), good.range.tone.begin(),
+                                   good.range.tone.end());
   CHECK(validate_material(three_planes).ok());
 }
 
@@ -512,10 +561,12 @@ TEST_CASE("a relief tone of three colour planes reads back, is filtered as raste
   const std::size_t tile_texels = std::size_t{r.tile_size} * r.tile_size;
   auto composed = [&](const RangeTiles& t, RangeChannel channel) {
     std::vector<float> all(tile_texels * range_tile_count(t));
-    for (std::uint32_t i = 0; i < range_tile_count(t); ++i) compose_range_tile(t, i, std::span<float>(all).subspan(i * tile_texels, tile_texels), channel);
+    for (std::uint32_t i = 0; i < range_tile_count(t); ++i)
+      compose_range_tile(t, i, std::span<float>(all).subspan(i * tile_texels, tile_texels), channel);
     return all;
   };
-  const std::vector<float> green = composed(r, RangeChannel::tone_green), blue = composed(r, RangeChannel::tone_blue);
+  const std::vector<float> green = composed(r, RangeChannel::tone_green),
+                           blue = composed(r, RangeChannel::tone_blue);
   CHECK(green != composed(r, RangeChannel::tone));
   CHECK(blue != green);
   // Filling what no tile shows changes no plane's tiles, and sets every plane's unseen texels from
@@ -539,11 +590,13 @@ TEST_CASE("a relief tone of three colour planes reads back, is filtered as raste
   REQUIRE(tone_at != std::string::npos);
   REQUIRE(packed[tone_at + 16] >= 9);  // a raster filter, over every plane's patches
   std::uint32_t rasters = 0;
-  for (int i = 0; i < 4; ++i) rasters |= std::uint32_t{packed[tone_at + 30 + static_cast<std::size_t>(i)]} << (8 * i);
+  for (int i = 0; i < 4; ++i)
+    rasters |= std::uint32_t{packed[tone_at + 30 + static_cast<std::size_t>(i)]} << (8 * i);
   CHECK(rasters == 3 * 2 * r.edge_colours);
 }
 
-TEST_CASE("tone weights read back, are left out when all 1, and are refused out of range", "[material_file][tone]") {
+TEST_CASE("tone weights read back, are left out when all 1, and are refused out of range",
+          "[material_file][tone]") {
   Material m = sample_material();
   const std::string twgt = "TWGT";
   SECTION("all 1: no TWGT chunk, as a format 1.1 file") {
@@ -562,7 +615,8 @@ TEST_CASE("tone weights read back, are left out when all 1, and are refused out 
       CHECK(back == m);
     }
     std::vector<std::uint8_t> bytes = encoded(m);
-    const auto at = static_cast<std::size_t>(std::search(bytes.begin(), bytes.end(), twgt.begin(), twgt.end()) - bytes.begin());
+    const auto at = static_cast<std::size_t>(
+        std::search(bytes.begin(), bytes.end(), twgt.begin(), twgt.end()) - bytes.begin());
     REQUIRE(at < bytes.size());
     SECTION("a weight beyond 1") {
       const float two = 2.0f;
@@ -570,7 +624,9 @@ TEST_CASE("tone weights read back, are left out when all 1, and are refused out 
       fix_crcs(bytes);
       Material back;
       const Status s = decode_material(bytes, "bad.cbtf", back);
-      CHECK_THAT(s.message(), Catch::Contains("bad.cbtf") && Catch::Contains("subspace 2 has tone weight 2") && Catch::Contains("outside 0..1"));
+      CHECK_THAT(s.message(), Catch::Contains("bad.cbtf") &&
+                                  Catch::Contains("subspace 2 has tone weight 2") &&
+                                  Catch::Contains("outside 0..1"));
     }
     SECTION("a count that is not the subspaces'") {
       bytes[at + 8] = 2;  // 2 weights claimed, 3 stored: the chunk then has trailing bytes
@@ -586,7 +642,8 @@ TEST_CASE("tone weights read back, are left out when all 1, and are refused out 
   }
 }
 
-TEST_CASE("a coloured tone reads back and is left out when grey and refused out of range", "[material_file][tone]") {
+TEST_CASE("a coloured tone reads back and is left out when grey and refused out of range",
+          "[material_file][tone]") {
   Material m = sample_material();
   const std::string tchr = "TCHR";
   SECTION("grey: no TCHR chunk, and a file without one reads as grey") {
@@ -604,14 +661,16 @@ TEST_CASE("a coloured tone reads back and is left out when grey and refused out 
       CHECK(back == m);
     }
     std::vector<std::uint8_t> bytes = encoded(m);
-    const auto at = static_cast<std::size_t>(std::search(bytes.begin(), bytes.end(), tchr.begin(), tchr.end()) - bytes.begin());
+    const auto at = static_cast<std::size_t>(
+        std::search(bytes.begin(), bytes.end(), tchr.begin(), tchr.end()) - bytes.begin());
     REQUIRE(at < bytes.size());
     for (const float hostile : {5.0f, -4.5f, std::nanf(""), std::numeric_limits<float>::infinity()}) {
       std::memcpy(&bytes[at + 8 + 4], &hostile, 4);  // tag, size, then the green slope
       fix_crcs(bytes);
       Material back;
       const Status s = decode_material(bytes, "bad.cbtf", back);
-      CHECK_THAT(s.message(), Catch::Contains("bad.cbtf") && Catch::Contains("tone chroma 1 is") && Catch::Contains("outside -4..4"));
+      CHECK_THAT(s.message(), Catch::Contains("bad.cbtf") && Catch::Contains("tone chroma 1 is") &&
+                                  Catch::Contains("outside -4..4"));
     }
     bytes.insert(bytes.begin() + static_cast<std::ptrdiff_t>(at + 8 + 12), {0, 0, 0, 0});  // a fourth value
     bytes[at + 4] = 16;
@@ -630,13 +689,15 @@ TEST_CASE("a coloured tone reads back and is left out when grey and refused out 
 TEST_CASE("feathered cuts read back while a file without FTHR has hard cuts and a hostile feather is refused",
           "[material_file][range_tiles]") {
   auto [bytes, at] = checked_optional_chunk(
-      sample_material(), "FTHR", [](Material& m) { m.range.feather = 2; }, [](const Material& m) { return m.range.feather == 0; });
+      sample_material(), "FTHR", [](Material& m) { m.range.feather = 2; },
+      [](const Material& m) { return m.range.feather == 0; });
   Material back;
   for (const std::uint32_t hostile : {5u, 0xFFFFFFFFu}) {
     std::memcpy(&bytes[at], &hostile, 4);
     fix_crcs(bytes);
     const Status s = decode_material(bytes, "bad.cbtf", back);
-    CHECK_THAT(s.message(), Catch::Contains("bad.cbtf") && Catch::Contains("feather " + std::to_string(hostile)));
+    CHECK_THAT(s.message(),
+               Catch::Contains("bad.cbtf") && Catch::Contains("feather " + std::to_string(hostile)));
   }
 }
 
@@ -657,7 +718,11 @@ TEST_CASE("cast shadows read back while a file without SHDW has none and a hosti
 TEST_CASE("a specular lobe reads back while a file without SPEC has none and hostile values are refused",
           "[material_file][specular]") {
   auto [bytes, at] = checked_optional_chunk(
-      sample_material(), "SPEC", [](Material& m) { m.range.specular_strength = 0.08f; m.range.specular_gloss = 32.0f; },
+      sample_material(), "SPEC",
+      [](Material& m) {
+        m.range.specular_strength = 0.08f;
+        m.range.specular_gloss = 32.0f;
+      },
       [](const Material& m) { return m.range.specular_strength == 0.0f; });
   check_refused_floats(bytes, at, {-0.5f, 17.0f, std::nanf(""), std::numeric_limits<float>::infinity()},
                        {"specular strength", "outside 0..16"});
@@ -673,12 +738,15 @@ TEST_CASE("a specular lobe reads back while a file without SPEC has none and hos
   CHECK_THAT(validate_material(tileless).message(), Catch::Contains("tile size 0 but tile data present"));
 }
 
-TEST_CASE("pair gains read back while a file without PGAN has none and a hostile table is refused", "[material_file][pair_gains]") {
+TEST_CASE("pair gains read back while a file without PGAN has none and a hostile table is refused",
+          "[material_file][pair_gains]") {
   const auto with_gains = [](Material& m) {
     m.pair_gains.resize(3 * m.subspace_index.size());
-    for (std::size_t i = 0; i < m.pair_gains.size(); ++i) m.pair_gains[i] = static_cast<std::uint8_t>(i * 37 % 256);
+    for (std::size_t i = 0; i < m.pair_gains.size(); ++i)
+      m.pair_gains[i] = static_cast<std::uint8_t>(i * 37 % 256);
   };
-  auto [bytes, at] = checked_optional_chunk(sample_material(), "PGAN", with_gains, [](const Material& m) { return m.pair_gains.empty(); });
+  auto [bytes, at] = checked_optional_chunk(sample_material(), "PGAN", with_gains,
+                                            [](const Material& m) { return m.pair_gains.empty(); });
   Material m = sample_material();
   with_gains(m);
   REQUIRE(m.lights.size() * m.views.size() > 2);
@@ -699,7 +767,8 @@ TEST_CASE("pair gains read back while a file without PGAN has none and a hostile
     fix_crcs(lying);
     const Status s = decode_material(lying, "bad.cbtf", back);
     INFO(s.message());
-    CHECK_THAT(s.message(), Catch::Contains("bad.cbtf") && (Catch::Contains("PGAN") || Catch::Contains("pair gains")));
+    CHECK_THAT(s.message(),
+               Catch::Contains("bad.cbtf") && (Catch::Contains("PGAN") || Catch::Contains("pair gains")));
   }
   Material wrong = sample_material();
   wrong.pair_gains.assign(3 * wrong.subspace_index.size() - 1, 128);
@@ -725,7 +794,8 @@ TEST_CASE("pair gains read back while a file without PGAN has none and a hostile
   CHECK_THAT(validate_material(spectral).message(), Catch::Contains("pair gains are RGB"));
 }
 
-TEST_CASE("10,000 random corruptions and truncations are rejected or read without a crash", "[material_file][fuzz]") {
+TEST_CASE("10,000 random corruptions and truncations are rejected or read without a crash",
+          "[material_file][fuzz]") {
   const bool deflate = GENERATE(false, true);
   INFO("deflated chunks: " << deflate);
   const std::vector<std::uint8_t> good = deflate ? deflated(sample_material()) : encoded(sample_material());
@@ -746,16 +816,19 @@ TEST_CASE("10,000 random corruptions and truncations are rejected or read withou
       constexpr std::uint32_t extremes[] = {0u, 1u, 0x7FFFFFFFu, 0xFFFFFFFFu, 0x10000u, 4096u, 65u};
       const std::uint32_t value = extremes[rng() % 7];
       const std::size_t at = position() & ~std::size_t{3};
-      for (int i = 0; i < 4 && at + i < bytes.size(); ++i) bytes[at + i] = static_cast<std::uint8_t>(value >> (8 * i));
+      for (int i = 0; i < 4 && at + i < bytes.size(); ++i)
+        bytes[at + i] = static_cast<std::uint8_t>(value >> (8 * i));
       fix_crcs(bytes);
     } else {
       // Cut or duplicate a span in the middle, CRCs made valid again.
       const std::size_t a = position(), b = position();
       const std::size_t lo = std::min(a, b), hi = std::max(a, b);
       if (rng() % 2) {
-        bytes.erase(bytes.begin() + static_cast<std::ptrdiff_t>(lo), bytes.begin() + static_cast<std::ptrdiff_t>(hi));
+        bytes.erase(bytes.begin() + static_cast<std::ptrdiff_t>(lo),
+                    bytes.begin() + static_cast<std::ptrdiff_t>(hi));
       } else {
-        std::vector<std::uint8_t> span(bytes.begin() + static_cast<std::ptrdiff_t>(lo), bytes.begin() + static_cast<std::ptrdiff_t>(hi));
+        std::vector<std::uint8_t> span(bytes.begin() + static_cast<std::ptrdiff_t>(lo),
+                                       bytes.begin() + static_cast<std::ptrdiff_t>(hi));
         bytes.insert(bytes.begin() + static_cast<std::ptrdiff_t>(hi), span.begin(), span.end());
       }
       fix_crcs(bytes);
@@ -775,7 +848,8 @@ TEST_CASE("10,000 random corruptions and truncations are rejected or read withou
     // Truncations and corruptions the CRC still covers must never pass. The minor version (bytes 6-7)
     // is the one field a reader may ignore: newer minor versions stay readable.
     bool covered_change = bytes.size() != good.size();
-    for (std::size_t i = 0; i < bytes.size() && !covered_change; ++i) covered_change = bytes[i] != good[i] && (i < 6 || i > 7);
+    for (std::size_t i = 0; i < bytes.size() && !covered_change; ++i)
+      covered_change = bytes[i] != good[i] && (i < 6 || i > 7);
     if (kind <= 1 && covered_change) {
       INFO("trial " << trial);
       REQUIRE_FALSE(s.ok());
@@ -809,7 +883,8 @@ TEST_CASE("a material is valid only if it is safe to synthesize", "[material_fil
     CarBandModel& band = one.subspaces[0].bands[0];
     band.neighbourhood = {{0, -1}};
     band.gamma = {1.1f};
-    CHECK_THAT(refused(one), Catch::Contains("subspace 0 level 0 band 0") && Catch::Contains("spectral radius 1.1"));
+    CHECK_THAT(refused(one),
+               Catch::Contains("subspace 0 level 0 band 0") && Catch::Contains("spectral radius 1.1"));
     // Inside the margin but past it: a root at 0.997 is refused, one at 0.99 (the analysis's own
     // limit) is kept.
     band.gamma = {0.997f};
@@ -845,7 +920,8 @@ TEST_CASE("a material is valid only if it is safe to synthesize", "[material_fil
     Material m;
     const Status s = decode_material(bytes, "hostile.cbtf", m);
     REQUIRE_FALSE(s.ok());
-    CHECK_THAT(s.message(), Catch::StartsWith("hostile.cbtf: subspace 0 level 0 band 1 is an unstable recursion"));
+    CHECK_THAT(s.message(),
+               Catch::StartsWith("hostile.cbtf: subspace 0 level 0 band 1 is an unstable recursion"));
   }
 }
 
@@ -862,7 +938,8 @@ TEST_CASE("the Schur-Cohn stability test agrees with known roots", "[material_fi
   CHECK(car_spectral_radius(two, {1.6, -0.89}) == Approx(std::sqrt(0.89)).epsilon(1e-9));
   CHECK(car_roots_within(two, {1.6, -0.89}, 0.95));
   CHECK_FALSE(car_roots_within(two, {1.6, -0.89}, 0.94));
-  CHECK(car_spectral_radius(left, {std::numeric_limits<double>::quiet_NaN()}) == std::numeric_limits<double>::infinity());
+  CHECK(car_spectral_radius(left, {std::numeric_limits<double>::quiet_NaN()}) ==
+        std::numeric_limits<double>::infinity());
 }
 
 }  // namespace carbtf

@@ -1,9 +1,9 @@
 // GPU Gaussian noise against the CPU float32 reference: bit for bit.
 #include <catch2/catch.hpp>
 
-#include "carbtf/reference/noise.hpp"
-#include "carbtf/engine/vulkan/buffer.hpp"
 #include "carbtf/engine/synthesis/noise_generator.hpp"
+#include "carbtf/engine/vulkan/buffer.hpp"
+#include "carbtf/reference/noise.hpp"
 #include "test_support.hpp"
 
 using namespace carbtf;
@@ -31,13 +31,14 @@ TEST_CASE("GPU noise 1024x1024 is bit-identical to the CPU float32 reference", "
   context.require_clean();
 }
 
-TEST_CASE("GPU noise blocks with odd sizes, negative origins and 64-bit seeds match the CPU", "[engine][noise][gpu]") {
+TEST_CASE("GPU noise blocks with odd sizes, negative origins and 64-bit seeds match the CPU",
+          "[engine][noise][gpu]") {
   test::ValidatedContext context;
   std::unique_ptr<NoiseGenerator> generator;
   REQUIRE(NoiseGenerator::create(*context, generator).ok());
-  for (const NoiseBlock block : {NoiseBlock{0xfedcba9876543210ull, 17, -64, -3, 33, 7},
-                                 NoiseBlock{1, 0xffffffffu, 2147483000, -2147483600, 1, 1000},
-                                 NoiseBlock{42, 5, 3, 1, 777, 1}}) {
+  for (const NoiseBlock block :
+       {NoiseBlock{0xfedcba9876543210ull, 17, -64, -3, 33, 7},
+        NoiseBlock{1, 0xffffffffu, 2147483000, -2147483600, 1, 1000}, NoiseBlock{42, 5, 3, 1, 777, 1}}) {
     std::vector<float> gpu;
     REQUIRE(generator->generate(block, gpu).ok());
     test::require_bitwise_equal(gpu, cpu_block(block), block.width);
@@ -60,7 +61,8 @@ TEST_CASE("a block split over many dispatches equals one dispatch", "[engine][no
   context.require_clean();
 }
 
-TEST_CASE("noise recorded into the caller's command buffer lands at the caller's offset", "[engine][noise][gpu]") {
+TEST_CASE("noise recorded into the caller's command buffer lands at the caller's offset",
+          "[engine][noise][gpu]") {
   test::ValidatedContext context;
   std::unique_ptr<NoiseGenerator> generator;
   REQUIRE(NoiseGenerator::create(*context, generator).ok());
@@ -76,21 +78,26 @@ TEST_CASE("noise recorded into the caller's command buffer lands at the caller's
   const float sentinel = -1234.5f;
   std::uint32_t sentinel_bits = 0;
   std::memcpy(&sentinel_bits, &sentinel, sizeof sentinel_bits);
-  REQUIRE(context->submit_and_wait([&](VkCommandBuffer cmd) -> Status {
-    const VulkanFunctions& vk = context->vk();
-    vk.vkCmdFillBuffer(cmd, buffer.handle(), 0, VK_WHOLE_SIZE, sentinel_bits);
-    auto barrier = vk_struct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
-    barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    barrier.dstAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-    vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &barrier, 0,
-                            nullptr, 0, nullptr);
-    if (Status s = generator->record(cmd, block, buffer.handle(), lead_floats * sizeof(float)); !s.ok()) return s;
-    barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-    barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-    vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0,
-                            nullptr, 0, nullptr);
-    return {};
-  }).ok());
+  REQUIRE(context
+              ->submit_and_wait([&](VkCommandBuffer cmd) -> Status {
+                const VulkanFunctions& vk = context->vk();
+                vk.vkCmdFillBuffer(cmd, buffer.handle(), 0, VK_WHOLE_SIZE, sentinel_bits);
+                auto barrier = vk_struct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
+                barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+                barrier.dstAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+                vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                                        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &barrier, 0, nullptr, 0,
+                                        nullptr);
+                if (Status s = generator->record(cmd, block, buffer.handle(), lead_floats * sizeof(float));
+                    !s.ok())
+                  return s;
+                barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+                barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+                vk.vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+                                        0, 1, &barrier, 0, nullptr, 0, nullptr);
+                return {};
+              })
+              .ok());
   REQUIRE(buffer.invalidate_for_host_read().ok());
   const float* data = static_cast<const float*>(buffer.mapped());
   std::vector<float> written(data + lead_floats, data + lead_floats + 64 * 64);

@@ -19,8 +19,10 @@ std::vector<float> wall_field() {
   return h;
 }
 
-std::span<const float, kReliefHorizonDirections> at(const std::vector<float>& horizons, std::uint32_t row, std::uint32_t col) {
-  return std::span<const float, kReliefHorizonDirections>(&horizons[(row * 32 + col) * kReliefHorizonDirections], kReliefHorizonDirections);
+std::span<const float, kReliefHorizonDirections> at(const std::vector<float>& horizons, std::uint32_t row,
+                                                    std::uint32_t col) {
+  return std::span<const float, kReliefHorizonDirections>(
+      &horizons[(row * 32 + col) * kReliefHorizonDirections], kReliefHorizonDirections);
 }
 
 }  // namespace
@@ -47,20 +49,22 @@ TEST_CASE("horizons: a wall rises 3 texels over the flat floor in front of it", 
   CHECK_THAT(at(half, 8, 17)[0], WithinAbs(0.5, 1e-6));
 }
 
-TEST_CASE("horizons: periodic fields see across the edge, plain ones repeat the edge texel", "[render][shadows]") {
+TEST_CASE("horizons: periodic fields see across the edge, plain ones repeat the edge texel",
+          "[render][shadows]") {
   // A ridge 2 texels high on the last column.
   std::vector<float> edge(32 * 16, 0.0f);
   for (std::uint32_t r = 0; r < 16; ++r) edge[r * 32 + 31] = 2.0f;
   std::vector<float> plain, periodic;
   relief_horizons(edge, 32, 16, false, 1.0f, plain);
   relief_horizons(edge, 32, 16, true, 1.0f, periodic);
-  CHECK(at(plain, 4, 1)[4] == 0.0f);                         // -x: column 0 repeated, flat
+  CHECK(at(plain, 4, 1)[4] == 0.0f);                        // -x: column 0 repeated, flat
   CHECK_THAT(at(periodic, 4, 1)[4], WithinAbs(1.0, 1e-6));  // -x: column 31 two texels away across the edge
   CHECK_THAT(at(plain, 4, 29)[0], WithinAbs(1.0, 1e-6));    // +x: the ridge itself, either way
   CHECK_THAT(at(periodic, 4, 29)[0], WithinAbs(1.0, 1e-6));
 }
 
-TEST_CASE("visibility: a light above the horizon is seen, below it hidden, with a penumbra between", "[render][shadows]") {
+TEST_CASE("visibility: a light above the horizon is seen, below it hidden, with a penumbra between",
+          "[render][shadows]") {
   std::vector<float> horizons;
   relief_horizons(wall_field(), 32, 16, false, 1.0f, horizons);
   const auto h = at(horizons, 8, 17);  // horizon tangent 1 towards +x, 0 towards -x
@@ -71,12 +75,13 @@ TEST_CASE("visibility: a light above the horizon is seen, below it hidden, with 
   CHECK(relief_visibility(h, light(60.0f, 0.0f)) == 1.0f);  // tangent 1.73 above 1 + half the penumbra
   CHECK(relief_visibility(h, light(30.0f, 0.0f)) == 0.0f);  // tangent 0.58 below 1 - half of it
   CHECK_THAT(relief_visibility(h, light(45.0f, 0.0f)), WithinAbs(0.5, 1e-5));  // on the horizon
-  CHECK(relief_visibility(h, light(30.0f, 180.0f)) == 1.0f);  // from the open side
-  CHECK(relief_visibility(h, {0.0f, 0.0f, 1.0f}) == 1.0f);    // overhead
+  CHECK(relief_visibility(h, light(30.0f, 180.0f)) == 1.0f);                   // from the open side
+  CHECK(relief_visibility(h, {0.0f, 0.0f, 1.0f}) == 1.0f);                     // overhead
   // Between the azimuths 0 and 45 degrees (horizons 1 and 1/sqrt 2) the horizon is interpolated:
   // at 22.5 degrees about 0.854, so a light at tangent 0.854 sits on it.
   const float mid = 0.5f * (1.0f + 1.0f / std::sqrt(2.0f));
   const float across = 1.0f / std::sqrt(1.0f + mid * mid);
   const float a = 22.5f * 3.14159265f / 180.0f;
-  CHECK_THAT(relief_visibility(h, {across * std::cos(a), across * std::sin(a), across * mid}), WithinAbs(0.5, 1e-4));
+  CHECK_THAT(relief_visibility(h, {across * std::cos(a), across * std::sin(a), across * mid}),
+             WithinAbs(0.5, 1e-4));
 }

@@ -9,8 +9,6 @@
 #include <map>
 #include <random>
 
-#include "carbtf/reference/render_reference.hpp"
-#include "carbtf/reference/synthetic_material.hpp"
 #include "carbtf/engine/internal/direction_lookup.hpp"
 #include "carbtf/engine/material/range_tiles.hpp"
 #include "carbtf/engine/render/material_binding.hpp"
@@ -18,6 +16,8 @@
 #include "carbtf/engine/render/resident_images.hpp"
 #include "carbtf/engine/render/scene_pruning.hpp"
 #include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
+#include "carbtf/reference/render_reference.hpp"
+#include "carbtf/reference/synthetic_material.hpp"
 #include "test_materials.hpp"
 #include "test_support.hpp"
 
@@ -34,7 +34,8 @@ std::map<std::uint32_t, double> as_map(const DirectionWeights& w) {
 }
 
 std::unique_ptr<SubspaceSynthesizer> synthesized(Context& context, const Material& m,
-                                                 SynthesizedImages& images, std::uint32_t periodic_overlap = 0) {
+                                                 SynthesizedImages& images,
+                                                 std::uint32_t periodic_overlap = 0) {
   std::unique_ptr<SubspaceSynthesizer> synthesizer;
   REQUIRE(SubspaceSynthesizer::create(context, synthesizer).ok());
   SynthesisRequest request;
@@ -129,7 +130,8 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
     // Pair gains from 0.6 to 1.7, different per pair and channel, which both sides must apply to the
     // pair named by its light and view.
     coloured.pair_gains.resize(3 * coloured.subspace_index.size());
-    for (std::size_t i = 0; i < coloured.pair_gains.size(); ++i) coloured.pair_gains[i] = static_cast<std::uint8_t>(80 + i * 29 % 97);
+    for (std::size_t i = 0; i < coloured.pair_gains.size(); ++i)
+      coloured.pair_gains[i] = static_cast<std::uint8_t>(80 + i * 29 % 97);
     REQUIRE(validate_material(coloured).ok());
     return coloured;
   }();
@@ -227,16 +229,18 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
     }
   }
   const double rms = std::sqrt(sum_squares / static_cast<double>(3 * std::max<std::size_t>(both, 1)));
-  INFO(what << (periodic ? ", periodic" : ", plain") << (shadows ? ", shadows" : "") << ": " << both << " pixels, peak " << peak << ", max error " << worst << ", rms " << rms
+  INFO(what << (periodic ? ", periodic" : ", plain") << (shadows ? ", shadows" : "") << ": " << both
+            << " pixels, peak " << peak << ", max error " << worst << ", rms " << rms
             << ", coverage differs at " << coverage_differs);
   REQUIRE(both > gpu.size() / 4 / 4);
   // Rasterization decides edge pixels by its own rules: at most the plane's outline may differ.
   CHECK(coverage_differs <= 2 * (target.width + target.height));
   // Documented tolerance: the GPU interpolates uv across the triangles and finds its direction weights
   // in float through the lookup grids; the reference intersects rays and searches the triangulation in
-  // double. Measured: 5.4e-5 (measured directions, coloured tone) and 2.2e-5 (between them) of the peak at worst,
-  // 1e-6 RMS; with the cast shadows, whose penumbra steepens the light's direction rounding, up to 6.6e-5
-  // of the peak (between the directions, periodic). Allowed: 1e-4 of the peak at any pixel, 1e-5 RMS.
+  // double. Measured: 5.4e-5 (measured directions, coloured tone) and 2.2e-5 (between them) of the peak at
+  // worst, 1e-6 RMS; with the cast shadows, whose penumbra steepens the light's direction rounding, up
+  // to 6.6e-5 of the peak (between the directions, periodic). Allowed: 1e-4 of the peak at any pixel, 1e-5
+  // RMS.
   CHECK(worst <= 1e-4 * peak);
   CHECK(rms <= 1e-5 * peak);
 
@@ -284,7 +288,8 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
     CHECK_FALSE(binding->hardware_filtering());
     // Where the device filters RGBA32F linearly (lavapipe does), the binding takes the fast path.
     VkFormatProperties format{};
-    context->vk().vkGetPhysicalDeviceFormatProperties(context->physical_device(), VK_FORMAT_R32G32B32A32_SFLOAT, &format);
+    context->vk().vkGetPhysicalDeviceFormatProperties(context->physical_device(),
+                                                      VK_FORMAT_R32G32B32A32_SFLOAT, &format);
     REQUIRE(fast_binding->hardware_filtering() ==
             ((format.optimalTilingFeatures & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) != 0));
     const Deviation d = deviation(fast, cpu);
@@ -366,8 +371,10 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
         change_squares += d * d;
       }
     }
-    const double change_rms = std::sqrt(change_squares / static_cast<double>(3 * std::max<std::size_t>(covered, 1)));
-    INFO("stored against differenced normals: max " << change / peak << ", rms " << change_rms / peak << " of the peak");
+    const double change_rms =
+        std::sqrt(change_squares / static_cast<double>(3 * std::max<std::size_t>(covered, 1)));
+    INFO("stored against differenced normals: max " << change / peak << ", rms " << change_rms / peak
+                                                    << " of the peak");
     CHECK(change > 0.0);
     CHECK(change <= 0.5 * peak);
     CHECK(change_rms <= 0.02 * peak);
@@ -379,8 +386,10 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
   reference::ReferenceRenderInput weightless = input, toneless = input;
   weightless.material = &untoned;
   toneless.tone_map = {};
-  const auto cpu_weightless = reference::render_plane(weightless, scene, target.width, target.height, target.clear);
-  CHECK(cpu_weightless == reference::render_plane(toneless, scene, target.width, target.height, target.clear));
+  const auto cpu_weightless =
+      reference::render_plane(weightless, scene, target.width, target.height, target.clear);
+  CHECK(cpu_weightless ==
+        reference::render_plane(toneless, scene, target.width, target.height, target.clear));
   CHECK(cpu_weightless != cpu);
   // The coloured tone changes the picture (so the comparison above covers it).
   Material grey = m;
@@ -407,7 +416,8 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
       }
     }
     const double taken_rms = std::sqrt(taken / static_cast<double>(3 * std::max<std::size_t>(both, 1)));
-    INFO("shadows take " << taken_rms / peak << " of the peak RMS, the mean from " << sum_lit << " to " << sum);
+    INFO("shadows take " << taken_rms / peak << " of the peak RMS, the mean from " << sum_lit << " to "
+                         << sum);
     CHECK(taken_rms >= 0.01 * peak);
     CHECK(sum < sum_lit);
   }
@@ -545,10 +555,12 @@ TEST_CASE("subspace images made resident frame by frame render the pixels of one
   info.seed = 3;
   std::unique_ptr<MaterialBinding> binding;
   REQUIRE(MaterialBinding::create(*context, m, resident->textures(), info, binding).ok());
-  REQUIRE(context->submit_and_wait([&](VkCommandBuffer cb) {
-    resident->record_transition(cb);
-    return binding->record_upload(cb);
-  }).ok());
+  REQUIRE(context
+              ->submit_and_wait([&](VkCommandBuffer cb) {
+                resident->record_transition(cb);
+                return binding->record_upload(cb);
+              })
+              .ok());
   std::unique_ptr<SubspaceSynthesizer> synthesizer;
   REQUIRE(SubspaceSynthesizer::create(*context, synthesizer).ok());
   // Two frames: the first needs half the images, the second all of them and gets only the rest.
@@ -558,10 +570,12 @@ TEST_CASE("subspace images made resident frame by frame render the pixels of one
     const std::vector<std::uint32_t> added = resident->missing(frame_needs);
     CHECK(added.size() == (frame_needs.size() == half ? half : needs.subspaces.size() - half));
     REQUIRE(synthesizer->prepare(m, render_request(added)).ok());
-    REQUIRE(context->submit_and_wait([&](VkCommandBuffer cb) {
-      if (Status status = synthesizer->record(cb); !status.ok()) return status;
-      return resident->record_add(cb, *synthesizer, added);
-    }).ok());
+    REQUIRE(context
+                ->submit_and_wait([&](VkCommandBuffer cb) {
+                  if (Status status = synthesizer->record(cb); !status.ok()) return status;
+                  return resident->record_add(cb, *synthesizer, added);
+                })
+                .ok());
     REQUIRE(binding->set_layers(m, resident->layers()).ok());
   }
   CHECK(resident->missing(needs.subspaces).empty());
@@ -607,8 +621,9 @@ double rms_difference(const std::vector<double>& a, const std::vector<double>& b
 
 }  // namespace
 
-TEST_CASE("mip levels: a distant plane matches its box-filtered render and does not shimmer as the camera moves",
-          "[render][gpu][mip]") {
+TEST_CASE(
+    "mip levels: a distant plane matches its box-filtered render and does not shimmer as the camera moves",
+    "[render][gpu][mip]") {
   test::ValidatedContext context;
   const bool relief = GENERATE(true, false);
   const Material m = [&] {
@@ -721,11 +736,13 @@ TEST_CASE("mip levels: a distant plane matches its box-filtered render and does 
     if (f == 0) continue;
     change_mips = std::max(change_mips, rms_difference(with_mips[f], with_mips[f - 1]) / mean);
     change_level0 = std::max(change_level0, rms_difference(without[f], without[f - 1]) / mean);
-    change_reference = std::max(change_reference, rms_difference(reference_frames[f], reference_frames[f - 1]) / mean);
+    change_reference =
+        std::max(change_reference, rms_difference(reference_frames[f], reference_frames[f - 1]) / mean);
   }
-  INFO((relief ? "relief: " : "flat: ") << "RMS error against the box-filtered render, of the mean: with mip levels " << error_mips << ", level 0 only "
-       << error_level0 << "; frame-to-frame change: with mip levels " << change_mips << ", level 0 only " << change_level0
-       << ", box-filtered " << change_reference);
+  INFO((relief ? "relief: " : "flat: ")
+       << "RMS error against the box-filtered render, of the mean: with mip levels " << error_mips
+       << ", level 0 only " << error_level0 << "; frame-to-frame change: with mip levels " << change_mips
+       << ", level 0 only " << change_level0 << ", box-filtered " << change_reference);
   // Documented bounds. Measured on lavapipe: see the values printed above (docs/design.md 4.6).
   CHECK(error_mips <= 0.5 * error_level0);
   CHECK(change_mips <= 0.5 * change_level0);

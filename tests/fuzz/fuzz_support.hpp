@@ -20,7 +20,8 @@ namespace carbtf::fuzz {
 // leaves nothing in the temporary folder; a crash keeps it, beside the artifact that shows the input.
 class ScratchFolder {
  public:
-  ScratchFolder() : path_(std::filesystem::temp_directory_path() / ("carbtf_fuzz_" + std::to_string(getpid()))) {
+  ScratchFolder()
+      : path_(std::filesystem::temp_directory_path() / ("carbtf_fuzz_" + std::to_string(getpid()))) {
     std::filesystem::create_directories(path_);
     // An 8x8 grey image that manifests and light files may list.
     const std::vector<float> grey(8 * 8 * 3, 0.5f);
@@ -43,9 +44,11 @@ inline const std::filesystem::path& scratch() {
   return folder.path();
 }
 
-inline std::filesystem::path write_input(const std::string& name, const std::uint8_t* data, std::size_t size) {
+inline std::filesystem::path write_input(const std::string& name, const std::uint8_t* data,
+                                         std::size_t size) {
   const std::filesystem::path path = scratch() / name;
-  std::ofstream(path, std::ios::binary | std::ios::trunc).write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+  std::ofstream(path, std::ios::binary | std::ios::trunc)
+      .write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   return path;
 }
 

@@ -5,16 +5,16 @@
 
 #include <array>
 #include <cstdio>
-#include <fstream>
 #include <filesystem>
+#include <fstream>
 
 #include "carbtf/analysis/image_io.hpp"
 #include "carbtf/engine/material/material_file.hpp"
 
-#include "cli_run.hpp"
-#include "scratch_folder.hpp"
 #include <sstream>
 #include <string>
+#include "cli_run.hpp"
+#include "scratch_folder.hpp"
 
 namespace fs = std::filesystem;
 using namespace carbtf;
@@ -48,14 +48,14 @@ TEST_CASE("bad arguments give one error line and a non-zero exit", "[cli]") {
     std::string arguments;
     std::string expected;
   };
-  for (const Case& c : {Case{"noise --size 0", "--size"}, Case{"noise --size abc", "--size"},
-                        Case{"noise --seed -3", "--seed"}, Case{"frobnicate", "frobnicate"},
-                        Case{"render m.cbtf --direction-taps 7", "--direction-taps: 7 not in {9,5}"},
-                        Case{"bench frame --lights 5", "--lights"},
-                        Case{"noise --out " + (folder / "n.xyz").string(), "unsupported image extension"},
-                        Case{"noise --size 16 --device no-such-gpu --out " + (folder / "n.png").string(),
-                             "no-such-gpu"},
-                        Case{"noise --size 16 --out /proc/carbtf/n.png", "/proc/carbtf"}}) {
+  for (const Case& c :
+       {Case{"noise --size 0", "--size"}, Case{"noise --size abc", "--size"},
+        Case{"noise --seed -3", "--seed"}, Case{"frobnicate", "frobnicate"},
+        Case{"render m.cbtf --direction-taps 7", "--direction-taps: 7 not in {9,5}"},
+        Case{"bench frame --lights 5", "--lights"},
+        Case{"noise --out " + (folder / "n.xyz").string(), "unsupported image extension"},
+        Case{"noise --size 16 --device no-such-gpu --out " + (folder / "n.png").string(), "no-such-gpu"},
+        Case{"noise --size 16 --out /proc/carbtf/n.png", "/proc/carbtf"}}) {
     const Run r = run(c.arguments);
     INFO("carbtf " << c.arguments << "\n" << r.output);
     CHECK(r.status != 0);
@@ -70,7 +70,8 @@ TEST_CASE("bad arguments give one error line and a non-zero exit", "[cli]") {
 
 TEST_CASE("with no Vulkan driver the error names the package to install", "[cli]") {
   // Point the loader at a driver manifest that does not exist: as on a machine with no driver.
-  const std::string no_driver = "VK_DRIVER_FILES=/nonexistent/icd.json VK_ICD_FILENAMES=/nonexistent/icd.json";
+  const std::string no_driver =
+      "VK_DRIVER_FILES=/nonexistent/icd.json VK_ICD_FILENAMES=/nonexistent/icd.json";
   for (const std::string arguments : {"devices", "noise --size 16 --out /tmp/carbtf_never_written.png"}) {
     const Run r = run(arguments, no_driver);
     INFO("carbtf " << arguments << "\n" << r.output);
@@ -93,18 +94,22 @@ TEST_CASE("carbtf demo runs the whole pipeline and writes a report", "[cli]") {
   const Run r = run("demo --size 48 --texture-size 64 --validation --out " + report.string());
   INFO(r.output);
   REQUIRE(r.status == 0);
-  for (const char* stage : {"[1/6] sample", "[2/6] analysis", "[3/6] synthesis", "[4/6] fidelity", "[5/6] render", "[6/6] report"}) {
+  for (const char* stage : {"[1/6] sample", "[2/6] analysis", "[3/6] synthesis", "[4/6] fidelity",
+                            "[5/6] render", "[6/6] report"}) {
     CHECK_THAT(r.output, Catch::Contains(stage));
   }
   CHECK_THAT(r.output, Catch::Contains("report: " + (report / "index.html").string()));
-  CHECK_THAT(r.output, Catch::Contains("fidelity: s mean ") && Catch::Contains("the model beats the Gaussian reference on "));
+  CHECK_THAT(r.output, Catch::Contains("fidelity: s mean ") &&
+                           Catch::Contains("the model beats the Gaussian reference on "));
   // The GPU synthesis equals the CPU reference: "bit-identical to the CPU on N of N values".
   CHECK_THAT(r.output, Catch::Contains("bit-identical to the CPU on 245760 of 245760 values"));
-  for (const char* file : {"index.html", "leather.cbtf", "sphere.png", "synthesized_00.png", "analysis/index_table.png",
-                           "analysis/eigenvalues.png", "fidelity_grid.png", "fidelity.csv"}) {
+  for (const char* file :
+       {"index.html", "leather.cbtf", "sphere.png", "synthesized_00.png", "analysis/index_table.png",
+        "analysis/eigenvalues.png", "fidelity_grid.png", "fidelity.csv"}) {
     CHECK(fs::exists(report / file));
   }
-  const RgbImage sphere = decode_rgb_image((report / "sphere.png").string(), read_file_bytes(report / "sphere.png"));
+  const RgbImage sphere =
+      decode_rgb_image((report / "sphere.png").string(), read_file_bytes(report / "sphere.png"));
   REQUIRE(sphere.srgb8.size() == 960u * 640u * 3u);
   // The sphere covers the centre, the clear colour the corner.
   CHECK(sphere.srgb8[(320u * 960u + 480u) * 3u] != sphere.srgb8[0]);
@@ -112,8 +117,9 @@ TEST_CASE("carbtf demo runs the whole pipeline and writes a report", "[cli]") {
 }
 
 TEST_CASE("every command answers --help", "[cli]") {
-  for (const std::string command : {"", "noise", "devices", "demo", "sample", "info", "analyze", "normals",
-                                    "synth", "conform", "render", "fidelity", "bench noise", "bench data", "bench analyze", "bench synth", "bench frame"}) {
+  for (const std::string command :
+       {"", "noise", "devices", "demo", "sample", "info", "analyze", "normals", "synth", "conform", "render",
+        "fidelity", "bench noise", "bench data", "bench analyze", "bench synth", "bench frame"}) {
     const Run r = run(command + " --help");
     INFO("carbtf " << command << " --help\n" << r.output);
     CHECK(r.status == 0);
@@ -180,10 +186,12 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
   REQUIRE(analysed.sample.status == 0);
   INFO(analyze.output);
   REQUIRE(analyze.status == 0);
-  CHECK_THAT(analyze.output, Catch::Contains("segmentation") && Catch::Contains("subspace models") && Catch::Contains("ratio 1 : "));
+  CHECK_THAT(analyze.output, Catch::Contains("segmentation") && Catch::Contains("subspace models") &&
+                                 Catch::Contains("ratio 1 : "));
   REQUIRE(fs::exists(material));
-  for (const char* file : {"index_table.png", "eigenvalues.png", "eigenvalues.csv", "subspace_07.png", "normals.png", "range_map.exr",
-                           "range_enlarged.png", "stages.csv", "analysis_log.txt"}) {
+  for (const char* file :
+       {"index_table.png", "eigenvalues.png", "eigenvalues.csv", "subspace_07.png", "normals.png",
+        "range_map.exr", "range_enlarged.png", "stages.csv", "analysis_log.txt"}) {
     CHECK(fs::exists(folder / "report" / file));
   }
   const Run info = run("info " + material.string());
@@ -191,7 +199,8 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
   REQUIRE(info.status == 0);
   CHECK_THAT(info.output, Catch::Contains("(format 1." + std::to_string(kMaterialFormatMinor) + ")"));
   CHECK_THAT(info.output, Catch::Contains("81 lights x 81 views") && Catch::Contains("8, 2 pyramid levels") &&
-                              Catch::Contains("SUBS") && Catch::Contains("RNGE") && Catch::Contains("compression ratio"));
+                              Catch::Contains("SUBS") && Catch::Contains("RNGE") &&
+                              Catch::Contains("compression ratio"));
 
   SECTION("a damaged material gets one error line naming the file") {
     const fs::path damaged = folder / "damaged.cbtf";
@@ -200,10 +209,12 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
     const Run r = run("info " + damaged.string());
     CHECK(r.status == 1);
     CHECK(line_count(r.output) == 1);
-    CHECK_THAT(r.output, Catch::StartsWith("carbtf: error: ") && Catch::Contains(damaged.string()) && Catch::Contains("truncated"));
+    CHECK_THAT(r.output, Catch::StartsWith("carbtf: error: ") && Catch::Contains(damaged.string()) &&
+                             Catch::Contains("truncated"));
   }
   SECTION("carbtf synth gives the same bits on the Vulkan device and the CPU reference") {
-    const std::string common = "synth " + material.string() + " --size 48 --seed 9 --light 30,45 --view 60,120 --out ";
+    const std::string common =
+        "synth " + material.string() + " --size 48 --seed 9 --light 30,45 --view 60,120 --out ";
     const Run gpu = run(common + (folder / "gpu").string() + " --validation");
     INFO(gpu.output);
     REQUIRE(gpu.status == 0);
@@ -226,24 +237,29 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
     CHECK(compared >= 2);  // at least one subspace image and the interpolated image
     CHECK(fs::exists(folder / "gpu" / "interpolated.exr"));
 
-    const Run conform = run("conform " + material.string() + " --size 40 --large-size 96 --growth-sizes 32,64 --validation");
+    const Run conform =
+        run("conform " + material.string() + " --size 40 --large-size 96 --growth-sizes 32,64 --validation");
     INFO(conform.output);
     CHECK(conform.status == 0);
-    CHECK_THAT(conform.output, Catch::Contains("near-unit-root") && Catch::Contains("HDR") && Catch::Contains("interpolation") &&
-                                   Catch::Contains("all stages within"));
+    CHECK_THAT(conform.output, Catch::Contains("near-unit-root") && Catch::Contains("HDR") &&
+                                   Catch::Contains("interpolation") && Catch::Contains("all stages within"));
 
-    const Run missing = run("synth " + material.string() + " --subspaces 8 --out " + (folder / "bad").string());
+    const Run missing =
+        run("synth " + material.string() + " --subspaces 8 --out " + (folder / "bad").string());
     CHECK(missing.status == 1);
     CHECK(line_count(missing.output) == 1);
     CHECK_THAT(missing.output, Catch::Contains("subspace 8 does not exist"));
   }
   SECTION("carbtf bench synth reports conformance and fidelity error against run time") {
     const fs::path out = folder / "bench";
-    const Run bench = run("bench synth --material " + material.string() + " --btf " + (folder / "leather" / "btf").string() +
+    const Run bench = run("bench synth --material " + material.string() + " --btf " +
+                          (folder / "leather" / "btf").string() +
                           " --sizes 32 --subspace-counts 3 --repeats 1 --validation --out " + out.string());
     INFO(bench.output);
     REQUIRE(bench.status == 0);
-    for (const char* file : {"bench_synth.csv", "bench_synth.md", "bench_synth.png", "bench_synth_fidelity.png"}) CHECK(fs::exists(out / file));
+    for (const char* file :
+         {"bench_synth.csv", "bench_synth.md", "bench_synth.png", "bench_synth_fidelity.png"})
+      CHECK(fs::exists(out / file));
     const auto csv_bytes = read_file_bytes(out / "bench_synth.csv");
     std::string csv;
     for (const std::byte b : csv_bytes) csv.push_back(static_cast<char>(b));
@@ -253,14 +269,17 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
     CHECK_THAT(bench.output, Catch::Contains("pairs: rel mean"));
     CHECK_THAT(bench.output, !Catch::Contains(" 0 pairs"));
 
-    const Run mismatch = run("bench synth --material " + material.string() + " --btf " + (folder / "missing").string());
+    const Run mismatch =
+        run("bench synth --material " + material.string() + " --btf " + (folder / "missing").string());
     CHECK(mismatch.status != 0);
     CHECK(line_count(mismatch.output) == 1);
   }
   SECTION("carbtf render draws the material on a mesh and refuses bad meshes with one line") {
     const fs::path frame = folder / "render" / "sphere.png";
-    const Run r = run("render " + material.string() + " --mesh sphere --size 96x64 --texture-size 32 --light 40,90 "
-                      "--point-light 1,1,2,2 --validation --out " + frame.string());
+    const Run r = run("render " + material.string() +
+                      " --mesh sphere --size 96x64 --texture-size 32 --light 40,90 "
+                      "--point-light 1,1,2,2 --validation --out " +
+                      frame.string());
     INFO(r.output);
     REQUIRE(r.status == 0);
     CHECK_THAT(r.output, Catch::Contains("rendering 96x64") && Catch::Contains("wrote " + frame.string()));
@@ -271,8 +290,10 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
     CHECK(image.srgb8[centre] != image.srgb8[0]);
     // --direction-taps 5: the staircase's pairs, another picture between the measured directions.
     const fs::path staircase = folder / "render" / "sphere_5.png";
-    const Run five = run("render " + material.string() + " --mesh sphere --size 96x64 --texture-size 32 --light 40,90 "
-                         "--point-light 1,1,2,2 --direction-taps 5 --validation --out " + staircase.string());
+    const Run five = run("render " + material.string() +
+                         " --mesh sphere --size 96x64 --texture-size 32 --light 40,90 "
+                         "--point-light 1,1,2,2 --direction-taps 5 --validation --out " +
+                         staircase.string());
     INFO(five.output);
     REQUIRE(five.status == 0);
     const RgbImage five_image = decode_rgb_image(staircase.string(), read_file_bytes(staircase));
@@ -281,9 +302,10 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
 
     // Beside the measurement: the measured BTF drawn the same way on the same plane, view and light.
     const fs::path compare = folder / "render" / "plane.png";
-    const Run beside = run("render " + material.string() + " --compare " + (folder / "leather" / "btf").string() +
-                           " --mesh plane --camera 35,200,2.6 --light 45,60 --size 64x48 --validation --out " +
-                           compare.string());
+    const Run beside =
+        run("render " + material.string() + " --compare " + (folder / "leather" / "btf").string() +
+            " --mesh plane --camera 35,200,2.6 --light 45,60 --size 64x48 --validation --out " +
+            compare.string());
     INFO(beside.output);
     REQUIRE(beside.status == 0);
     CHECK_THAT(beside.output, Catch::Contains("rendering the measured BTF"));
@@ -306,7 +328,8 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
       return (folder / name).string();
     };
     const std::string far_index = write_obj("far.obj", "v 0 0 0\nvt 0 0\nf 1/1 2/1 -9/1\n");
-    const std::string not_a_number = write_obj("inf.obj", "v 1e999 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1\n");
+    const std::string not_a_number =
+        write_obj("inf.obj", "v 1e999 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1\n");
     const std::string empty = write_obj("empty.obj", "");
     const std::string garbage = write_obj("garbage.obj", std::string("\x7f\x45\x4c\x46\x02\x01\x00\xff", 8));
     for (const auto& [arguments, expected] : std::vector<std::pair<std::string, std::string>>{
@@ -318,7 +341,8 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
              {"--mesh " + (folder / "missing.obj").string(), "no such mesh file"},
              {"--mesh cube", "expected plane, sphere"},
              {"--size 12by5", "WIDTHxHEIGHT"}}) {
-      const Run bad = run("render " + material.string() + " " + arguments + " --out " + (folder / "bad.png").string());
+      const Run bad =
+          run("render " + material.string() + " " + arguments + " --out " + (folder / "bad.png").string());
       INFO("carbtf render " << arguments << "\n" << bad.output);
       CHECK(bad.status == 1);
       CHECK(line_count(bad.output) == 1);
@@ -328,23 +352,26 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
   }
   SECTION("carbtf bench frame reports synthesis and render times per frame") {
     const fs::path out = folder / "frames";
-    const Run bench = run("bench frame --material " + material.string() + " --frames 4 --width 64 --height 48 "
-                          "--texture-size 32 --lights 2 --parts --validation --out " + out.string());
+    const Run bench = run("bench frame --material " + material.string() +
+                          " --frames 4 --width 64 --height 48 "
+                          "--texture-size 32 --lights 2 --parts --validation --out " +
+                          out.string());
     INFO(bench.output);
     REQUIRE(bench.status == 0);
     CHECK_THAT(bench.output, Catch::Contains("render pass, GPU timestamps | 4 |") &&
                                  Catch::Contains("synthesis, GPU timestamps (frames that synthesize)") &&
                                  Catch::Contains("sphere, 2 lights, on "));
     // --parts: the full pass and each part replaced, every one timed on the 4 frames.
-    for (const char* part : {"none (the full pass)", "direction lookups", "pair table reads", "subspace image reads",
-                             "relief (normal, tone, horizons)", "parallax height read",
-                             "9 direction taps (5 in their place)"}) {
+    for (const char* part :
+         {"none (the full pass)", "direction lookups", "pair table reads", "subspace image reads",
+          "relief (normal, tone, horizons)", "parallax height read", "9 direction taps (5 in their place)"}) {
       CHECK_THAT(bench.output, Catch::Contains(std::string("| ") + part + " | 4 |"));
     }
     const auto parts_bytes = read_file_bytes(out / "bench_frame_parts.csv");
     const std::string parts_csv(reinterpret_cast<const char*>(parts_bytes.data()), parts_bytes.size());
     CHECK(line_count(parts_csv) == 1 + 7 * 4);
-    CHECK_THAT(parts_csv, Catch::Contains("\n\"relief (normal, tone, horizons)\",3,"));  // quoted: it holds commas
+    CHECK_THAT(parts_csv,
+               Catch::Contains("\n\"relief (normal, tone, horizons)\",3,"));  // quoted: it holds commas
     CHECK(fs::exists(out / "bench_frame_parts.md"));
     const auto csv_bytes = read_file_bytes(out / "bench_frame.csv");
     std::string csv;
@@ -372,7 +399,8 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
     // The analysis gives every subspace the whole tone; a material file may hold other shares (TWGT).
     Material whole;
     REQUIRE(read_material_file(material.string(), whole).ok());
-    CHECK_THAT(run("info " + material.string()).output, Catch::Contains("taken whole by") && !Catch::Contains("TWGT"));
+    CHECK_THAT(run("info " + material.string()).output,
+               Catch::Contains("taken whole by") && !Catch::Contains("TWGT"));
     Material none = whole;
     for (SubspaceModel& s : none.subspaces) s.tone_weight = 0.0f;
     const fs::path none_path = folder / "tone_none.cbtf";
@@ -384,21 +412,28 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
   }
   SECTION("range-tile edge colours: more colours, more tiles from more patches, shown by info") {
     const fs::path three = folder / "edge_colours_3.cbtf";
-    const Run analyze_three =
-        run("analyze " + (folder / "leather" / "btf").string() + " --subspaces 8 --levels 2 --edge-colours 3 --out " + three.string());
+    const Run analyze_three = run("analyze " + (folder / "leather" / "btf").string() +
+                                  " --subspaces 8 --levels 2 --edge-colours 3 --out " + three.string());
     INFO(analyze_three.output);
     REQUIRE(analyze_three.status == 0);
-    CHECK_THAT(run("info " + three.string()).output, Catch::Contains("81 tiles of") && Catch::Contains("from 6 patches"));
-    CHECK_THAT(run("info " + material.string()).output, Catch::Contains("16 tiles of") && Catch::Contains("from 4 patches"));
+    CHECK_THAT(run("info " + three.string()).output,
+               Catch::Contains("81 tiles of") && Catch::Contains("from 6 patches"));
+    CHECK_THAT(run("info " + material.string()).output,
+               Catch::Contains("16 tiles of") && Catch::Contains("from 4 patches"));
   }
   SECTION("bad analysis arguments") {
     for (const auto& [arguments, expected] : std::vector<std::pair<std::string, std::string>>{
-             {"analyze " + (folder / "leather" / "btf").string() + " --out x.cbtf --edge-colours 5", "--edge-colours"},
-             {"analyze " + (folder / "leather" / "btf").string() + " --out x.cbtf --subspaces 21", "--subspaces"},
+             {"analyze " + (folder / "leather" / "btf").string() + " --out x.cbtf --edge-colours 5",
+              "--edge-colours"},
+             {"analyze " + (folder / "leather" / "btf").string() + " --out x.cbtf --subspaces 21",
+              "--subspaces"},
              {"analyze " + (folder / "leather" / "btf").string() + " --out x.cbtf --levels 7", "--levels"},
-             {"analyze " + (folder / "leather" / "btf").string() + " --out x.cbtf --deshade 0.3", "--deshade"},
-             {"analyze " + (folder / "leather" / "btf").string() + " --out x.cbtf --tone-planes yes", "--tone-planes"},
-             {"analyze " + (folder / "missing").string() + " --out " + (folder / "x.cbtf").string(), "no such file or folder"}}) {
+             {"analyze " + (folder / "leather" / "btf").string() + " --out x.cbtf --deshade 0.3",
+              "--deshade"},
+             {"analyze " + (folder / "leather" / "btf").string() + " --out x.cbtf --tone-planes yes",
+              "--tone-planes"},
+             {"analyze " + (folder / "missing").string() + " --out " + (folder / "x.cbtf").string(),
+              "no such file or folder"}}) {
       const Run r = run(arguments);
       INFO("carbtf " << arguments << "\n" << r.output);
       CHECK(r.status != 0);
@@ -412,11 +447,13 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
 TEST_CASE("carbtf normals estimates a sample's normals and compares them with its ground truth", "[cli]") {
   const fs::path folder = scratch_folder("normals");
   REQUIRE(run("sample fabric --size 32 --format png --out " + (folder / "fabric").string()).status == 0);
-  const Run r = run("normals " + (folder / "fabric" / "btf").string() + " --out " + (folder / "out").string() + " --truth " +
-                    (folder / "fabric" / "ground_truth" / "normals.exr").string());
+  const Run r =
+      run("normals " + (folder / "fabric" / "btf").string() + " --out " + (folder / "out").string() +
+          " --truth " + (folder / "fabric" / "ground_truth" / "normals.exr").string());
   INFO(r.output);
   REQUIRE(r.status == 0);
   CHECK_THAT(r.output, Catch::Contains("mean") && Catch::Contains("median"));
-  for (const char* file : {"normals.png", "normals.exr", "albedo.png", "range_map.exr", "range_map.png"}) CHECK(fs::exists(folder / "out" / file));
+  for (const char* file : {"normals.png", "normals.exr", "albedo.png", "range_map.exr", "range_map.png"})
+    CHECK(fs::exists(folder / "out" / file));
   fs::remove_all(folder);
 }

@@ -44,10 +44,12 @@ double mean_column(const fs::path& csv, int wanted) {
 }
 
 double fidelity_of(const fs::path& material, const fs::path& btf, const fs::path& out) {
-  const Run r = run("fidelity " + material.string() + " " + btf.string() + " --validation --out " + out.string());
+  const Run r =
+      run("fidelity " + material.string() + " " + btf.string() + " --validation --out " + out.string());
   INFO(r.output);
   REQUIRE(r.status == 0);
-  CHECK_THAT(r.output, Catch::Contains("s mean") && Catch::Contains("rel mean") && Catch::Contains("fidelity_grid.png"));
+  CHECK_THAT(r.output, Catch::Contains("s mean") && Catch::Contains("rel mean") &&
+                           Catch::Contains("fidelity_grid.png"));
   CHECK(fs::exists(out / "fidelity_grid.png"));
   CHECK(fs::exists(out / "fidelity.md"));
   return mean_column(out / "fidelity.csv", 6);
@@ -113,17 +115,19 @@ void check_fidelity_ranking(const std::string& name) {
     const double without_gains_rel = fidelity_of(without_gains, btf, folder / "without_gains");
     const double colour = mean_column(folder / "fitted" / "fidelity.csv", 13);
     const double without_gains_colour = mean_column(folder / "without_gains" / "fidelity.csv", 13);
-    INFO(name << ": fitted rel " << fitted_rel << " colour " << colour << ", without pair gains rel " << without_gains_rel
-              << " colour " << without_gains_colour);
+    INFO(name << ": fitted rel " << fitted_rel << " colour " << colour << ", without pair gains rel "
+              << without_gains_rel << " colour " << without_gains_colour);
     CHECK(without_gains_rel > fitted_rel);
     CHECK(without_gains_colour > colour);
   }
   if (name == "fabric") {
     // Its threads are blue and white: the analysis gives the tone a plane per colour channel.
-    CHECK_THAT(run("info " + fitted_path.string()).output, Catch::Contains("tone colour:  per texel (R, G and B planes)"));
+    CHECK_THAT(run("info " + fitted_path.string()).output,
+               Catch::Contains("tone colour:  per texel (R, G and B planes)"));
     // Its threads are glossy: the analysis keeps the relief's specular lobe, which puts their highlights
     // on the thread tops where the CAR could only scatter them, and the model without it looks further.
-    CHECK_THAT(run("info " + fitted_path.string()).output, Catch::Contains("highlights:   a specular lobe on the relief"));
+    CHECK_THAT(run("info " + fitted_path.string()).output,
+               Catch::Contains("highlights:   a specular lobe on the relief"));
     Material dull = fitted;
     dull.range.specular_strength = 0.0f;
     const fs::path dull_path = folder / "without_highlights.cbtf";
@@ -135,18 +139,21 @@ void check_fidelity_ranking(const std::string& name) {
     // Creases that darken every channel alike: the analysis keeps the tone grey. Leather's images have no
     // highlights; coast_sand_rocks' stereo view is explained better with a lobe, but its models do not
     // look nearer with it, and the analysis leaves it out.
-    CHECK_THAT(run("info " + fitted_path.string()).output, Catch::Contains("tone colour:  grey") && Catch::Contains("highlights:   none"));
+    CHECK_THAT(run("info " + fitted_path.string()).output,
+               Catch::Contains("tone colour:  grey") && Catch::Contains("highlights:   none"));
   }
   fs::remove_all(folder);
 }
 
 }  // namespace
 
-TEST_CASE("carbtf fidelity ranks a deliberately broken leather model worse than the fitted one", "[cli][fidelity]") {
+TEST_CASE("carbtf fidelity ranks a deliberately broken leather model worse than the fitted one",
+          "[cli][fidelity]") {
   check_fidelity_ranking("leather");
 }
 
-TEST_CASE("carbtf fidelity ranks a deliberately broken fabric model worse than the fitted one", "[cli][fidelity]") {
+TEST_CASE("carbtf fidelity ranks a deliberately broken fabric model worse than the fitted one",
+          "[cli][fidelity]") {
   check_fidelity_ranking("fabric");
 }
 
@@ -155,12 +162,14 @@ TEST_CASE("carbtf fidelity ranks a deliberately broken coast_sand_rocks model wo
   check_fidelity_ranking("coast_sand_rocks");
 }
 
-TEST_CASE("carbtf bench fidelity sets each model option's size beside its fidelity", "[cli][fidelity][bench]") {
+TEST_CASE("carbtf bench fidelity sets each model option's size beside its fidelity",
+          "[cli][fidelity][bench]") {
   const fs::path folder = test::scratch_folder("bench_fidelity");
   REQUIRE(run("sample leather --size 64 --out " + (folder / "sample").string()).status == 0);
   const fs::path btf = folder / "sample" / "btf";
   const fs::path out = folder / "out";
-  const Run r = run("bench fidelity " + btf.string() + " --variants paper,tone64 --validation --out " + out.string());
+  const Run r =
+      run("bench fidelity " + btf.string() + " --variants paper,tone64 --validation --out " + out.string());
   INFO(r.output);
   REQUIRE(r.status == 0);
   CHECK_THAT(r.output, Catch::Contains("paper") && Catch::Contains("tone64") && Catch::Contains("KiB"));
@@ -182,9 +191,11 @@ TEST_CASE("carbtf bench fidelity sets each model option's size beside its fideli
   }
   CHECK(rows == 2);
 
-  const Run unknown = run("bench fidelity " + btf.string() + " --variants nonsense --out " + (folder / "other").string());
+  const Run unknown =
+      run("bench fidelity " + btf.string() + " --variants nonsense --out " + (folder / "other").string());
   CHECK(unknown.status != 0);
-  CHECK_THAT(unknown.output, Catch::Contains("unknown variant 'nonsense'") && Catch::Contains("known: paper"));
+  CHECK_THAT(unknown.output,
+             Catch::Contains("unknown variant 'nonsense'") && Catch::Contains("known: paper"));
   CHECK_FALSE(fs::exists(folder / "other"));
   // A second run into the same folder refuses to overwrite the first's files.
   const Run again = run("bench fidelity " + btf.string() + " --variants paper --out " + out.string());
@@ -192,7 +203,8 @@ TEST_CASE("carbtf bench fidelity sets each model option's size beside its fideli
   fs::remove_all(folder);
 }
 
-TEST_CASE("carbtf fidelity scores the pairs asked for or a spread over every light and view", "[cli][fidelity]") {
+TEST_CASE("carbtf fidelity scores the pairs asked for or a spread over every light and view",
+          "[cli][fidelity]") {
   const fs::path folder = test::scratch_folder("fidelity_pairs");
   REQUIRE(run("sample leather --size 64 --out " + (folder / "sample").string()).status == 0);
   const fs::path btf = folder / "sample" / "btf", material = folder / "leather.cbtf";
@@ -203,7 +215,8 @@ TEST_CASE("carbtf fidelity scores the pairs asked for or a spread over every lig
   INFO(chosen.output);
   REQUIRE(chosen.status == 0);
   double steepest = 0.0;
-  CHECK(scored_pairs(folder / "chosen" / "fidelity.csv", steepest) == std::vector<std::pair<int, int>>{{1, 0}, {19, 0}});
+  CHECK(scored_pairs(folder / "chosen" / "fidelity.csv", steepest) ==
+        std::vector<std::pair<int, int>>{{1, 0}, {19, 0}});
 
   // Six distinct pairs, the same on every run, none so oblique that the 64-pixel plane is too thin to
   // score (the run fails on such a pair: cos 75 degrees x 64 is 16.6 pixels).
@@ -215,7 +228,8 @@ TEST_CASE("carbtf fidelity scores the pairs asked for or a spread over every lig
   CHECK(pairs.size() == 6);
   CHECK(std::set<std::pair<int, int>>(pairs.begin(), pairs.end()).size() == pairs.size());
   CHECK(steepest < 75.0);
-  CHECK(std::any_of(pairs.begin(), pairs.end(), [](const auto& p) { return p.second != 0; }));  // not the top view alone
+  CHECK(std::any_of(pairs.begin(), pairs.end(),
+                    [](const auto& p) { return p.second != 0; }));  // not the top view alone
   REQUIRE(run(fidelity + " --spread 6 --out " + (folder / "again").string()).status == 0);
   double steepest_again = 0.0;
   CHECK(scored_pairs(folder / "again" / "fidelity.csv", steepest_again) == pairs);
@@ -230,7 +244,8 @@ TEST_CASE("carbtf fidelity scores the pairs asked for or a spread over every lig
   REQUIRE(run("sample leather --size 16 --out " + (folder / "tiny").string()).status == 0);
   const fs::path tiny_btf = folder / "tiny" / "btf", tiny = folder / "tiny.cbtf";
   REQUIRE(run("analyze " + tiny_btf.string() + " --out " + tiny.string()).status == 0);
-  const Run none = run("fidelity " + tiny.string() + " " + tiny_btf.string() + " --spread 4 --out " + (folder / "none").string());
+  const Run none = run("fidelity " + tiny.string() + " " + tiny_btf.string() + " --spread 4 --out " +
+                       (folder / "none").string());
   CHECK(none.status != 0);
   CHECK_THAT(none.output, Catch::Contains("--spread: no measured pair") && Catch::Contains("too small"));
   fs::remove_all(folder);

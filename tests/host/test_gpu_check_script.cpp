@@ -41,16 +41,16 @@ TEST_CASE("scripts/gpu_check.sh runs every check at lavapipe sizes and writes on
   CHECK_THAT(r.output, Catch::Contains("(0 failed steps)"));
   const std::string markdown = text_of(report);
   INFO(markdown);
-  for (const char* section : {"## devices", "## analysis", "## conform, every extreme case",
-                              "## bench synth, serial scheme", "## bench synth, wavefront scheme",
-                              "## bench frame, 160x90", "## bench frame, 320x180",
-                              "## bench frame, 160x90, filtered by hand", "## summary"}) {
+  for (const char* section :
+       {"## devices", "## analysis", "## conform, every extreme case", "## bench synth, serial scheme",
+        "## bench synth, wavefront scheme", "## bench frame, 160x90", "## bench frame, 320x180",
+        "## bench frame, 160x90, filtered by hand", "## summary"}) {
     CHECK_THAT(markdown, Catch::Contains(section));
   }
   CHECK_THAT(markdown, Catch::Contains("all stages within"));            // conform's verdict
   CHECK_THAT(markdown, Catch::Contains("wavefront"));                    // bench synth's rows
   CHECK_THAT(markdown, Catch::Contains("render pass, GPU timestamps"));  // bench frame's table
-  CHECK_THAT(markdown, Catch::Contains("| direction lookups | 3 |"));      // its --parts table, first size
+  CHECK_THAT(markdown, Catch::Contains("| direction lookups | 3 |"));    // its --parts table, first size
   CHECK_THAT(markdown, Catch::Contains("filtered by hand") && Catch::Contains("filtered by the sampler"));
   CHECK_THAT(markdown, Catch::Contains("0 failed steps"));
   CHECK_FALSE(markdown.find("FAILED") != std::string::npos);

@@ -21,20 +21,22 @@
 
 namespace fs = std::filesystem;
 using namespace carbtf;
+using test::check_refused;
 using test::line_count;
 using test::run;
 using test::Run;
-using test::check_refused;
 
 namespace {
 
 // A valid material file whose bytes are then patched: every `marker` float becomes `value`.
-fs::path patched_material(const fs::path& path, Material material, const std::vector<std::pair<float, float>>& patches) {
+fs::path patched_material(const fs::path& path, Material material,
+                          const std::vector<std::pair<float, float>>& patches) {
   std::vector<std::uint8_t> bytes;
   REQUIRE(encode_material(material, bytes, {.deflate = false}).ok());
   for (const auto& [marker, value] : patches) REQUIRE(test::replace_float(bytes, marker, value) >= 1);
   test::fix_crcs(bytes);
-  std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  std::ofstream(path, std::ios::binary)
+      .write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
   return path;
 }
 
@@ -50,8 +52,10 @@ TEST_CASE("a material whose recursion would diverge is refused by every command"
   Material material = test::bumpy_material();
   material.subspaces[1].bands[2].gamma[0] = 0.0123f;  // the marker
   const fs::path unstable = patched_material(folder / "unstable.cbtf", material, {{0.0123f, 1.5f}});
-  for (const std::string& command : {"info " + unstable.string(), "synth " + unstable.string() + " --size 32 --out " + (folder / "s").string(),
-                                     "render " + unstable.string() + " --size 32x32 --out " + (folder / "f.png").string()}) {
+  for (const std::string& command :
+       {"info " + unstable.string(),
+        "synth " + unstable.string() + " --size 32 --out " + (folder / "s").string(),
+        "render " + unstable.string() + " --size 32x32 --out " + (folder / "f.png").string()}) {
     INFO("carbtf " << command);
     check_refused(run(command), unstable.string() + ": subspace 1 level 0 band 2 is an unstable recursion");
   }
@@ -61,11 +65,14 @@ TEST_CASE("a material whose recursion would diverge is refused by every command"
   // A huge sigma and two equal view directions, both with valid CRCs.
   Material loud = test::bumpy_material();
   loud.subspaces[0].bands[0].sigma = 0.0123f;
-  check_refused(run("info " + patched_material(folder / "loud.cbtf", loud, {{0.0123f, 3.4e38f}}).string()), "beyond +-1000000");
+  check_refused(run("info " + patched_material(folder / "loud.cbtf", loud, {{0.0123f, 3.4e38f}}).string()),
+                "beyond +-1000000");
   Material twins = test::bumpy_material();
   twins.views[1] = {0.4321f, 1.2345f};
-  const fs::path same = patched_material(folder / "same.cbtf", twins, {{0.4321f, twins.views[0].theta}, {1.2345f, twins.views[0].phi}});
-  check_refused(run("info " + same.string()), same.string() + ": view directions: directions 0 and 1 are the same");
+  const fs::path same = patched_material(folder / "same.cbtf", twins,
+                                         {{0.4321f, twins.views[0].theta}, {1.2345f, twins.views[0].phi}});
+  check_refused(run("info " + same.string()),
+                same.string() + ": view directions: directions 0 and 1 are the same");
   fs::remove_all(folder);
 }
 
@@ -75,8 +82,10 @@ TEST_CASE("NaN, infinite and wrapped arguments are refused with one line", "[cli
   REQUIRE(write_material_file(material, test::bumpy_material()).ok());
   const std::string png = " --out " + (folder / "f.png").string();
   for (const auto& [arguments, expected] : std::vector<std::pair<std::string, std::string>>{
-           {"synth " + material + " --light nan,0 --view 0,0 --out " + (folder / "s").string(), "--light: nan is not a finite number"},
-           {"synth " + material + " --seed 18446744073709551617 --out " + (folder / "s").string(), "--seed: 18446744073709551617 does not fit"},
+           {"synth " + material + " --light nan,0 --view 0,0 --out " + (folder / "s").string(),
+            "--light: nan is not a finite number"},
+           {"synth " + material + " --seed 18446744073709551617 --out " + (folder / "s").string(),
+            "--seed: 18446744073709551617 does not fit"},
            {"synth " + material + " --out \"\"", "--out: the path is empty"},
            {"render " + material + " --light 45,0,nan" + png, "--light: nan is not a finite number"},
            {"render " + material + " --light 45,0,1e39" + png, "1e39 is not a finite number"},
@@ -86,7 +95,8 @@ TEST_CASE("NaN, infinite and wrapped arguments are refused with one line", "[cli
            {"render " + material + " --size -1x5" + png, "WIDTHxHEIGHT"},
            {"render " + material + " --out " + folder.string(), "is a folder"},
            {"render " + material + " --out " + (folder / "f.xyz").string(), "unknown image type"},
-           {"analyze " + folder.string() + " --threads 1000 --out " + (folder / "x.cbtf").string(), "--threads"}}) {
+           {"analyze " + folder.string() + " --threads 1000 --out " + (folder / "x.cbtf").string(),
+            "--threads"}}) {
     INFO("carbtf " << arguments);
     check_refused(run(arguments), expected);
   }
@@ -95,12 +105,14 @@ TEST_CASE("NaN, infinite and wrapped arguments are refused with one line", "[cli
   fs::remove_all(folder);
 }
 
-TEST_CASE("hostile OBJ meshes: zero normals are recomputed, bad numbers refused, long polygons are linear", "[cli][hostile]") {
+TEST_CASE("hostile OBJ meshes: zero normals are recomputed, bad numbers refused, long polygons are linear",
+          "[cli][hostile]") {
   const fs::path folder = test::scratch_folder("hostile_obj");
   const std::string material = (folder / "m.cbtf").string();
   REQUIRE(write_material_file(material, test::bumpy_material()).ok());
   const std::string quad = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n";
-  const std::string render = "render " + material + " --camera 0,0,3 --size 32x32 --texture-size 32 --validation --out ";
+  const std::string render =
+      "render " + material + " --camera 0,0,3 --size 32x32 --texture-size 32 --validation --out ";
 
   SECTION("zero normals are recomputed from the faces, and the frame is lit") {
     const std::string obj = write_text(folder / "zero.obj", quad + "vn 0 0 0\nf 1/1/1 2/2/1 3/3/1 4/4/1\n");
@@ -108,7 +120,8 @@ TEST_CASE("hostile OBJ meshes: zero normals are recomputed, bad numbers refused,
     INFO(r.output);
     REQUIRE(r.status == 0);
     CHECK_THAT(r.output, Catch::Contains("recomputed from the faces"));
-    const RgbImage image = decode_rgb_image((folder / "zero.png").string(), read_file_bytes(folder / "zero.png"));
+    const RgbImage image =
+        decode_rgb_image((folder / "zero.png").string(), read_file_bytes(folder / "zero.png"));
     const std::size_t centre = (16u * 32u + 16u) * 3u;
     CHECK(int{image.srgb8[centre]} + image.srgb8[centre + 1] + image.srgb8[centre + 2] > 0);
   }
@@ -117,7 +130,9 @@ TEST_CASE("hostile OBJ meshes: zero normals are recomputed, bad numbers refused,
              {quad + "vn nan 0 1\nf 1/1/1 2/2/1 3/3/1\n", "'nan' is a non-finite or malformed coordinate"},
              {"v nan 0 0\n" + quad + "f 2/1 3/2 4/3\n", ":1: 'nan' is a non-finite or malformed coordinate"},
              {quad + "f 1/1 2/2 99999999999999999999/3\n", "face index '99999999999999999999'"}}) {
-      check_refused(run(render + (folder / "bad.png").string() + " --mesh " + write_text(folder / "bad.obj", text)), expected);
+      check_refused(
+          run(render + (folder / "bad.png").string() + " --mesh " + write_text(folder / "bad.obj", text)),
+          expected);
     }
     CHECK_FALSE(fs::exists(folder / "bad.png"));
   }
@@ -127,12 +142,15 @@ TEST_CASE("hostile OBJ meshes: zero normals are recomputed, bad numbers refused,
     constexpr int corners = 200000;
     for (int i = 0; i < corners; ++i) {
       const double a = 2.0 * std::numbers::pi * i / corners;
-      text << "v " << std::cos(a) << ' ' << std::sin(a) << " 0\nvt " << 0.5 + 0.5 * std::cos(a) << ' ' << 0.5 + 0.5 * std::sin(a) << '\n';
+      text << "v " << std::cos(a) << ' ' << std::sin(a) << " 0\nvt " << 0.5 + 0.5 * std::cos(a) << ' '
+           << 0.5 + 0.5 * std::sin(a) << '\n';
     }
     text << 'f';
     for (int i = 1; i <= corners; ++i) text << ' ' << i << '/' << i;
     text << '\n';
-    const Run r = run(render + (folder / "disc.png").string() + " --mesh " + write_text(folder / "disc.obj", text.str()), "timeout 120");
+    const Run r = run(
+        render + (folder / "disc.png").string() + " --mesh " + write_text(folder / "disc.obj", text.str()),
+        "timeout 120");
     INFO(r.output);
     CHECK(r.status == 0);
   }
@@ -145,8 +163,10 @@ TEST_CASE("a FIFO or a folder given as a material is refused at once", "[cli][ho
   REQUIRE(mkfifo(fifo.c_str(), 0600) == 0);
   // timeout: a reader that opened the FIFO would wait for a writer forever.
   check_refused(run("info " + fifo.string(), "timeout 30"), fifo.string() + ": is not a regular file");
-  check_refused(run("synth " + fifo.string() + " --out " + (folder / "s").string(), "timeout 30"), "is not a regular file");
-  check_refused(run("synth " + folder.string() + " --out " + (folder / "s").string()), folder.string() + ": is a folder, not a material file");
+  check_refused(run("synth " + fifo.string() + " --out " + (folder / "s").string(), "timeout 30"),
+                "is not a regular file");
+  check_refused(run("synth " + folder.string() + " --out " + (folder / "s").string()),
+                folder.string() + ": is a folder, not a material file");
   fs::remove_all(folder);
 }
 

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "carbtf/engine/vulkan/context.hpp"
 #include "carbtf/engine/synthesis/synthesis_block.hpp"
+#include "carbtf/engine/vulkan/context.hpp"
 
 namespace carbtf::test {
 

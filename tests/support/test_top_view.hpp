@@ -18,7 +18,9 @@ inline BtfDataset rendered_dataset(const Surface& surface, const std::vector<Dir
   RenderOptions render;
   render.progress = false;
   render_btf(surface, dataset.lights(), views, render,
-             [&](std::uint32_t l, std::uint32_t v, std::span<const float> image) { dataset.set_linear({l, v}, image); });
+             [&](std::uint32_t l, std::uint32_t v, std::span<const float> image) {
+               dataset.set_linear({l, v}, image);
+             });
   return dataset;
 }
 
@@ -31,7 +33,8 @@ inline BtfDataset top_view_dataset(const Surface& surface) {
 inline Plane heights_of(const Surface& surface) {
   const auto n = static_cast<Eigen::Index>(surface.size);
   Plane heights(n, n);
-  for (Eigen::Index i = 0; i < n * n; ++i) heights(i / n, i % n) = surface.height[static_cast<std::size_t>(i)];
+  for (Eigen::Index i = 0; i < n * n; ++i)
+    heights(i / n, i % n) = surface.height[static_cast<std::size_t>(i)];
   return heights - heights.mean();
 }
 

@@ -9,7 +9,8 @@ namespace carbtf::reference {
 namespace {
 
 template <typename Reference>
-ConformanceError compare(std::span<const float> test, std::span<const Reference> reference, std::uint32_t channels) {
+ConformanceError compare(std::span<const float> test, std::span<const Reference> reference,
+                         std::uint32_t channels) {
   if (channels == 0 || test.size() != reference.size() || test.size() % channels != 0) {
     throw std::invalid_argument("conformance: test and reference differ in size or channel count");
   }
@@ -35,7 +36,8 @@ ConformanceError compare(std::span<const float> test, std::span<const Reference>
       ++error.non_finite;
       continue;
     }
-    const double relative = std::abs(static_cast<double>(test[i]) - static_cast<double>(reference[i])) * scale[i % channels];
+    const double relative =
+        std::abs(static_cast<double>(test[i]) - static_cast<double>(reference[i])) * scale[i % channels];
     error.max_relative = std::max(error.max_relative, relative);
     sum_squares += relative * relative;
   }
@@ -46,11 +48,13 @@ ConformanceError compare(std::span<const float> test, std::span<const Reference>
 
 }  // namespace
 
-ConformanceError conformance_error(std::span<const float> test, std::span<const double> reference, std::uint32_t channels) {
+ConformanceError conformance_error(std::span<const float> test, std::span<const double> reference,
+                                   std::uint32_t channels) {
   return compare(test, reference, channels);
 }
 
-ConformanceError conformance_error(std::span<const float> test, std::span<const float> reference, std::uint32_t channels) {
+ConformanceError conformance_error(std::span<const float> test, std::span<const float> reference,
+                                   std::uint32_t channels) {
   return compare(test, reference, channels);
 }
 
@@ -59,7 +63,7 @@ ConformanceError worst_of(const ConformanceError& a, const ConformanceError& b) 
   w.max_relative = std::max(a.max_relative, b.max_relative);
   w.rms_relative = std::max(a.rms_relative, b.rms_relative);
   // A default-constructed error (reference_std 0) is the identity.
-  w.reference_std = a.reference_std == 0.0 ? b.reference_std
+  w.reference_std = a.reference_std == 0.0   ? b.reference_std
                     : b.reference_std == 0.0 ? a.reference_std
                                              : std::min(a.reference_std, b.reference_std);
   w.non_finite = a.non_finite + b.non_finite;

@@ -88,7 +88,8 @@ StageConformance blockwise_stage(const std::string& name, const Material& materi
       std::vector<float> tested, expected;
       const auto row0 = static_cast<std::uint32_t>(request.row0 - whole.row0);
       const auto col0 = static_cast<std::uint32_t>(request.col0 - whole.col0);
-      const std::uint32_t first = std::min(request.width, whole.periodic_overlap - std::min(whole.periodic_overlap, col0));
+      const std::uint32_t first =
+          std::min(request.width, whole.periodic_overlap - std::min(whole.periodic_overlap, col0));
       auto append = [channels](std::vector<float>& to, const std::vector<float>& from, std::size_t texel,
                                std::size_t count) {
         const auto begin = from.begin() + static_cast<std::ptrdiff_t>(texel * channels);
@@ -96,7 +97,8 @@ StageConformance blockwise_stage(const std::string& name, const Material& materi
       };
       for (std::uint32_t r = 0; r < request.height; ++r) {
         if (row0 + r < whole.periodic_overlap) continue;
-        append(expected, images.images[s], std::size_t{row0 + r} * whole.width + col0 + first, request.width - first);
+        append(expected, images.images[s], std::size_t{row0 + r} * whole.width + col0 + first,
+               request.width - first);
         append(tested, tile.images[s], std::size_t{r} * request.width + first, request.width - first);
       }
       accumulate(stage, tested, expected, channels);

@@ -18,16 +18,23 @@ std::array<std::uint32_t, 4> philox4x32_10(std::array<std::uint32_t, 4> c, std::
   return c;
 }
 
-float noise_log(float u) { return carbtf_log(u); }
-float noise_cos2pi(float t) { return carbtf_cos2pi(t); }
-float noise_sqrt(float v) { return carbtf_sqrt(v); }
+float noise_log(float u) {
+  return carbtf_log(u);
+}
+float noise_cos2pi(float t) {
+  return carbtf_cos2pi(t);
+}
+float noise_sqrt(float v) {
+  return carbtf_sqrt(v);
+}
 
 float gaussian_noise(std::uint64_t seed, std::uint32_t field_id, std::int32_t row, std::int32_t col) {
   return carbtf_gaussian(static_cast<std::uint32_t>(seed), static_cast<std::uint32_t>(seed >> 32), field_id,
                          static_cast<std::uint32_t>(row), static_cast<std::uint32_t>(col));
 }
 
-NoiseRowCursor::NoiseRowCursor(std::uint64_t seed, std::uint32_t field_id, std::int32_t row, std::int32_t col0)
+NoiseRowCursor::NoiseRowCursor(std::uint64_t seed, std::uint32_t field_id, std::int32_t row,
+                               std::int32_t col0)
     : seed_lo_(static_cast<std::uint32_t>(seed)),
       seed_hi_(static_cast<std::uint32_t>(seed >> 32)),
       field_id_(field_id),
@@ -49,7 +56,8 @@ void fill_noise_block(std::uint64_t seed, std::uint32_t field_id, std::int32_t r
   assert(out.size() >= std::size_t{width} * height);
   // Rows wrap modulo 2^32 exactly as on the GPU (uint arithmetic there).
   detail::parallel_for(height, threads, [&](std::size_t r) {
-    const auto row = static_cast<std::int32_t>(static_cast<std::uint32_t>(row0) + static_cast<std::uint32_t>(r));
+    const auto row =
+        static_cast<std::int32_t>(static_cast<std::uint32_t>(row0) + static_cast<std::uint32_t>(r));
     float* line = out.data() + r * width;
     NoiseRowCursor noise(seed, field_id, row, col0);
     for (std::uint32_t c = 0; c < width; ++c) line[c] = noise.next();

@@ -8,8 +8,8 @@
 #include <glm/glm.hpp>
 
 #include "carbtf/engine/material/material_directions.hpp"
-#include "carbtf/engine/render/mip_levels.hpp"
 #include "carbtf/engine/render/material_binding.hpp"
+#include "carbtf/engine/render/mip_levels.hpp"
 #include "carbtf/engine/render/relief_horizons.hpp"
 #include "carbtf/engine/render/relief_normals.hpp"
 
@@ -44,14 +44,16 @@ std::vector<float> height_texels(std::span<const float> heights, std::span<const
 
 // The range texture's layer 1 with its levels: the relief normal and, in w, its own length at every
 // level (the binding's set_range_layer()).
-MipChain relief_chain(std::span<const float> level0, std::uint32_t width, std::uint32_t height, std::uint32_t count) {
+MipChain relief_chain(std::span<const float> level0, std::uint32_t width, std::uint32_t height,
+                      std::uint32_t count) {
   MipChain chain(level0, width, height, 4, count);
   for (std::vector<float>& level : chain.levels) store_normal_lengths(level);
   return chain;
 }
 
 // The range texture's layer 1: the relief normal, 4 floats per texel.
-std::vector<float> relief_texels(std::span<const float> heights, std::uint32_t width, std::uint32_t height, bool wrap) {
+std::vector<float> relief_texels(std::span<const float> heights, std::uint32_t width, std::uint32_t height,
+                                 bool wrap) {
   std::vector<float> normals;
   relief_normals(heights, width, height, wrap, normals);
   std::vector<float> out(heights.size() * 4, 0.0f);
@@ -79,9 +81,9 @@ struct Sampler {
   const ReferenceRenderInput& input;
   std::uint32_t width, height;
   float range_mean;
-  MipChain range, relief;  // heights and tone; normal (relief_normals.hpp)
+  MipChain range, relief;           // heights and tone; normal (relief_normals.hpp)
   MipChain horizons_a, horizons_b;  // horizons of azimuths 0-3 and 4-7 (relief_horizons.hpp)
-  std::vector<MipChain> images;  // per subspace, empty levels where it was not synthesized
+  std::vector<MipChain> images;     // per subspace, empty levels where it was not synthesized
 
   struct Bilinear {
     int x0, y0, x1, y1;
@@ -95,8 +97,8 @@ struct Sampler {
     const int ix = static_cast<int>(std::clamp(base.x, -1.0f, static_cast<float>(w)));
     const int iy = static_cast<int>(std::clamp(base.y, -1.0f, static_cast<float>(h)));
     if (input.wrap) {
-      return {ix < 0 ? w - 1 : ix, iy < 0 ? h - 1 : iy, ix + 1 >= w ? 0 : ix + 1, iy + 1 >= h ? 0 : iy + 1,
-              t.x - base.x, t.y - base.y};
+      return {ix < 0 ? w - 1 : ix,      iy < 0 ? h - 1 : iy, ix + 1 >= w ? 0 : ix + 1,
+              iy + 1 >= h ? 0 : iy + 1, t.x - base.x,        t.y - base.y};
     }
     return {std::clamp(ix, 0, w - 1),
             std::clamp(iy, 0, h - 1),
@@ -114,7 +116,8 @@ struct Sampler {
       auto at = [&](int x, int y) {
         glm::vec4 v(0.0f);
         const std::size_t base = (static_cast<std::size_t>(y) * w + x) * chain.channels;
-        for (std::uint32_t k = 0; k < std::min(chain.channels, 4u); ++k) v[static_cast<int>(k)] = map[base + k];
+        for (std::uint32_t k = 0; k < std::min(chain.channels, 4u); ++k)
+          v[static_cast<int>(k)] = map[base + k];
         return v;
       };
       const glm::vec4 top = glm::mix(at(b.x0, b.y0), at(b.x1, b.y0), b.fx);
@@ -211,7 +214,9 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
     world = a + s * (b - a);
     return s >= 0.0 && s <= 1.0;
   };
-  auto uv_of = [](const glm::dvec3& world) { return glm::dvec2(0.5 * (world.x + 1.0), 0.5 * (1.0 - world.y)); };
+  auto uv_of = [](const glm::dvec3& world) {
+    return glm::dvec2(0.5 * (world.x + 1.0), 0.5 * (1.0 - world.y));
+  };
   // The fragment stage's carbtf_material_lod(): fine derivatives are differences within the pixel's
   // 2 x 2 quad, the same for both pixels of its row (x) or column (y).
   const float top_level = static_cast<float>(levels - 1);
@@ -257,10 +262,12 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
       }
       std::array<float, kReliefHorizonDirections> horizon_at{};
       if (shadows) {
-        const glm::vec4 a = sampler.filtered(sampler.horizons_a, shifted, lod), b = sampler.filtered(sampler.horizons_b, shifted, lod);
+        const glm::vec4 a = sampler.filtered(sampler.horizons_a, shifted, lod),
+                        b = sampler.filtered(sampler.horizons_b, shifted, lod);
         horizon_at = {a.x, a.y, a.z, a.w, b.x, b.y, b.z, b.w};
       }
-      const glm::vec3 chroma(material.range.tone_chroma[0], material.range.tone_chroma[1], material.range.tone_chroma[2]);
+      const glm::vec3 chroma(material.range.tone_chroma[0], material.range.tone_chroma[1],
+                             material.range.tone_chroma[2]);
       const glm::vec3 tone_offset = chroma * (sampler.tone_at(shifted, lod) - 1.0f);
 
       glm::vec3 colour(0.0f);
@@ -291,7 +298,8 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
         glm::vec3 shade = relit * btf;
         if (material.range.specular_strength > 0.0f) {
           const float n_dot_h = std::max(glm::dot(normal, glm::normalize(l + view)), 0.0f);
-          shade += glm::vec3(material.range.specular_strength * n_dot_l * visibility * std::pow(n_dot_h, material.range.specular_gloss));
+          shade += glm::vec3(material.range.specular_strength * n_dot_l * visibility *
+                             std::pow(n_dot_h, material.range.specular_gloss));
         }
         colour += falloff * glm::vec3(light.colour[0], light.colour[1], light.colour[2]) * shade;
       }

@@ -8,9 +8,9 @@
 #include <carbtf_periodic.h>
 #include <carbtf_steps.h>
 
-#include "carbtf/reference/parallel_for.hpp"
-#include "carbtf/reference/car_synthesis.hpp"
 #include "carbtf/engine/internal/synthesis_layout.hpp"
+#include "carbtf/reference/car_synthesis.hpp"
+#include "carbtf/reference/parallel_for.hpp"
 
 namespace carbtf::reference {
 namespace {
@@ -33,7 +33,8 @@ std::vector<Real> expand(const std::vector<Real>& coarse, const TextureRegion& f
       for (int k = -2; k <= 2; ++k) {
         if (((i - k) & 1) != 0) continue;
         const std::int64_t j = (i - k) / 2 - from.col0;  // i - k even: exact division
-        acc = gpu::carbtf_weighted_add(acc, kExpandWeight<Real>[k + 2], coarse[static_cast<std::size_t>(r * from.cols + j)]);
+        acc = gpu::carbtf_weighted_add(acc, kExpandWeight<Real>[k + 2],
+                                       coarse[static_cast<std::size_t>(r * from.cols + j)]);
       }
       horizontal[static_cast<std::size_t>(r * to.cols + c)] = acc;
     }
@@ -46,7 +47,8 @@ std::vector<Real> expand(const std::vector<Real>& coarse, const TextureRegion& f
       for (int k = -2; k <= 2; ++k) {
         if (((i - k) & 1) != 0) continue;
         const std::int64_t j = (i - k) / 2 - from.row0;
-        acc = gpu::carbtf_weighted_add(acc, kExpandWeight<Real>[k + 2], horizontal[static_cast<std::size_t>(j * to.cols + c)]);
+        acc = gpu::carbtf_weighted_add(acc, kExpandWeight<Real>[k + 2],
+                                       horizontal[static_cast<std::size_t>(j * to.cols + c)]);
       }
       out[static_cast<std::size_t>(r * to.cols + c)] = acc;
     }
@@ -85,8 +87,7 @@ void synthesize(const Material& material, std::uint32_t subspace, const Subspace
   const std::size_t pixels = std::size_t{block.width} * block.height;
   if (out.size() < pixels * model.channels)
     throw std::invalid_argument("subspace synthesis: output span too small");
-  const std::vector<TextureRegion> regions =
-      level_regions(synthesized_region(block), model.levels);
+  const std::vector<TextureRegion> regions = level_regions(synthesized_region(block), model.levels);
 
   if (stages) {
     stages->regions = regions;
@@ -125,12 +126,14 @@ void synthesize(const Material& material, std::uint32_t subspace, const Subspace
   }
   std::vector<Real> collapsed(model.channels);
   for (std::size_t p = 0; p < pixels; ++p) {
-    std::copy_n(out.begin() + static_cast<std::ptrdiff_t>(p * model.channels), model.channels, collapsed.begin());
+    std::copy_n(out.begin() + static_cast<std::ptrdiff_t>(p * model.channels), model.channels,
+                collapsed.begin());
     for (std::uint32_t i = 0; i < model.channels; ++i) {
       Real acc = static_cast<Real>(model.colour_mean[i]);
       for (std::uint32_t j = 0; j < model.channels; ++j) {
-        acc = gpu::carbtf_weighted_add(acc, static_cast<Real>(model.colour_transform[std::size_t{i} * model.channels + j]),
-                                       collapsed[j]);
+        acc = gpu::carbtf_weighted_add(
+            acc, static_cast<Real>(model.colour_transform[std::size_t{i} * model.channels + j]),
+            collapsed[j]);
       }
       out[p * model.channels + i] = acc;
     }
@@ -240,8 +243,7 @@ std::vector<std::vector<float>> block_initial_values(const Material& material,
   detail::parallel_for(bands.size(), threads, [&](std::size_t i) {
     const BlockFrameField& band = bands[i];
     const SubspaceModel& model = material.subspaces[band.subspace];
-    const TextureRegion level =
-        level_regions(synthesized_region(whole), model.levels)[band.level];
+    const TextureRegion level = level_regions(synthesized_region(whole), model.levels)[band.level];
     CarFieldBlock field;
     field.seed = whole.seed;
     field.field_id = field_id_of(band.subspace, band.level, band.channel);
@@ -278,7 +280,8 @@ void interpolate_subspaces(const Material& material, const PairWeights& weights,
       throw std::invalid_argument("interpolation needs subspace image " + std::to_string(s) +
                                   ", which was not synthesized");
     }
-    for (std::size_t i = 0; i < out.size(); ++i) out[i] = gpu::carbtf_weighted_add(out[i], weights.weight[k], images[s][i]);
+    for (std::size_t i = 0; i < out.size(); ++i)
+      out[i] = gpu::carbtf_weighted_add(out[i], weights.weight[k], images[s][i]);
   }
 }
 

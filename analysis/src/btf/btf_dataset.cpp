@@ -7,9 +7,9 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
-#include <limits>
 #include <string>
 #include <vector>
 
@@ -19,9 +19,12 @@ namespace carbtf {
 
 const char* color_encoding_name(ColorEncoding encoding) {
   switch (encoding) {
-    case ColorEncoding::srgb8: return "8-bit sRGB (linearised on load)";
-    case ColorEncoding::linear_half: return "linear float (stored as half)";
-    case ColorEncoding::decoded: return "linear float (decompressed per image on access)";
+    case ColorEncoding::srgb8:
+      return "8-bit sRGB (linearised on load)";
+    case ColorEncoding::linear_half:
+      return "linear float (stored as half)";
+    case ColorEncoding::decoded:
+      return "linear float (decompressed per image on access)";
   }
   return "unknown";
 }
@@ -59,7 +62,8 @@ const Srgb8CodeTable& srgb8_code_table() {
     t.step.assign(last + 1, std::numeric_limits<float>::infinity());
     for (std::uint32_t b = 0; b <= last; ++b) {
       std::uint32_t low = b << kSrgb8BucketShift;
-      const std::uint32_t end = std::min((b + 1) << kSrgb8BucketShift, std::bit_cast<std::uint32_t>(1.0f) + 1);
+      const std::uint32_t end =
+          std::min((b + 1) << kSrgb8BucketShift, std::bit_cast<std::uint32_t>(1.0f) + 1);
       const int first = srgb8_by_power(std::bit_cast<float>(low));
       const int final = srgb8_by_power(std::bit_cast<float>(end - 1));
       t.base[b] = static_cast<std::uint8_t>(first);
@@ -102,7 +106,11 @@ const std::array<float, 256>& srgb8_table() {
 
 BtfDataset::BtfDataset(std::vector<Direction> lights, std::vector<Direction> views, std::uint32_t width,
                        std::uint32_t height, ColorEncoding encoding)
-    : lights_(std::move(lights)), views_(std::move(views)), width_(width), height_(height), encoding_(encoding) {
+    : lights_(std::move(lights)),
+      views_(std::move(views)),
+      width_(width),
+      height_(height),
+      encoding_(encoding) {
   const std::size_t slots = lights_.size() * views_.size();
   if (encoding_ == ColorEncoding::srgb8) {
     srgb_.resize(slots);
@@ -123,16 +131,20 @@ BtfDataset::BtfDataset(std::vector<Direction> lights, std::vector<Direction> vie
 }
 
 std::size_t BtfDataset::slot(LightView pair) const {
-  if (pair.light >= lights_.size() || pair.view >= views_.size()) throw std::out_of_range("BTF pair out of range");
+  if (pair.light >= lights_.size() || pair.view >= views_.size())
+    throw std::out_of_range("BTF pair out of range");
   return std::size_t{pair.light} * views_.size() + pair.view;
 }
 
 bool BtfDataset::has_image(LightView pair) const {
   const std::size_t s = slot(pair);
   switch (encoding_) {
-    case ColorEncoding::srgb8: return !srgb_[s].empty();
-    case ColorEncoding::linear_half: return !half_[s].empty();
-    case ColorEncoding::decoded: return true;
+    case ColorEncoding::srgb8:
+      return !srgb_[s].empty();
+    case ColorEncoding::linear_half:
+      return !half_[s].empty();
+    case ColorEncoding::decoded:
+      return true;
   }
   return false;
 }
@@ -147,12 +159,17 @@ std::vector<LightView> BtfDataset::pairs_where_present(bool present) const {
   return pairs;
 }
 
-std::vector<LightView> BtfDataset::present_pairs() const { return pairs_where_present(true); }
-std::vector<LightView> BtfDataset::missing_pairs() const { return pairs_where_present(false); }
+std::vector<LightView> BtfDataset::present_pairs() const {
+  return pairs_where_present(true);
+}
+std::vector<LightView> BtfDataset::missing_pairs() const {
+  return pairs_where_present(false);
+}
 
 void BtfDataset::set_srgb8(LightView pair, std::vector<std::uint8_t> pixels) {
   if (encoding_ != ColorEncoding::srgb8) throw std::invalid_argument("set_srgb8 on a linear dataset");
-  if (pixels.size() != pixel_count() * 3) throw std::invalid_argument("image size does not match the dataset");
+  if (pixels.size() != pixel_count() * 3)
+    throw std::invalid_argument("image size does not match the dataset");
   srgb_[slot(pair)] = std::move(pixels);
 }
 
@@ -165,8 +182,10 @@ void BtfDataset::set_linear(LightView pair, std::span<const float> rgb) {
 }
 
 void BtfDataset::set_linear_half(LightView pair, std::vector<std::uint16_t> halves) {
-  if (encoding_ != ColorEncoding::linear_half) throw std::invalid_argument("set_linear_half on a dataset not of halves");
-  if (halves.size() != pixel_count() * 3) throw std::invalid_argument("image size does not match the dataset");
+  if (encoding_ != ColorEncoding::linear_half)
+    throw std::invalid_argument("set_linear_half on a dataset not of halves");
+  if (halves.size() != pixel_count() * 3)
+    throw std::invalid_argument("image size does not match the dataset");
   half_[slot(pair)] = std::move(halves);
 }
 
@@ -215,30 +234,36 @@ bool same_directions(const std::vector<Direction>& measured, const std::vector<M
 
 }  // namespace
 
-void check_direction_table(const std::string& input, std::size_t lights, std::size_t views, std::size_t measured) {
+void check_direction_table(const std::string& input, std::size_t lights, std::size_t views,
+                           std::size_t measured) {
   for (const auto& [count, what] : {std::pair{lights, "light"}, std::pair{views, "view"}}) {
     if (count > kMaxDatasetDirections) {
       throw InputError(input, "has more than " + std::to_string(kMaxDatasetDirections) + " distinct " + what +
-                                  " directions; carbtf reads at most " + std::to_string(kMaxDatasetDirections));
+                                  " directions; carbtf reads at most " +
+                                  std::to_string(kMaxDatasetDirections));
     }
   }
   const std::size_t table = lights * views;
   if (table > kSparseTablePairs && measured * kMinMeasuredShareDenominator < table) {
-    throw InputError(input, "measures " + std::to_string(measured) + " of the " + std::to_string(lights) + " x " +
-                                std::to_string(views) + " = " + std::to_string(table) +
-                                " light/view pairs its directions span; in a table of over " +
-                                std::to_string(kSparseTablePairs) + " pairs carbtf needs at least 1 in " +
-                                std::to_string(kMinMeasuredShareDenominator) + " (" +
-                                std::to_string((table + kMinMeasuredShareDenominator - 1) / kMinMeasuredShareDenominator) +
-                                ") measured");
+    throw InputError(
+        input, "measures " + std::to_string(measured) + " of the " + std::to_string(lights) + " x " +
+                   std::to_string(views) + " = " + std::to_string(table) +
+                   " light/view pairs its directions span; in a table of over " +
+                   std::to_string(kSparseTablePairs) + " pairs carbtf needs at least 1 in " +
+                   std::to_string(kMinMeasuredShareDenominator) + " (" +
+                   std::to_string((table + kMinMeasuredShareDenominator - 1) / kMinMeasuredShareDenominator) +
+                   ") measured");
   }
 }
 
 void require_directions_of(const BtfDataset& dataset, const Material& material, const std::string& input) {
-  if (!same_directions(dataset.lights(), material.lights) || !same_directions(dataset.views(), material.views)) {
-    throw InputError(input, "its light and view directions are not the material's (" + std::to_string(dataset.lights().size()) +
-                                " x " + std::to_string(dataset.views().size()) + " against " + std::to_string(material.lights.size()) +
-                                " x " + std::to_string(material.views.size()) + "); give the BTF the material was analysed from");
+  if (!same_directions(dataset.lights(), material.lights) ||
+      !same_directions(dataset.views(), material.views)) {
+    throw InputError(
+        input, "its light and view directions are not the material's (" +
+                   std::to_string(dataset.lights().size()) + " x " + std::to_string(dataset.views().size()) +
+                   " against " + std::to_string(material.lights.size()) + " x " +
+                   std::to_string(material.views.size()) + "); give the BTF the material was analysed from");
   }
 }
 

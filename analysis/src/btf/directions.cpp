@@ -27,7 +27,9 @@ std::array<double, 3> Direction::vector() const {
   return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
 }
 
-double Direction::theta_degrees() const { return theta / kDegree; }
+double Direction::theta_degrees() const {
+  return theta / kDegree;
+}
 
 double Direction::phi_degrees() const {
   const double degrees = std::fmod(phi / kDegree, 360.0);

@@ -19,14 +19,16 @@ namespace {
 
 void store(BtfDataset& dataset, const ImageSource& source, RgbImage&& image) {
   if (image.width != dataset.width() || image.height != dataset.height()) {
-    throw InputError(source.name, "image is " + std::to_string(image.width) + "x" + std::to_string(image.height) +
-                                      " but the others are " + std::to_string(dataset.width()) + "x" +
+    throw InputError(source.name, "image is " + std::to_string(image.width) + "x" +
+                                      std::to_string(image.height) + " but the others are " +
+                                      std::to_string(dataset.width()) + "x" +
                                       std::to_string(dataset.height()));
   }
   const bool dataset_linear = dataset.encoding() == ColorEncoding::linear_half;
   if (image.linear != dataset_linear) {
     throw InputError(source.name, std::string("holds ") + (image.linear ? "linear float" : "8-bit sRGB") +
-                                      " pixels but the others hold " + (dataset_linear ? "linear float" : "8-bit sRGB"));
+                                      " pixels but the others hold " +
+                                      (dataset_linear ? "linear float" : "8-bit sRGB"));
   }
   if (image.linear) {
     dataset.set_linear(source.pair, image.linear_rgb);
@@ -38,8 +40,9 @@ void store(BtfDataset& dataset, const ImageSource& source, RgbImage&& image) {
 }  // namespace
 
 BtfDataset decode_sources(const std::vector<ImageSource>& sources, std::vector<Direction> lights,
-                          std::vector<Direction> views, std::string description, const BtfLoadOptions& options,
-                          std::vector<std::string>& warnings, const ImageAdjustment& adjust) {
+                          std::vector<Direction> views, std::string description,
+                          const BtfLoadOptions& options, std::vector<std::string>& warnings,
+                          const ImageAdjustment& adjust) {
   if (sources.empty()) throw InputError(description, "no images");
   check_direction_table(description, lights.size(), views.size(), sources.size());
   ImageShape shape;
@@ -58,7 +61,8 @@ BtfDataset decode_sources(const std::vector<ImageSource>& sources, std::vector<D
   dataset.source = std::move(description);
   store(dataset, sources[0], std::move(first));
 
-  Progress progress("loading " + std::to_string(sources.size()) + " images", sources.size(), options.progress);
+  Progress progress("loading " + std::to_string(sources.size()) + " images", sources.size(),
+                    options.progress);
   progress.advance();
   parallel_for(sources.size() - 1, options.threads, [&](std::size_t i) {
     store(dataset, sources[i + 1], decode(sources[i + 1]));
@@ -70,8 +74,9 @@ BtfDataset decode_sources(const std::vector<ImageSource>& sources, std::vector<D
     std::string list;
     const std::size_t shown = std::min<std::size_t>(missing.size(), 8);
     for (std::size_t i = 0; i < shown; ++i) {
-      list += (i ? "; " : "") + std::string("light ") + describe_direction(dataset.lights()[missing[i].light]) +
-              " / view " + describe_direction(dataset.views()[missing[i].view]);
+      list += (i ? "; " : "") + std::string("light ") +
+              describe_direction(dataset.lights()[missing[i].light]) + " / view " +
+              describe_direction(dataset.views()[missing[i].view]);
     }
     if (missing.size() > shown) list += "; and " + std::to_string(missing.size() - shown) + " more";
     warnings.push_back(dataset.source + ": partial dataset, " + std::to_string(missing.size()) + " of " +

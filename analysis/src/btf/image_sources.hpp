@@ -26,8 +26,9 @@ using ImageAdjustment = std::function<void(const ImageSource&, RgbImage&)>;
 // Decodes every source into a dataset over `lights` x `views`. Throws InputError on the first bad
 // image (mixed sizes or encodings included). Pairs without a source are reported in `warnings`.
 BtfDataset decode_sources(const std::vector<ImageSource>& sources, std::vector<Direction> lights,
-                          std::vector<Direction> views, std::string description, const BtfLoadOptions& options,
-                          std::vector<std::string>& warnings, const ImageAdjustment& adjust = {});
+                          std::vector<Direction> views, std::string description,
+                          const BtfLoadOptions& options, std::vector<std::string>& warnings,
+                          const ImageAdjustment& adjust = {});
 
 // "theta 30, phi 120" with integer degrees, for messages.
 std::string describe_direction(const Direction& d);

@@ -85,14 +85,14 @@ BtfDataset read_manifest(const std::filesystem::path& manifest, const BtfLoadOpt
     }
     if (angles[0] < 0 || angles[2] < 0) throw InputError(where, "theta must not be negative");
     if (angles[0] >= 90 || angles[2] >= 90) {
-      throw InputError(where, "direction below the horizon (theta " + std::to_string(std::max(angles[0], angles[2])) +
-                                  " >= 90 degrees)");
+      throw InputError(where, "direction below the horizon (theta " +
+                                  std::to_string(std::max(angles[0], angles[2])) + " >= 90 degrees)");
     }
     if (fields[0].empty()) throw InputError(where, "empty image path");
     if (rows.size() == kMaxDatasetDirections * kMaxDatasetDirections) {
       throw InputError(where, "more than " + std::to_string(rows.size()) + " images, the most a table of " +
-                                  std::to_string(kMaxDatasetDirections) + " x " + std::to_string(kMaxDatasetDirections) +
-                                  " directions holds");
+                                  std::to_string(kMaxDatasetDirections) + " x " +
+                                  std::to_string(kMaxDatasetDirections) + " directions holds");
     }
     rows.push_back({manifest.parent_path() / fields[0], Direction::from_degrees(angles[0], angles[1]),
                     Direction::from_degrees(angles[2], angles[3]), line});

@@ -6,10 +6,10 @@
 #include <fstream>
 #include <sstream>
 
+#include "../text.hpp"
 #include "carbtf/analysis/btf/btf_reader.hpp"
 #include "carbtf/analysis/image_io.hpp"
 #include "carbtf/analysis/input_error.hpp"
-#include "../text.hpp"
 #include "image_sources.hpp"
 
 namespace carbtf {
@@ -20,7 +20,8 @@ namespace {
 
 // Non-empty, non-comment lines of a text file, each split into whitespace-separated numbers; exactly
 // `columns` per line unless `columns_alt` also allows another count.
-std::vector<std::vector<double>> read_number_lines(const fs::path& path, std::size_t columns, std::size_t columns_alt) {
+std::vector<std::vector<double>> read_number_lines(const fs::path& path, std::size_t columns,
+                                                   std::size_t columns_alt) {
   std::ifstream file(path);
   if (!file) throw InputError(path, "cannot open");
   std::vector<std::vector<double>> rows;
@@ -40,8 +41,9 @@ std::vector<std::vector<double>> read_number_lines(const fs::path& path, std::si
       values.push_back(v);
     }
     if (values.size() != columns && values.size() != columns_alt) {
-      throw InputError(path.string() + ":" + std::to_string(line),
-                       "expected " + std::to_string(columns) + " numbers, found " + std::to_string(values.size()));
+      throw InputError(
+          path.string() + ":" + std::to_string(line),
+          "expected " + std::to_string(columns) + " numbers, found " + std::to_string(values.size()));
     }
     rows.push_back(std::move(values));
   }
@@ -76,17 +78,20 @@ BtfDataset read_photometric_stereo(const fs::path& folder, const BtfLoadOptions&
   }
   if (images.empty()) throw InputError(folder, "no images next to light_directions.txt");
   if (light_rows.size() != images.size()) {
-    throw InputError(light_file, "has " + std::to_string(light_rows.size()) + " light directions but there are " +
-                                     std::to_string(images.size()) + " images");
+    throw InputError(light_file, "has " + std::to_string(light_rows.size()) +
+                                     " light directions but there are " + std::to_string(images.size()) +
+                                     " images");
   }
 
   std::vector<Direction> lights;
   for (std::size_t i = 0; i < light_rows.size(); ++i) {
     const auto& v = light_rows[i];
     const double length = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    if (length < 1e-12) throw InputError(light_file.string() + ":" + std::to_string(i + 1), "zero light direction");
+    if (length < 1e-12)
+      throw InputError(light_file.string() + ":" + std::to_string(i + 1), "zero light direction");
     if (v[2] <= 0) {
-      throw InputError(light_file.string() + ":" + std::to_string(i + 1), "light direction below the horizon (z <= 0)");
+      throw InputError(light_file.string() + ":" + std::to_string(i + 1),
+                       "light direction below the horizon (z <= 0)");
     }
     lights.push_back(Direction::from_vector({v[0], v[1], v[2]}));
   }
@@ -103,7 +108,8 @@ BtfDataset read_photometric_stereo(const fs::path& folder, const BtfLoadOptions&
       std::array<float, 3> rgb{};
       for (int k = 0; k < 3; ++k) rgb[k] = static_cast<float>(rows[i][rows[i].size() == 1 ? 0 : k]);
       if (*std::min_element(rgb.begin(), rgb.end()) <= 0) {
-        throw InputError(intensity_file.string() + ":" + std::to_string(i + 1), "intensities must be positive");
+        throw InputError(intensity_file.string() + ":" + std::to_string(i + 1),
+                         "intensities must be positive");
       }
       intensities.push_back(rgb);
     }
@@ -119,7 +125,8 @@ BtfDataset read_photometric_stereo(const fs::path& folder, const BtfLoadOptions&
     adjust = [&intensities](const detail::ImageSource& source, RgbImage& image) {
       if (!image.linear) {
         image.linear_rgb.resize(image.srgb8.size());
-        for (std::size_t i = 0; i < image.srgb8.size(); ++i) image.linear_rgb[i] = srgb_to_linear(image.srgb8[i] / 255.0f);
+        for (std::size_t i = 0; i < image.srgb8.size(); ++i)
+          image.linear_rgb[i] = srgb_to_linear(image.srgb8[i] / 255.0f);
         image.srgb8.clear();
         image.linear = true;
       }
@@ -127,15 +134,17 @@ BtfDataset read_photometric_stereo(const fs::path& folder, const BtfLoadOptions&
       for (std::size_t i = 0; i < image.linear_rgb.size(); ++i) image.linear_rgb[i] /= scale[i % 3];
     };
   }
-  BtfDataset dataset = detail::decode_sources(sources, std::move(lights), {Direction{}},
-                                              "photometric-stereo set " + folder.string(), options, warnings, adjust);
+  BtfDataset dataset =
+      detail::decode_sources(sources, std::move(lights), {Direction{}},
+                             "photometric-stereo set " + folder.string(), options, warnings, adjust);
 
   const fs::path mask_file = folder / "mask.png";
   if (fs::exists(mask_file, ec)) {
     const RgbImage mask = decode_rgb_image(mask_file.string(), read_file_bytes(mask_file));
     if (mask.width != dataset.width() || mask.height != dataset.height()) {
-      throw InputError(mask_file, "mask is " + std::to_string(mask.width) + "x" + std::to_string(mask.height) +
-                                      " but the images are " + std::to_string(dataset.width()) + "x" +
+      throw InputError(mask_file, "mask is " + std::to_string(mask.width) + "x" +
+                                      std::to_string(mask.height) + " but the images are " +
+                                      std::to_string(dataset.width()) + "x" +
                                       std::to_string(dataset.height()));
     }
     dataset.mask.resize(dataset.pixel_count());

@@ -31,7 +31,9 @@ bool read_literal(std::string_view text, std::size_t& at, std::string_view liter
   return true;
 }
 
-int rounded_degrees(double degrees) { return static_cast<int>(std::lround(degrees)) % 360; }
+int rounded_degrees(double degrees) {
+  return static_cast<int>(std::lround(degrees)) % 360;
+}
 
 }  // namespace
 
@@ -41,10 +43,14 @@ std::optional<Ubo2003Name> parse_ubo2003_name(std::string_view file_name) {
   int index = 0;
   if (!read_digits(file_name, at, 5, index)) return std::nullopt;
   name.index = static_cast<std::uint32_t>(index);
-  if (!read_literal(file_name, at, " tl") || !read_digits(file_name, at, 3, name.theta_light)) return std::nullopt;
-  if (!read_literal(file_name, at, " pl") || !read_digits(file_name, at, 3, name.phi_light)) return std::nullopt;
-  if (!read_literal(file_name, at, " tv") || !read_digits(file_name, at, 3, name.theta_view)) return std::nullopt;
-  if (!read_literal(file_name, at, " pv") || !read_digits(file_name, at, 3, name.phi_view)) return std::nullopt;
+  if (!read_literal(file_name, at, " tl") || !read_digits(file_name, at, 3, name.theta_light))
+    return std::nullopt;
+  if (!read_literal(file_name, at, " pl") || !read_digits(file_name, at, 3, name.phi_light))
+    return std::nullopt;
+  if (!read_literal(file_name, at, " tv") || !read_digits(file_name, at, 3, name.theta_view))
+    return std::nullopt;
+  if (!read_literal(file_name, at, " pv") || !read_digits(file_name, at, 3, name.phi_view))
+    return std::nullopt;
   const std::string extension = detail::to_lower(std::string(file_name.substr(at)));
   if (extension.size() < 2 || extension[0] != '.') return std::nullopt;
   name.extension = extension;
@@ -54,15 +60,18 @@ std::optional<Ubo2003Name> parse_ubo2003_name(std::string_view file_name) {
 bool parse_ubo2003_view_folder(std::string_view folder_name, int& theta, int& phi) {
   std::size_t at = 0;
   return read_literal(folder_name, at, "tv") && read_digits(folder_name, at, 3, theta) &&
-         read_literal(folder_name, at, "_pv") && read_digits(folder_name, at, 3, phi) && at == folder_name.size();
+         read_literal(folder_name, at, "_pv") && read_digits(folder_name, at, 3, phi) &&
+         at == folder_name.size();
 }
 
-std::string ubo2003_file_name(std::uint32_t light_index, std::uint32_t view_index, std::string_view extension) {
+std::string ubo2003_file_name(std::uint32_t light_index, std::uint32_t view_index,
+                              std::string_view extension) {
   const auto& d = ubo2003_directions();
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, "%05u tl%03d pl%03d tv%03d pv%03d", light_index * 81 + view_index,
-                rounded_degrees(d[light_index].theta_degrees()), rounded_degrees(d[light_index].phi_degrees()),
-                rounded_degrees(d[view_index].theta_degrees()), rounded_degrees(d[view_index].phi_degrees()));
+                rounded_degrees(d[light_index].theta_degrees()),
+                rounded_degrees(d[light_index].phi_degrees()), rounded_degrees(d[view_index].theta_degrees()),
+                rounded_degrees(d[view_index].phi_degrees()));
   return std::string(buffer) + std::string(extension);
 }
 

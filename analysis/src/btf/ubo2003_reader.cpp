@@ -15,14 +15,15 @@ namespace fs = std::filesystem;
 
 namespace detail {
 
-LightView ubo2003_pair(const std::string& display_name, const std::string& file_name, const std::string& folder_name,
-                       std::map<std::uint32_t, std::string>& seen) {
+LightView ubo2003_pair(const std::string& display_name, const std::string& file_name,
+                       const std::string& folder_name, std::map<std::uint32_t, std::string>& seen) {
   const auto name = parse_ubo2003_name(file_name);
   if (!name) {
     const bool image_like = is_supported_image_extension(file_name);
-    throw InputError(display_name, image_like ? "name is not of the UBO2003 form 'NNNNN tlTTT plPPP tvTTT pvPPP.jpg'"
-                                              : "not an image file (expected UBO2003 images named "
-                                                "'NNNNN tlTTT plPPP tvTTT pvPPP.jpg')");
+    throw InputError(display_name, image_like
+                                       ? "name is not of the UBO2003 form 'NNNNN tlTTT plPPP tvTTT pvPPP.jpg'"
+                                       : "not an image file (expected UBO2003 images named "
+                                         "'NNNNN tlTTT plPPP tvTTT pvPPP.jpg')");
   }
   if (!is_supported_image_extension(file_name)) {
     throw InputError(display_name, "not an image file: unknown extension '" + name->extension + "'");
@@ -35,18 +36,20 @@ LightView ubo2003_pair(const std::string& display_name, const std::string& file_
   const auto light = ubo2003_index(name->theta_light, name->phi_light);
   const auto view = ubo2003_index(name->theta_view, name->phi_view);
   if (!light || !view) {
-    throw InputError(display_name, "direction not in the UBO2003 set of 81 (use a manifest .csv for other sets)");
+    throw InputError(display_name,
+                     "direction not in the UBO2003 set of 81 (use a manifest .csv for other sets)");
   }
   const std::uint32_t expected = *light * 81 + *view;
   if (name->index != expected) {
-    throw InputError(display_name, "index " + std::to_string(name->index) +
-                                       " does not match its directions (light*81+view = " + std::to_string(expected) +
-                                       ")");
+    throw InputError(display_name,
+                     "index " + std::to_string(name->index) +
+                         " does not match its directions (light*81+view = " + std::to_string(expected) + ")");
   }
   if (!folder_name.empty()) {
     int theta = 0, phi = 0;
     if (!parse_ubo2003_view_folder(folder_name, theta, phi)) {
-      throw InputError(display_name, "sits in folder '" + folder_name + "', which is not a view folder tvTTT_pvPPP");
+      throw InputError(display_name,
+                       "sits in folder '" + folder_name + "', which is not a view folder tvTTT_pvPPP");
     }
     if (ubo2003_index(theta, phi) != view) {
       throw InputError(display_name, "its view direction does not match its folder '" + folder_name + "'");
@@ -96,7 +99,8 @@ BtfDataset read_ubo2003_folder(const fs::path& folder, const BtfLoadOptions& opt
   std::map<std::uint32_t, std::string> seen;
   std::vector<detail::ImageSource> sources;
   for (const Found& f : files) {
-    const LightView pair = detail::ubo2003_pair(f.path.string(), f.path.filename().string(), f.folder_name, seen);
+    const LightView pair =
+        detail::ubo2003_pair(f.path.string(), f.path.filename().string(), f.folder_name, seen);
     sources.push_back({f.path.string(), [path = f.path] { return read_file_bytes(path); }, pair});
   }
   return detail::decode_sources(sources, ubo2003_directions(), ubo2003_directions(),

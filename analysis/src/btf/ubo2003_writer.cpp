@@ -25,7 +25,8 @@ Ubo2003Writer::Ubo2003Writer(std::filesystem::path output, std::string extension
     int error = 0;
     archive_ = std::make_unique<Archive>();
     archive_->handle = zip_open(output_.c_str(), ZIP_CREATE | ZIP_TRUNCATE, &error);
-    if (!archive_->handle) throw InputError(output_, "cannot create archive: " + detail::zip_error_text(error));
+    if (!archive_->handle)
+      throw InputError(output_, "cannot create archive: " + detail::zip_error_text(error));
   } else {
     create_folder(output_);
   }

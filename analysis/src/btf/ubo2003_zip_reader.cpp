@@ -47,23 +47,27 @@ bool hostile_entry_name(const std::string& name) {
 
 // An entry's bytes, checked against the size and CRC-32 its header records: libzip checks the CRC only
 // when a read reaches the end, and a stored entry with a wrong CRC would otherwise pass unnoticed.
-std::vector<std::byte> read_checked_entry(ZipArchive& archive, zip_uint64_t index, zip_uint64_t size, zip_uint32_t crc,
-                                          const std::string& display) {
+std::vector<std::byte> read_checked_entry(ZipArchive& archive, zip_uint64_t index, zip_uint64_t size,
+                                          zip_uint32_t crc, const std::string& display) {
   std::lock_guard<std::mutex> lock(archive.mutex);
   zip_file_t* file = zip_fopen_index(archive.handle, index, 0);
   if (!file) throw InputError(display, std::string("cannot open entry: ") + zip_strerror(archive.handle));
   std::vector<std::byte> bytes(static_cast<std::size_t>(size));
   const zip_int64_t got = zip_fread(file, bytes.data(), size);
   std::byte past_end{};
-  const zip_int64_t more = got < 0 ? 0 : zip_fread(file, &past_end, 1);  // reaching the end lets libzip check too
+  const zip_int64_t more =
+      got < 0 ? 0 : zip_fread(file, &past_end, 1);  // reaching the end lets libzip check too
   const std::string library_error = zip_file_strerror(file);
   const bool crc_error = zip_error_code_zip(zip_file_get_error(file)) == ZIP_ER_CRC;
   zip_fclose(file);
-  if (crc_error) throw InputError(display, "CRC-32 mismatch: the data does not give the CRC its header records; the archive is corrupt");
+  if (crc_error)
+    throw InputError(
+        display,
+        "CRC-32 mismatch: the data does not give the CRC its header records; the archive is corrupt");
   if (got < 0 || more < 0) throw InputError(display, "entry is corrupt (" + library_error + ")");
   if (static_cast<zip_uint64_t>(got) != size || more != 0) {
-    throw InputError(display, "entry holds " + std::string(more != 0 ? "more" : "fewer") + " bytes than the " +
-                                  std::to_string(size) + " its header records");
+    throw InputError(display, "entry holds " + std::string(more != 0 ? "more" : "fewer") +
+                                  " bytes than the " + std::to_string(size) + " its header records");
   }
   uLong actual = crc32(0L, Z_NULL, 0);
   for (std::size_t at = 0; at < bytes.size();) {
@@ -95,12 +99,14 @@ BtfDataset read_ubo2003_zip(const std::filesystem::path& archive_path, const Btf
   std::vector<detail::ImageSource> sources;
   for (zip_int64_t i = 0; i < count; ++i) {
     zip_stat_t stat;
-    if (zip_stat_index(archive->handle, static_cast<zip_uint64_t>(i), 0, &stat) != 0 || !(stat.valid & ZIP_STAT_NAME)) {
+    if (zip_stat_index(archive->handle, static_cast<zip_uint64_t>(i), 0, &stat) != 0 ||
+        !(stat.valid & ZIP_STAT_NAME)) {
       throw InputError(archive_path, "unreadable entry " + std::to_string(i));
     }
     const std::string name = stat.name;
     const std::string display = archive_path.string() + ":" + name;
-    if (hostile_entry_name(name)) throw InputError(display, "entry has an absolute or '..' path; refusing the archive");
+    if (hostile_entry_name(name))
+      throw InputError(display, "entry has an absolute or '..' path; refusing the archive");
     if (name.back() == '/') continue;  // a folder entry
     const std::size_t slash = name.find_last_of('/');
     const std::string file_name = slash == std::string::npos ? name : name.substr(slash + 1);
@@ -114,14 +120,16 @@ BtfDataset read_ubo2003_zip(const std::filesystem::path& archive_path, const Btf
       if (!parse_ubo2003_view_folder(folder_name, theta, phi)) folder_name.clear();  // an enclosing folder
     }
     if ((stat.valid & ZIP_STAT_SIZE) && stat.size > kMaxEntryBytes) {
-      throw InputError(display, "entry is " + std::to_string(stat.size >> 20) + " MiB, too large for a BTF image");
+      throw InputError(display,
+                       "entry is " + std::to_string(stat.size >> 20) + " MiB, too large for a BTF image");
     }
     const LightView pair = detail::ubo2003_pair(display, file_name, folder_name, seen);
     if (!(stat.valid & ZIP_STAT_SIZE) || !(stat.valid & ZIP_STAT_CRC)) {
       throw InputError(display, "entry has no recorded size or CRC-32; refusing data that cannot be checked");
     }
     const auto index = static_cast<zip_uint64_t>(i);
-    sources.push_back({display, [archive, index, size = stat.size, crc = stat.crc, display] {
+    sources.push_back({display,
+                       [archive, index, size = stat.size, crc = stat.crc, display] {
                          return read_checked_entry(*archive, index, size, crc, display);
                        },
                        pair});

@@ -39,7 +39,9 @@ std::size_t sample_count(const Reach& reach, Eigen::Index rows, Eigen::Index col
   return r > 0 && c > 0 ? static_cast<std::size_t>(r * c) : 0;
 }
 
-std::size_t minimum_samples(std::size_t neighbours) { return 4 * (neighbours + 1) + 8; }
+std::size_t minimum_samples(std::size_t neighbours) {
+  return 4 * (neighbours + 1) + 8;
+}
 
 struct CandidateFit {
   bool ok = false;
@@ -50,8 +52,8 @@ struct CandidateFit {
 };
 
 // Fits the candidate whose neighbours sit at `columns` (1-based, into the accumulated matrix).
-CandidateFit fit_candidate(const Eigen::MatrixXd& accumulated, const std::vector<Eigen::Index>& columns, std::size_t samples,
-                           const CarFitOptions& options) {
+CandidateFit fit_candidate(const Eigen::MatrixXd& accumulated, const std::vector<Eigen::Index>& columns,
+                           std::size_t samples, const CarFitOptions& options) {
   const auto eta = static_cast<Eigen::Index>(columns.size());
   Eigen::MatrixXd vx(eta, eta);
   Eigen::VectorXd vxy(eta);
@@ -78,12 +80,15 @@ CandidateFit fit_candidate(const Eigen::MatrixXd& accumulated, const std::vector
   fit.lambda = std::max(vy - vxy.dot(fit.gamma), std::numeric_limits<double>::min());
   const double beta = options.prior_beta0 + static_cast<double>(samples);
   // Terms common to every candidate (n, beta, beta0, the pi and Gamma factors) are left out.
-  fit.log_posterior = 0.5 * static_cast<double>(eta) * std::log(options.prior_delta) - 0.5 * log_det - 0.5 * beta * std::log(fit.lambda);
+  fit.log_posterior = 0.5 * static_cast<double>(eta) * std::log(options.prior_delta) - 0.5 * log_det -
+                      0.5 * beta * std::log(fit.lambda);
   fit.ok = std::isfinite(fit.log_posterior) && fit.gamma.allFinite();
   return fit;
 }
 
-std::vector<double> to_vector(const Eigen::VectorXd& v) { return {v.data(), v.data() + v.size()}; }
+std::vector<double> to_vector(const Eigen::VectorXd& v) {
+  return {v.data(), v.data() + v.size()};
+}
 
 }  // namespace
 
@@ -98,20 +103,22 @@ const std::vector<std::vector<CarNeighbour>>& car_candidate_neighbourhoods() {
       {N{0, -1}, N{-1, -1}, N{-1, 0}, N{-1, 1}},
       {N{0, -1}, N{0, -2}, N{-1, -1}, N{-1, 0}, N{-1, 1}, N{-2, 0}},
       {N{0, -1}, N{0, -2}, N{-1, -2}, N{-1, -1}, N{-1, 0}, N{-1, 1}, N{-1, 2}, N{-2, -1}, N{-2, 0}, N{-2, 1}},
-      {N{0, -1}, N{0, -2}, N{-1, -2}, N{-1, -1}, N{-1, 0}, N{-1, 1}, N{-1, 2}, N{-2, -2}, N{-2, -1}, N{-2, 0}, N{-2, 1},
-       N{-2, 2}},
+      {N{0, -1}, N{0, -2}, N{-1, -2}, N{-1, -1}, N{-1, 0}, N{-1, 1}, N{-1, 2}, N{-2, -2}, N{-2, -1}, N{-2, 0},
+       N{-2, 1}, N{-2, 2}},
   };
   return candidates;
 }
 
-double car_stationary_gain(const std::vector<CarNeighbour>& neighbourhood, const std::vector<double>& gamma, int grid) {
+double car_stationary_gain(const std::vector<CarNeighbour>& neighbourhood, const std::vector<double>& gamma,
+                           int grid) {
   double sum = 0.0;
   for (int i = 0; i < grid; ++i) {
     for (int j = 0; j < grid; ++j) {
       const double w1 = 2.0 * std::numbers::pi * i / grid;
       const double w2 = 2.0 * std::numbers::pi * j / grid;
       Complex a = 1.0;
-      for (std::size_t k = 0; k < neighbourhood.size(); ++k) a -= gamma[k] * std::polar(1.0, w1 * neighbourhood[k].dr + w2 * neighbourhood[k].dc);
+      for (std::size_t k = 0; k < neighbourhood.size(); ++k)
+        a -= gamma[k] * std::polar(1.0, w1 * neighbourhood[k].dr + w2 * neighbourhood[k].dc);
       sum += 1.0 / std::norm(a);
     }
   }
@@ -139,7 +146,9 @@ CarFit fit_car_band(const Plane& band, const CarFitOptions& options) {
   if (options.only_candidate >= 0) {
     considered.push_back(options.only_candidate);
   } else {
-    const int last = options.max_candidate < 0 ? static_cast<int>(all.size()) - 1 : std::min<int>(options.max_candidate, static_cast<int>(all.size()) - 1);
+    const int last = options.max_candidate < 0
+                         ? static_cast<int>(all.size()) - 1
+                         : std::min<int>(options.max_candidate, static_cast<int>(all.size()) - 1);
     for (int c = 0; c <= last; ++c) considered.push_back(c);
   }
   // Drop candidates the band cannot support, then use the union's sample positions for all of them.
@@ -148,18 +157,21 @@ CarFit fit_car_band(const Plane& band, const CarFitOptions& options) {
     union_neighbours.clear();
     for (int c : considered) {
       for (CarNeighbour n : all[static_cast<std::size_t>(c)]) {
-        if (std::find(union_neighbours.begin(), union_neighbours.end(), n) == union_neighbours.end()) union_neighbours.push_back(n);
+        if (std::find(union_neighbours.begin(), union_neighbours.end(), n) == union_neighbours.end())
+          union_neighbours.push_back(n);
       }
     }
     const std::size_t n = sample_count(reach_of(union_neighbours), z.rows(), z.cols());
     const auto before = considered.size();
-    std::erase_if(considered, [&](int c) { return n < minimum_samples(all[static_cast<std::size_t>(c)].size()); });
+    std::erase_if(considered,
+                  [&](int c) { return n < minimum_samples(all[static_cast<std::size_t>(c)].size()); });
     changed = considered.size() != before;
   }
   if (considered.empty()) {
     result.model.flags = car_band_white_noise;
     result.model.sigma = static_cast<float>(deviation);
-    result.note = "band of " + std::to_string(z.cols()) + "x" + std::to_string(z.rows()) + " is too small for any neighbourhood: white noise";
+    result.note = "band of " + std::to_string(z.cols()) + "x" + std::to_string(z.rows()) +
+                  " is too small for any neighbourhood: white noise";
     return result;
   }
   const Reach reach = reach_of(union_neighbours);
@@ -185,7 +197,8 @@ CarFit fit_car_band(const Plane& band, const CarFitOptions& options) {
   for (int c : considered) {
     std::vector<Eigen::Index> columns;
     for (CarNeighbour n : all[static_cast<std::size_t>(c)]) {
-      columns.push_back(1 + (std::find(union_neighbours.begin(), union_neighbours.end(), n) - union_neighbours.begin()));
+      columns.push_back(
+          1 + (std::find(union_neighbours.begin(), union_neighbours.end(), n) - union_neighbours.begin()));
     }
     CandidateFit fit = fit_candidate(accumulated, columns, samples, options);
     result.log_posterior.push_back(fit.log_posterior);
@@ -204,7 +217,8 @@ CarFit fit_car_band(const Plane& band, const CarFitOptions& options) {
   double sigma2 = best.lambda / beta;
   std::vector<double> gamma = to_vector(best.gamma);
   const auto& neighbourhood = all[static_cast<std::size_t>(result.candidate)];
-  for (Eigen::Index k = 0; k < best.gamma.size(); ++k) result.gamma_standard_error.push_back(std::sqrt(sigma2 * best.gamma_variance_factor(k)));
+  for (Eigen::Index k = 0; k < best.gamma.size(); ++k)
+    result.gamma_standard_error.push_back(std::sqrt(sigma2 * best.gamma_variance_factor(k)));
 
   result.fitted_spectral_radius = car_spectral_radius(neighbourhood, gamma);
   result.spectral_radius = result.fitted_spectral_radius;
@@ -224,7 +238,8 @@ CarFit fit_car_band(const Plane& band, const CarFitOptions& options) {
     result.model.flags |= car_band_repaired;
     char text[200];
     std::snprintf(text, sizeof text,
-                  "fitted recursion has spectral radius %.4f (limit %.4f): gamma shrunk by %.4f, sigma rescaled to the band variance",
+                  "fitted recursion has spectral radius %.4f (limit %.4f): gamma shrunk by %.4f, sigma "
+                  "rescaled to the band variance",
                   result.fitted_spectral_radius, limit, stable);
     result.note = text;
   }

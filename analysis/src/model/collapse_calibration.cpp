@@ -40,7 +40,8 @@ std::vector<double> calibrate_collapse_variance(SubspaceModel& model, const std:
     double contributions = 0.0;
     for (std::uint32_t level = 0; level < levels; ++level) {
       std::vector<std::pair<Eigen::Index, Eigen::Index>> sizes;
-      for (std::uint32_t finer = 0; finer < level; ++finer) sizes.push_back({measured[finer].rows(), measured[finer].cols()});
+      for (std::uint32_t finer = 0; finer < level; ++finer)
+        sizes.push_back({measured[finer].rows(), measured[finer].cols()});
       contribution[level] = variance(expanded(measured[level], sizes));
       contributions += contribution[level];
     }

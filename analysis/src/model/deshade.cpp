@@ -18,17 +18,20 @@ RangeFacet range_map_facet(const Plane& range_map, Eigen::Index row, Eigen::Inde
   return {dx, dy, std::sqrt(dx * dx + dy * dy + 1.0)};
 }
 
-double horizon_visibility(std::span<const float> horizons, Eigen::Index texel, const std::array<double, 3>& light) {
+double horizon_visibility(std::span<const float> horizons, Eigen::Index texel,
+                          const std::array<double, 3>& light) {
   if (horizons.empty()) return 1.0;
   constexpr std::size_t n = kReliefHorizonDirections;
-  return relief_visibility(horizons.subspan(static_cast<std::size_t>(texel) * n).first<n>(),
-                           {static_cast<float>(light[0]), static_cast<float>(light[1]), static_cast<float>(light[2])});
+  return relief_visibility(
+      horizons.subspan(static_cast<std::size_t>(texel) * n).first<n>(),
+      {static_cast<float>(light[0]), static_cast<float>(light[1]), static_cast<float>(light[2])});
 }
 
 Plane relit_factor(const Plane& range_map, const std::array<double, 3>& light, double light_z_floor,
                    std::span<const float> horizons) {
   const Eigen::Index rows = range_map.rows(), cols = range_map.cols();
-  if (!horizons.empty() && horizons.size() != static_cast<std::size_t>(rows * cols) * kReliefHorizonDirections) {
+  if (!horizons.empty() &&
+      horizons.size() != static_cast<std::size_t>(rows * cols) * kReliefHorizonDirections) {
     throw std::invalid_argument("relit_factor: the horizons are not the range map's");
   }
   Plane factor(rows, cols);
@@ -44,24 +47,29 @@ Plane relit_factor(const Plane& range_map, const std::array<double, 3>& light, d
 
 void divide_shading(std::vector<Plane>& channels, const Plane& factor, double floor) {
   for (Plane& channel : channels) {
-    if (channel.rows() != factor.rows() || channel.cols() != factor.cols()) throw std::invalid_argument("divide_shading: sizes differ");
+    if (channel.rows() != factor.rows() || channel.cols() != factor.cols())
+      throw std::invalid_argument("divide_shading: sizes differ");
     channel /= factor.max(floor);
   }
 }
 
 void divide_shading(std::vector<Plane>& channels, const std::vector<Plane>& factors, double floor) {
-  if (factors.size() != channels.size()) throw std::invalid_argument("divide_shading: one factor per channel");
+  if (factors.size() != channels.size())
+    throw std::invalid_argument("divide_shading: one factor per channel");
   for (std::size_t c = 0; c < channels.size(); ++c) {
-    if (channels[c].rows() != factors[c].rows() || channels[c].cols() != factors[c].cols()) throw std::invalid_argument("divide_shading: sizes differ");
+    if (channels[c].rows() != factors[c].rows() || channels[c].cols() != factors[c].cols())
+      throw std::invalid_argument("divide_shading: sizes differ");
     channels[c] /= factors[c].max(floor);
   }
 }
 
-void undo_parallax(std::vector<Plane>& channels, const Plane& range_map, const std::array<double, 3>& view, double scale) {
+void undo_parallax(std::vector<Plane>& channels, const Plane& range_map, const std::array<double, 3>& view,
+                   double scale) {
   const Eigen::Index rows = range_map.rows(), cols = range_map.cols();
   const double mean = range_map.mean();
   for (Plane& channel : channels) {
-    if (channel.rows() != rows || channel.cols() != cols) throw std::invalid_argument("undo_parallax: sizes differ");
+    if (channel.rows() != rows || channel.cols() != cols)
+      throw std::invalid_argument("undo_parallax: sizes differ");
     const Plane measured = channel;
     auto at = [&](Eigen::Index r, Eigen::Index c) {
       return measured(std::clamp<Eigen::Index>(r, 0, rows - 1), std::clamp<Eigen::Index>(c, 0, cols - 1));

@@ -24,9 +24,10 @@ Rgb lab_mean(std::span<const float> pixels, const Rgb& gain, std::span<const flo
   const std::size_t count = pixels.size() / 3;
   for (std::size_t p = 0; p < count; ++p) {
     const double added = highlight.empty() ? 0.0 : highlight[p];
-    const auto lab = linear_srgb_to_lab(static_cast<float>(gain[0] * std::max(pixels[3 * p], 0.0f) + added),
-                                        static_cast<float>(gain[1] * std::max(pixels[3 * p + 1], 0.0f) + added),
-                                        static_cast<float>(gain[2] * std::max(pixels[3 * p + 2], 0.0f) + added));
+    const auto lab =
+        linear_srgb_to_lab(static_cast<float>(gain[0] * std::max(pixels[3 * p], 0.0f) + added),
+                           static_cast<float>(gain[1] * std::max(pixels[3 * p + 1], 0.0f) + added),
+                           static_cast<float>(gain[2] * std::max(pixels[3 * p + 2], 0.0f) + added));
     for (int c = 0; c < 3; ++c) sum[c] += lab[c];
   }
   for (double& v : sum) v /= static_cast<double>(std::max<std::size_t>(count, 1));
@@ -63,19 +64,23 @@ Rgb solve_gains(std::span<const float> model, const Rgb& target, std::span<const
 
 }  // namespace
 
-std::vector<std::uint8_t> fit_pair_gains(const BtfDataset& dataset, const Material& material, const PairGainRelief& relief,
-                                         std::uint64_t seed, unsigned threads, const std::function<void()>& progress) {
+std::vector<std::uint8_t> fit_pair_gains(const BtfDataset& dataset, const Material& material,
+                                         const PairGainRelief& relief, std::uint64_t seed, unsigned threads,
+                                         const std::function<void()>& progress) {
   const std::uint32_t width = dataset.width(), height = dataset.height();
   const std::size_t lights = dataset.lights().size(), views = dataset.views().size(), pairs = lights * views;
-  if (material.lights.size() != lights || material.views.size() != views || material.subspace_index.size() != pairs) {
+  if (material.lights.size() != lights || material.views.size() != views ||
+      material.subspace_index.size() != pairs) {
     throw std::invalid_argument("fit_pair_gains: the material's directions are not the dataset's");
   }
-  if (relief.range_map.rows() != height || relief.range_map.cols() != width) throw std::invalid_argument("fit_pair_gains: the range map is not the images' size");
+  if (relief.range_map.rows() != height || relief.range_map.cols() != width)
+    throw std::invalid_argument("fit_pair_gains: the range map is not the images' size");
   for (const SubspaceModel& s : material.subspaces) {
     if (s.channels != 3) throw std::invalid_argument("fit_pair_gains: pair gains need RGB subspace models");
   }
   // The sample grid: every stride-th pixel each way, about kPairGainSamples of them.
-  const auto stride = static_cast<std::uint32_t>(std::max(1.0, std::floor(std::sqrt(static_cast<double>(dataset.pixel_count()) / kPairGainSamples))));
+  const auto stride = static_cast<std::uint32_t>(
+      std::max(1.0, std::floor(std::sqrt(static_cast<double>(dataset.pixel_count()) / kPairGainSamples))));
   std::vector<std::size_t> grid;
   for (std::uint32_t r = 0; r < height; r += stride)
     for (std::uint32_t c = 0; c < width; c += stride) grid.push_back(std::size_t{r} * width + c);
@@ -89,17 +94,19 @@ std::vector<std::uint8_t> fit_pair_gains(const BtfDataset& dataset, const Materi
   const std::vector<Plane> untoned{Plane::Ones(height, width)};
   for (std::size_t s = 0; s < material.subspaces.size(); ++s) {
     const std::vector<Plane> share =
-        weighted_tone(relief.tone.empty() ? std::span<const Plane>(untoned) : relief.tone, material.subspaces[s].tone_weight, material.range.tone_chroma);
+        weighted_tone(relief.tone.empty() ? std::span<const Plane>(untoned) : relief.tone,
+                      material.subspaces[s].tone_weight, material.range.tone_chroma);
     for (std::size_t p = 0; p < dataset.pixel_count(); ++p) {
       const auto r = static_cast<Eigen::Index>(p / width), c = static_cast<Eigen::Index>(p % width);
-      for (int k = 0; k < 3; ++k) toned[s][3 * p + k] *= static_cast<float>(share[static_cast<std::size_t>(k)](r, c));
+      for (int k = 0; k < 3; ++k)
+        toned[s][3 * p + k] *= static_cast<float>(share[static_cast<std::size_t>(k)](r, c));
     }
   }
   // Per view, where each grid pixel of the render reads the textures: shifted by the parallax of the
   // render pass (carbtf_parallax_uv: the height at the pixel times the view's tangent components), so
   // that facets turned towards the view cover more pixels, as they do in the render and the photograph.
   struct Tap {
-    std::size_t texel;  // top-left of the bilinear footprint
+    std::size_t texel;        // top-left of the bilinear footprint
     std::size_t right, down;  // offsets of the next column and row, 0 at the clamped edge
     float fx, fy;
   };
@@ -108,37 +115,49 @@ std::vector<std::uint8_t> fit_pair_gains(const BtfDataset& dataset, const Materi
   for (std::size_t v = 0; v < views; ++v) {
     const std::array<double, 3> view = dataset.views()[v].vector();
     for (std::size_t i = 0; i < grid.size(); ++i) {
-      const auto r = static_cast<Eigen::Index>(grid[i] / width), c = static_cast<Eigen::Index>(grid[i] % width);
+      const auto r = static_cast<Eigen::Index>(grid[i] / width),
+                 c = static_cast<Eigen::Index>(grid[i] % width);
       const double shift = kAnalysisParallaxScale * (relief.range_map(r, c) - mean_height);
-      const double x = std::clamp(static_cast<double>(c) + shift * view[0], 0.0, static_cast<double>(width - 1));
-      const double y = std::clamp(static_cast<double>(r) - shift * view[1], 0.0, static_cast<double>(height - 1));
+      const double x =
+          std::clamp(static_cast<double>(c) + shift * view[0], 0.0, static_cast<double>(width - 1));
+      const double y =
+          std::clamp(static_cast<double>(r) - shift * view[1], 0.0, static_cast<double>(height - 1));
       const auto c0 = static_cast<std::size_t>(x), r0 = static_cast<std::size_t>(y);
       taps[v][i] = {r0 * width + c0, c0 + 1 < width ? 1u : 0u, r0 + 1 < height ? std::size_t{width} : 0u,
-                    static_cast<float>(x - static_cast<double>(c0)), static_cast<float>(y - static_cast<double>(r0))};
+                    static_cast<float>(x - static_cast<double>(c0)),
+                    static_cast<float>(y - static_cast<double>(r0))};
     }
   }
   const auto bilinear = [](const float* values, const Tap& t, std::size_t channels, std::size_t k) {
     const auto at = [&](std::size_t texel) { return values[texel * channels + k]; };
     const float top = at(t.texel) + t.fx * (at(t.texel + t.right) - at(t.texel));
-    const float bottom = at(t.texel + t.down) + t.fx * (at(t.texel + t.down + t.right) - at(t.texel + t.down));
+    const float bottom =
+        at(t.texel + t.down) + t.fx * (at(t.texel + t.down + t.right) - at(t.texel + t.down));
     return top + t.fy * (bottom - top);
   };
 
   std::vector<std::uint8_t> codes(3 * pairs, static_cast<std::uint8_t>(kPairGainZero));
   const double z_floor = relight_floor(material);
   detail::parallel_for(lights, threads, [&](std::size_t l) {
-    const Plane relit_plane = relit_factor(relief.range_map, dataset.lights()[l].vector(), z_floor, relief.horizons);
+    const Plane relit_plane =
+        relit_factor(relief.range_map, dataset.lights()[l].vector(), z_floor, relief.horizons);
     std::vector<float> relit(dataset.pixel_count());
-    for (std::size_t p = 0; p < relit.size(); ++p) relit[p] = static_cast<float>(relit_plane(static_cast<Eigen::Index>(p / width), static_cast<Eigen::Index>(p % width)));
-    std::vector<float> image(dataset.pixel_count() * 3), measured(grid.size() * 3), model(grid.size() * 3), highlight;
+    for (std::size_t p = 0; p < relit.size(); ++p)
+      relit[p] = static_cast<float>(
+          relit_plane(static_cast<Eigen::Index>(p / width), static_cast<Eigen::Index>(p % width)));
+    std::vector<float> image(dataset.pixel_count() * 3), measured(grid.size() * 3), model(grid.size() * 3),
+        highlight;
     std::vector<float> lobe(relief.specular.strength > 0.0 ? dataset.pixel_count() : 0);
     for (std::size_t v = 0; v < views; ++v) {
       const LightView pair{static_cast<std::uint32_t>(l), static_cast<std::uint32_t>(v)};
       if (!dataset.has_image(pair)) continue;
       dataset.linear_rgb(pair, image);
       if (!lobe.empty()) {
-        const Plane plane = lobe_of(relief.specular, relief.range_map, dataset.lights()[l].vector(), dataset.views()[v].vector(), relief.horizons);
-        for (std::size_t p = 0; p < lobe.size(); ++p) lobe[p] = static_cast<float>(plane(static_cast<Eigen::Index>(p / width), static_cast<Eigen::Index>(p % width)));
+        const Plane plane = lobe_of(relief.specular, relief.range_map, dataset.lights()[l].vector(),
+                                    dataset.views()[v].vector(), relief.horizons);
+        for (std::size_t p = 0; p < lobe.size(); ++p)
+          lobe[p] = static_cast<float>(
+              plane(static_cast<Eigen::Index>(p / width), static_cast<Eigen::Index>(p % width)));
         highlight.resize(grid.size());
       }
       const float* base = toned[subspace_of(material, pair.light, pair.view)].data();
@@ -152,7 +171,8 @@ std::vector<std::uint8_t> fit_pair_gains(const BtfDataset& dataset, const Materi
         }
       }
       const Rgb target = lab_mean(measured, {1.0, 1.0, 1.0});
-      if (!(target[0] > 0.5) || !(lab_mean(model, {1.0, 1.0, 1.0})[0] > 0.5)) continue;  // black: nothing to match
+      if (!(target[0] > 0.5) || !(lab_mean(model, {1.0, 1.0, 1.0})[0] > 0.5))
+        continue;  // black: nothing to match
       const Rgb gain = solve_gains(model, target, highlight);
       for (std::size_t c = 0; c < 3; ++c) codes[c * pairs + l * views + v] = gain_code(gain[c]);
     }

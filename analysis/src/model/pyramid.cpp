@@ -58,7 +58,9 @@ Plane expand_axis(const Plane& in, int axis, Eigen::Index size) {
 
 }  // namespace
 
-Plane reduce_plane(const Plane& fine) { return reduce_axis(reduce_axis(fine, 1), 0); }
+Plane reduce_plane(const Plane& fine) {
+  return reduce_axis(reduce_axis(fine, 1), 0);
+}
 
 Plane expand_plane(const Plane& coarse, Eigen::Index rows, Eigen::Index cols) {
   return expand_axis(expand_axis(coarse, 1, cols), 0, rows);

@@ -11,10 +11,12 @@ namespace carbtf {
 
 std::vector<float> range_map_horizons(const Plane& range_map, double scale) {
   if (!(scale > 0.0)) return {};
-  const auto rows = static_cast<std::uint32_t>(range_map.rows()), cols = static_cast<std::uint32_t>(range_map.cols());
+  const auto rows = static_cast<std::uint32_t>(range_map.rows()),
+             cols = static_cast<std::uint32_t>(range_map.cols());
   std::vector<float> heights(std::size_t{rows} * cols);
   for (std::uint32_t r = 0; r < rows; ++r) {
-    for (std::uint32_t c = 0; c < cols; ++c) heights[std::size_t{r} * cols + c] = static_cast<float>(range_map(r, c));
+    for (std::uint32_t c = 0; c < cols; ++c)
+      heights[std::size_t{r} * cols + c] = static_cast<float>(range_map(r, c));
   }
   std::vector<float> horizons;
   relief_horizons(heights, cols, rows, false, static_cast<float>(scale), horizons);
@@ -24,8 +26,8 @@ std::vector<float> range_map_horizons(const Plane& range_map, double scale) {
 namespace {
 
 // The mean over the view's lights of RMS(I - k relit tone) / mean I, k matching the means (grey images).
-double explained_error(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor,
-                       const std::vector<float>& horizons) {
+double explained_error(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map,
+                       double light_z_floor, const std::vector<float>& horizons) {
   const Plane tone = relief_tone(dataset, view, range_map, light_z_floor, horizons);
   const auto cols = static_cast<Eigen::Index>(dataset.width());
   std::vector<float> rgb(dataset.pixel_count() * 3);
@@ -52,14 +54,17 @@ double explained_error(const BtfDataset& dataset, std::uint32_t view, const Plan
 
 }  // namespace
 
-ShadowFit fit_shadow_scale(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor) {
-  if (range_map.rows() != static_cast<Eigen::Index>(dataset.height()) || range_map.cols() != static_cast<Eigen::Index>(dataset.width())) {
+ShadowFit fit_shadow_scale(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map,
+                           double light_z_floor) {
+  if (range_map.rows() != static_cast<Eigen::Index>(dataset.height()) ||
+      range_map.cols() != static_cast<Eigen::Index>(dataset.width())) {
     throw std::invalid_argument("fit_shadow_scale: the range map is not the dataset's size");
   }
   ShadowFit fit;
   double best = 0.0;
   for (const double scale : kShadowScales) {
-    const double error = explained_error(dataset, view, range_map, light_z_floor, range_map_horizons(range_map, scale));
+    const double error =
+        explained_error(dataset, view, range_map, light_z_floor, range_map_horizons(range_map, scale));
     if (scale == 0.0) {
       fit.error_without = fit.error = best = error;
     } else if (error < best) {

@@ -10,10 +10,11 @@
 
 namespace carbtf {
 
-Plane specular_lobe(const Plane& range_map, const std::array<double, 3>& light, const std::array<double, 3>& view, double gloss,
-                    std::span<const float> horizons) {
+Plane specular_lobe(const Plane& range_map, const std::array<double, 3>& light,
+                    const std::array<double, 3>& view, double gloss, std::span<const float> horizons) {
   const Eigen::Index rows = range_map.rows(), cols = range_map.cols();
-  if (!horizons.empty() && horizons.size() != static_cast<std::size_t>(rows * cols) * kReliefHorizonDirections) {
+  if (!horizons.empty() &&
+      horizons.size() != static_cast<std::size_t>(rows * cols) * kReliefHorizonDirections) {
     throw std::invalid_argument("specular_lobe: the horizons are not the range map's");
   }
   std::array<double, 3> half{light[0] + view[0], light[1] + view[1], light[2] + view[2]};
@@ -33,15 +34,16 @@ Plane specular_lobe(const Plane& range_map, const std::array<double, 3>& light, 
   return lobe;
 }
 
-Plane lobe_of(const SpecularLobe& lobe, const Plane& range_map, const std::array<double, 3>& light, const std::array<double, 3>& view,
-              std::span<const float> horizons) {
+Plane lobe_of(const SpecularLobe& lobe, const Plane& range_map, const std::array<double, 3>& light,
+              const std::array<double, 3>& view, std::span<const float> horizons) {
   if (!(lobe.strength > 0.0)) return Plane::Zero(range_map.rows(), range_map.cols());
   return lobe.strength * specular_lobe(range_map, light, view, lobe.gloss, horizons);
 }
 
-SpecularFit fit_relief_specular(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, const Plane& tone,
-                                double light_z_floor, std::span<const float> horizons) {
-  const auto rows = static_cast<Eigen::Index>(dataset.height()), cols = static_cast<Eigen::Index>(dataset.width());
+SpecularFit fit_relief_specular(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map,
+                                const Plane& tone, double light_z_floor, std::span<const float> horizons) {
+  const auto rows = static_cast<Eigen::Index>(dataset.height()),
+             cols = static_cast<Eigen::Index>(dataset.width());
   if (range_map.rows() != rows || range_map.cols() != cols || tone.rows() != rows || tone.cols() != cols) {
     throw std::invalid_argument("fit_relief_specular: the range map or the tone is not the dataset's size");
   }
@@ -84,7 +86,8 @@ SpecularFit fit_relief_specular(const BtfDataset& dataset, std::uint32_t view, c
     lobes.reserve(lights.size());
     double numerator = 0.0, denominator = 0.0;
     for (const LightImages& li : lights) {
-      lobes.push_back(specular_lobe(range_map, dataset.lights()[li.light].vector(), view_vector, gloss, horizons));
+      lobes.push_back(
+          specular_lobe(range_map, dataset.lights()[li.light].vector(), view_vector, gloss, horizons));
       // The lobe and the image with their projections on the diffuse predictor taken out, so that k is
       // the joint least-squares estimate with every a_l.
       const double dd = (li.diffuse * li.diffuse).sum();

@@ -21,10 +21,13 @@ struct ToneSums {
   std::array<Plane, 4> measured, explained;
 };
 
-ToneSums tone_sums(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor, std::span<const float> horizons,
-                   const SpecularLobe& lobe, const char* who) {
-  const auto rows = static_cast<Eigen::Index>(dataset.height()), cols = static_cast<Eigen::Index>(dataset.width());
-  if (range_map.rows() != rows || range_map.cols() != cols) throw std::invalid_argument(std::string(who) + ": the range map is not the dataset's size");
+ToneSums tone_sums(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map,
+                   double light_z_floor, std::span<const float> horizons, const SpecularLobe& lobe,
+                   const char* who) {
+  const auto rows = static_cast<Eigen::Index>(dataset.height()),
+             cols = static_cast<Eigen::Index>(dataset.width());
+  if (range_map.rows() != rows || range_map.cols() != cols)
+    throw std::invalid_argument(std::string(who) + ": the range map is not the dataset's size");
   ToneSums sums;
   for (std::size_t k = 0; k < 4; ++k) sums.measured[k] = sums.explained[k] = Plane::Zero(rows, cols);
   std::vector<float> rgb(dataset.pixel_count() * 3);
@@ -40,7 +43,8 @@ ToneSums tone_sums(const BtfDataset& dataset, std::uint32_t view, const Plane& r
       image[0](i / cols, i % cols) = (rgb[3 * p] + rgb[3 * p + 1] + rgb[3 * p + 2]) / 3.0;
     }
     if (lobe.strength > 0.0) {
-      const Plane highlight = lobe_of(lobe, range_map, dataset.lights()[l].vector(), dataset.views()[view].vector(), horizons);
+      const Plane highlight =
+          lobe_of(lobe, range_map, dataset.lights()[l].vector(), dataset.views()[view].vector(), horizons);
       for (Plane& channel : image) channel -= highlight;
     }
     const Plane relit = relit_factor(range_map, dataset.lights()[l].vector(), light_z_floor, horizons);
@@ -58,20 +62,25 @@ ToneSums tone_sums(const BtfDataset& dataset, std::uint32_t view, const Plane& r
 Plane tone_of(const Plane& measured, const Plane& explained) {
   if (explained.maxCoeff() <= 0.0) return Plane::Ones(measured.rows(), measured.cols());
   // Where no light reaches a texel by the range map's account, nothing is known about its tone.
-  return (explained > 0.0).select(measured / explained.max(1e-30), 1.0).max(kReliefToneFloor).min(kReliefToneCeiling);
+  return (explained > 0.0)
+      .select(measured / explained.max(1e-30), 1.0)
+      .max(kReliefToneFloor)
+      .min(kReliefToneCeiling);
 }
 
 }  // namespace
 
-Plane relief_tone(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor, std::span<const float> horizons,
-                  const SpecularLobe& lobe) {
+Plane relief_tone(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor,
+                  std::span<const float> horizons, const SpecularLobe& lobe) {
   const ToneSums sums = tone_sums(dataset, view, range_map, light_z_floor, horizons, lobe, "relief_tone");
   return tone_of(sums.measured[0], sums.explained[0]);
 }
 
-std::vector<Plane> relief_tone_planes(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor,
-                                      std::span<const float> horizons, const SpecularLobe& lobe) {
-  const ToneSums sums = tone_sums(dataset, view, range_map, light_z_floor, horizons, lobe, "relief_tone_planes");
+std::vector<Plane> relief_tone_planes(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map,
+                                      double light_z_floor, std::span<const float> horizons,
+                                      const SpecularLobe& lobe) {
+  const ToneSums sums =
+      tone_sums(dataset, view, range_map, light_z_floor, horizons, lobe, "relief_tone_planes");
   std::vector<Plane> planes;
   for (std::size_t k = 1; k < 4; ++k) planes.push_back(tone_of(sums.measured[k], sums.explained[k]));
   return planes;
@@ -104,11 +113,14 @@ void clamp_remainder(std::vector<Plane>& channels, double k) {
   }
 }
 
-std::array<float, 3> relief_tone_chroma(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor,
-                                        const Plane& tone, std::span<const float> horizons, const SpecularLobe& lobe) {
-  if (tone.rows() != range_map.rows() || tone.cols() != range_map.cols()) throw std::invalid_argument("relief_tone_chroma: the tone is not the range map's size");
+std::array<float, 3> relief_tone_chroma(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map,
+                                        double light_z_floor, const Plane& tone,
+                                        std::span<const float> horizons, const SpecularLobe& lobe) {
+  if (tone.rows() != range_map.rows() || tone.cols() != range_map.cols())
+    throw std::invalid_argument("relief_tone_chroma: the tone is not the range map's size");
   const Eigen::Index cols = tone.cols();
-  const ToneSums sums = tone_sums(dataset, view, range_map, light_z_floor, horizons, lobe, "relief_tone_chroma");
+  const ToneSums sums =
+      tone_sums(dataset, view, range_map, light_z_floor, horizons, lobe, "relief_tone_chroma");
   const auto& measured = sums.measured;
   const auto& explained = sums.explained;
   // The least-squares slope of each channel's tone on the grey tone, over the texels both are known at,
@@ -127,7 +139,8 @@ std::array<float, 3> relief_tone_chroma(const BtfDataset& dataset, std::uint32_t
       grey += (tone(r, c) - 1.0) * (tone(r, c) - 1.0);
     }
     if (grey > 0.0 && std::isfinite(across / grey)) {
-      chroma[static_cast<std::size_t>(k)] = static_cast<float>(std::clamp(across / grey, -double{kMaxToneChroma}, double{kMaxToneChroma}));
+      chroma[static_cast<std::size_t>(k)] =
+          static_cast<float>(std::clamp(across / grey, -double{kMaxToneChroma}, double{kMaxToneChroma}));
     }
     for (Eigen::Index i = 0; i < tone.size(); ++i) {
       const Eigen::Index r = i / cols, c = i % cols;
@@ -142,8 +155,10 @@ std::array<float, 3> relief_tone_chroma(const BtfDataset& dataset, std::uint32_t
   return chroma;
 }
 
-std::vector<Plane> weighted_tone(std::span<const Plane> tone, double weight, const std::array<float, 3>& chroma) {
-  if (tone.size() != 1 && tone.size() != 3) throw std::invalid_argument("weighted_tone: a relief tone has one plane or three");
+std::vector<Plane> weighted_tone(std::span<const Plane> tone, double weight,
+                                 const std::array<float, 3>& chroma) {
+  if (tone.size() != 1 && tone.size() != 3)
+    throw std::invalid_argument("weighted_tone: a relief tone has one plane or three");
   std::vector<Plane> channels;
   for (std::size_t k = 0; k < 3; ++k) {
     const Plane& plane = tone[tone.size() == 3 ? k : 0];
@@ -155,7 +170,8 @@ std::vector<Plane> weighted_tone(std::span<const Plane> tone, double weight, con
 void apply_relief(std::span<float> rgb, const std::vector<Plane>& tones, const Plane& relit) {
   const auto pixels = static_cast<std::size_t>(relit.size());
   if (tones.size() != 3 || rgb.size() != pixels * 3 ||
-      std::any_of(tones.begin(), tones.end(), [&](const Plane& t) { return t.rows() != relit.rows() || t.cols() != relit.cols(); })) {
+      std::any_of(tones.begin(), tones.end(),
+                  [&](const Plane& t) { return t.rows() != relit.rows() || t.cols() != relit.cols(); })) {
     throw std::invalid_argument("apply_relief: the image, the tones and the relit factor differ in size");
   }
   const std::size_t width = static_cast<std::size_t>(relit.cols());
@@ -165,8 +181,10 @@ void apply_relief(std::span<float> rgb, const std::vector<Plane>& tones, const P
   }
 }
 
-void match_render_mean(std::vector<Plane>& smooth, const std::vector<Plane>& measured, const std::vector<Plane>& tones, const Plane& relit) {
-  if (smooth.size() != measured.size() || smooth.size() != tones.size()) throw std::invalid_argument("match_render_mean: channel counts differ");
+void match_render_mean(std::vector<Plane>& smooth, const std::vector<Plane>& measured,
+                       const std::vector<Plane>& tones, const Plane& relit) {
+  if (smooth.size() != measured.size() || smooth.size() != tones.size())
+    throw std::invalid_argument("match_render_mean: channel counts differ");
   double rendered = 0.0, target = 0.0;
   for (std::size_t c = 0; c < smooth.size(); ++c) {
     rendered += smooth[c].mean() * (tones[c] * relit).mean();

@@ -14,7 +14,8 @@ void fourier_2d(ComplexField& data, std::uint32_t width, std::uint32_t height, b
   for (std::uint32_t r = 0; r < height; ++r) {
     std::copy_n(data.begin() + static_cast<std::ptrdiff_t>(std::size_t{r} * width), width, line.begin());
     run();
-    std::copy_n(transformed.begin(), width, data.begin() + static_cast<std::ptrdiff_t>(std::size_t{r} * width));
+    std::copy_n(transformed.begin(), width,
+                data.begin() + static_cast<std::ptrdiff_t>(std::size_t{r} * width));
   }
   line.resize(height);
   for (std::uint32_t c = 0; c < width; ++c) {

@@ -35,7 +35,8 @@ SubspaceFidelity subspace_fidelity(const Material& material, const SynthesizedIm
   std::vector<std::vector<float>> tones(3, std::vector<float>(heights.size(), 1.0f));
   if (material.range.tile_size > 0) {
     enlarge_range_map(material.range, 1, 0, 0, w, h, heights);
-    for (std::size_t k = 0; k < 3; ++k) enlarge_range_map(material.range, 1, 0, 0, w, h, tones[k], tone_channel(k));
+    for (std::size_t k = 0; k < 3; ++k)
+      enlarge_range_map(material.range, 1, 0, 0, w, h, tones[k], tone_channel(k));
   }
   Plane height_plane(h, w);
   std::vector<Plane> tone(3, Plane(h, w));
@@ -53,14 +54,18 @@ SubspaceFidelity subspace_fidelity(const Material& material, const SynthesizedIm
     const std::array<double, 3> light{std::sin(l.theta) * std::cos(l.phi),
                                       std::sin(l.theta) * std::sin(l.phi), std::cos(l.theta)};
     const MaterialDirection& v = material.views[material.subspaces[s].view];
-    const std::array<double, 3> view{std::sin(v.theta) * std::cos(v.phi), std::sin(v.theta) * std::sin(v.phi), std::cos(v.theta)};
+    const std::array<double, 3> view{std::sin(v.theta) * std::cos(v.phi), std::sin(v.theta) * std::sin(v.phi),
+                                     std::cos(v.theta)};
     RgbField model{images.images[s], w, h};
     apply_relief(model.rgb,
                  weighted_tone(tone, material.subspaces[s].tone_weight, material.range.tone_chroma),
                  relit_factor(height_plane, light, relight_floor(material), horizons));
     if (material.range.specular_strength > 0.0f) {
-      const Plane highlight = lobe_of({material.range.specular_strength, material.range.specular_gloss}, height_plane, light, view, horizons);
-      for (std::size_t p = 0; p < model.rgb.size(); ++p) model.rgb[p] += static_cast<float>(highlight(static_cast<Eigen::Index>(p / 3 / w), static_cast<Eigen::Index>(p / 3 % w)));
+      const Plane highlight = lobe_of({material.range.specular_strength, material.range.specular_gloss},
+                                      height_plane, light, view, horizons);
+      for (std::size_t p = 0; p < model.rgb.size(); ++p)
+        model.rgb[p] += static_cast<float>(
+            highlight(static_cast<Eigen::Index>(p / 3 / w), static_cast<Eigen::Index>(p / 3 % w)));
     }
     const CalibratedFidelity f = calibrated_fidelity(model, measured[s]);
     result.mean_rel += f.rel;

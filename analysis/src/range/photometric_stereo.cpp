@@ -19,7 +19,8 @@ struct PixelFit {
   bool ok = false;
 };
 
-PixelFit solve(const std::vector<std::array<double, 3>>& lights, const std::vector<double>& grey, const std::vector<char>& use, bool ambient) {
+PixelFit solve(const std::vector<std::array<double, 3>>& lights, const std::vector<double>& grey,
+               const std::vector<char>& use, bool ambient) {
   const int unknowns = ambient ? 4 : 3;
   Eigen::Matrix4d ata = Eigen::Matrix4d::Zero();
   Eigen::Vector4d atb = Eigen::Vector4d::Zero();
@@ -34,7 +35,9 @@ PixelFit solve(const std::vector<std::array<double, 3>>& lights, const std::vect
   PixelFit fit;
   if (count < unknowns + 1) return fit;
   Eigen::LDLT<Eigen::MatrixXd> ldlt(ata.topLeftCorner(unknowns, unknowns));
-  if (ldlt.info() != Eigen::Success || !ldlt.isPositive() || ldlt.vectorD().minCoeff() <= 1e-9 * ldlt.vectorD().maxCoeff()) return fit;
+  if (ldlt.info() != Eigen::Success || !ldlt.isPositive() ||
+      ldlt.vectorD().minCoeff() <= 1e-9 * ldlt.vectorD().maxCoeff())
+    return fit;
   const Eigen::VectorXd x = ldlt.solve(atb.head(unknowns));
   fit.b = x.head<3>();
   fit.c = ambient ? x(3) : 0.0;
@@ -51,15 +54,20 @@ double median(std::vector<double> values) {
 
 }  // namespace
 
-NormalMap photometric_stereo(const std::vector<std::span<const float>>& images, const std::vector<std::array<double, 3>>& lights,
-                             std::uint32_t width, std::uint32_t height, std::span<const std::uint8_t> mask,
-                             const std::array<double, 3>& view_direction, const PhotometricStereoOptions& options) {
-  if (images.size() != lights.size() || lights.size() < 3) throw std::invalid_argument("photometric stereo needs one image per light and at least 3 lights");
+NormalMap photometric_stereo(const std::vector<std::span<const float>>& images,
+                             const std::vector<std::array<double, 3>>& lights, std::uint32_t width,
+                             std::uint32_t height, std::span<const std::uint8_t> mask,
+                             const std::array<double, 3>& view_direction,
+                             const PhotometricStereoOptions& options) {
+  if (images.size() != lights.size() || lights.size() < 3)
+    throw std::invalid_argument("photometric stereo needs one image per light and at least 3 lights");
   const std::size_t pixels = std::size_t{width} * height;
   for (const auto& image : images) {
-    if (image.size() < pixels * 3) throw std::invalid_argument("photometric stereo: an image is smaller than width x height");
+    if (image.size() < pixels * 3)
+      throw std::invalid_argument("photometric stereo: an image is smaller than width x height");
   }
-  if (!mask.empty() && mask.size() != pixels) throw std::invalid_argument("photometric stereo: the mask does not match the image size");
+  if (!mask.empty() && mask.size() != pixels)
+    throw std::invalid_argument("photometric stereo: the mask does not match the image size");
   NormalMap map;
   map.width = width;
   map.height = height;
@@ -87,9 +95,12 @@ NormalMap photometric_stereo(const std::vector<std::span<const float>>& images, 
       // most likely in cast or attached shadow, the brightest the ones most likely specular.
       ranked.assign(grey.begin(), grey.end());
       std::sort(ranked.begin(), ranked.end());
-      const double low = ranked[static_cast<std::size_t>(options.initial_dark_quantile * static_cast<double>(count - 1))];
-      const double high = ranked[static_cast<std::size_t>(options.initial_bright_quantile * static_cast<double>(count - 1))];
-      for (std::size_t l = 0; l < count; ++l) use[l] = grey[l] > options.dark_fraction * brightest && grey[l] >= low && grey[l] <= high;
+      const double low =
+          ranked[static_cast<std::size_t>(options.initial_dark_quantile * static_cast<double>(count - 1))];
+      const double high =
+          ranked[static_cast<std::size_t>(options.initial_bright_quantile * static_cast<double>(count - 1))];
+      for (std::size_t l = 0; l < count; ++l)
+        use[l] = grey[l] > options.dark_fraction * brightest && grey[l] >= low && grey[l] <= high;
       bool ambient = options.ambient_term;
       PixelFit fit = solve(lights, grey, use, ambient);
       if (!fit.ok && ambient) fit = solve(lights, grey, use, ambient = false);
@@ -98,9 +109,11 @@ NormalMap photometric_stereo(const std::vector<std::span<const float>>& images, 
         const Eigen::Vector3d mirror = 2.0 * normal.dot(view) * normal - view;
         residuals.clear();
         for (std::size_t l = 0; l < count; ++l) {
-          if (use[l]) residuals.push_back(std::abs(grey[l] - (fit.b.dot(Eigen::Vector3d(lights[l].data())) + fit.c)));
+          if (use[l])
+            residuals.push_back(std::abs(grey[l] - (fit.b.dot(Eigen::Vector3d(lights[l].data())) + fit.c)));
         }
-        const double threshold = std::max(options.rejection * 1.4826 * median(residuals), 1e-3 * fit.b.norm());
+        const double threshold =
+            std::max(options.rejection * 1.4826 * median(residuals), 1e-3 * fit.b.norm());
         for (std::size_t l = 0; l < count; ++l) {
           const Eigen::Vector3d light(lights[l].data());
           const double residual = grey[l] - (fit.b.dot(light) + fit.c);
@@ -127,7 +140,8 @@ NormalMap photometric_stereo(const std::vector<std::span<const float>>& images, 
       }
       for (int k = 0; k < 3; ++k) {
         map.normals[p * 3 + k] = static_cast<float>(normal(k));
-        map.albedo[p * 3 + k] = static_cast<float>(grey_sum > 0.0 ? albedo * colour_sum[k] / grey_sum : albedo);
+        map.albedo[p * 3 + k] =
+            static_cast<float>(grey_sum > 0.0 ? albedo * colour_sum[k] / grey_sum : albedo);
       }
       map.valid[p] = 1;
       map.inliers[p] = static_cast<std::uint16_t>(used);
@@ -139,11 +153,14 @@ NormalMap photometric_stereo(const std::vector<std::span<const float>>& images, 
 std::uint32_t top_view(const BtfDataset& dataset) {
   const auto& views = dataset.views();
   if (views.empty()) throw std::invalid_argument("the dataset has no views");
-  return static_cast<std::uint32_t>(std::min_element(views.begin(), views.end(), [](const Direction& a, const Direction& b) { return a.theta < b.theta; }) -
-                                    views.begin());
+  return static_cast<std::uint32_t>(
+      std::min_element(views.begin(), views.end(),
+                       [](const Direction& a, const Direction& b) { return a.theta < b.theta; }) -
+      views.begin());
 }
 
-NormalMap photometric_stereo(const BtfDataset& dataset, std::uint32_t view, const PhotometricStereoOptions& options) {
+NormalMap photometric_stereo(const BtfDataset& dataset, std::uint32_t view,
+                             const PhotometricStereoOptions& options) {
   std::vector<std::vector<float>> storage;
   std::vector<std::array<double, 3>> lights;
   for (std::uint32_t light = 0; light < dataset.lights().size(); ++light) {
@@ -154,16 +171,20 @@ NormalMap photometric_stereo(const BtfDataset& dataset, std::uint32_t view, cons
   }
   if (lights.size() < 3) {
     const Direction& d = dataset.views()[view];
-    throw std::invalid_argument(dataset.source + ": photometric stereo needs images of one view under at least 3 lights, but view " +
-                                std::to_string(view) + " (" + detail::describe_direction(d) + ") has " + std::to_string(lights.size()) +
-                                "; choose a view with more lights with --stereo-view");
+    throw std::invalid_argument(
+        dataset.source + ": photometric stereo needs images of one view under at least 3 lights, but view " +
+        std::to_string(view) + " (" + detail::describe_direction(d) + ") has " +
+        std::to_string(lights.size()) + "; choose a view with more lights with --stereo-view");
   }
   std::vector<std::span<const float>> images(storage.begin(), storage.end());
-  return photometric_stereo(images, lights, dataset.width(), dataset.height(), dataset.mask, dataset.views()[view].vector(), options);
+  return photometric_stereo(images, lights, dataset.width(), dataset.height(), dataset.mask,
+                            dataset.views()[view].vector(), options);
 }
 
-std::vector<double> angular_errors_degrees(std::span<const float> normals, std::span<const float> truth, std::span<const std::uint8_t> valid) {
-  if (normals.size() != truth.size() || normals.size() % 3 != 0) throw std::invalid_argument("normal maps differ in size");
+std::vector<double> angular_errors_degrees(std::span<const float> normals, std::span<const float> truth,
+                                           std::span<const std::uint8_t> valid) {
+  if (normals.size() != truth.size() || normals.size() % 3 != 0)
+    throw std::invalid_argument("normal maps differ in size");
   std::vector<double> errors;
   for (std::size_t p = 0; p < normals.size() / 3; ++p) {
     if (!valid.empty() && valid[p] == 0) continue;

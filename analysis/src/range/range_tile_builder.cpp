@@ -20,7 +20,8 @@ std::vector<std::uint16_t> best_cut(const RangeTiles& tiles, std::uint32_t tile,
   auto error = [&](std::uint32_t u, std::uint32_t v) {
     std::uint32_t x = 0, y = 0;
     quadrant_to_tile(tiles.tile_size, quadrant, u, v, x, y);
-    const double d = patch_height_at_tile_texel(tiles, patches.a, x, y) - patch_height_at_tile_texel(tiles, patches.b, x, y);
+    const double d = patch_height_at_tile_texel(tiles, patches.a, x, y) -
+                     patch_height_at_tile_texel(tiles, patches.b, x, y);
     return d * d;
   };
   std::vector<std::uint16_t> cut(half, 0);
@@ -66,7 +67,8 @@ struct PatchOrigin {
 // for being flat; 0 where the two agree texel for texel, about 2 where they are unrelated.
 double join_cost(const Plane& map, PatchOrigin h, PatchOrigin v, Eigen::Index half, Eigen::Index stride) {
   // (H window, V window) offsets within the patches, per quadrant: TL, TR, BR, BL.
-  constexpr std::array<std::array<int, 4>, 4> kWindows{{{1, 0, 0, 1}, {1, 1, 0, 0}, {0, 1, 1, 0}, {0, 0, 1, 1}}};
+  constexpr std::array<std::array<int, 4>, 4> kWindows{
+      {{1, 0, 0, 1}, {1, 1, 0, 0}, {0, 1, 1, 0}, {0, 0, 1, 1}}};
   double difference = 0.0, spread = 0.0;
   for (const auto& w : kWindows) {
     const Eigen::Index hr = h.row + w[0] * half, hc = h.col + w[1] * half;
@@ -93,7 +95,8 @@ double join_cost(const Plane& map, PatchOrigin h, PatchOrigin v, Eigen::Index ha
 // its random patches, and its variety. Places are scored on a grid of samples (every 4th texel, sparser
 // for tiles over 256 texels), the best few again on every texel.
 constexpr double kCloseJoin = 0.5;
-std::vector<PatchOrigin> choose_patch_origins(const Plane& map, std::uint32_t size, std::uint32_t colours, std::mt19937_64& rng) {
+std::vector<PatchOrigin> choose_patch_origins(const Plane& map, std::uint32_t size, std::uint32_t colours,
+                                              std::mt19937_64& rng) {
   const auto rows = static_cast<Eigen::Index>(map.rows()) - size + 1;
   const auto cols = static_cast<Eigen::Index>(map.cols()) - size + 1;
   const Eigen::Index half = size / 2;
@@ -107,8 +110,11 @@ std::vector<PatchOrigin> choose_patch_origins(const Plane& map, std::uint32_t si
   auto cost_of = [&](std::uint32_t patch, PatchOrigin at, Eigen::Index stride) {
     const bool horizontal = patch < colours;
     double cost = 0.0;
-    for (std::uint32_t other = horizontal ? colours : 0; other < (horizontal ? 2 * colours : colours); ++other) {
-      if (placed[other]) cost += horizontal ? join_cost(map, at, origins[other], half, stride) : join_cost(map, origins[other], at, half, stride);
+    for (std::uint32_t other = horizontal ? colours : 0; other < (horizontal ? 2 * colours : colours);
+         ++other) {
+      if (placed[other])
+        cost += horizontal ? join_cost(map, at, origins[other], half, stride)
+                           : join_cost(map, origins[other], at, half, stride);
     }
     return cost;
   };
@@ -154,12 +160,14 @@ std::vector<PatchOrigin> choose_patch_origins(const Plane& map, std::uint32_t si
 // channel down or up, the one whose colour (the channels' log ratios) is nearest the tone's, its
 // brightness error counted at a quarter. Rounding each channel to its nearest level on its own draws
 // colour speckle where the tone has none: at 4 bits it is visible on fabric's white threads.
-std::array<std::uint8_t, 3> tone_levels(const std::array<double, 3>& values, std::size_t planes, double low, double scale, double top) {
+std::array<std::uint8_t, 3> tone_levels(const std::array<double, 3>& values, std::size_t planes, double low,
+                                        double scale, double top) {
   std::array<std::uint8_t, 3> levels{};
   auto clamped = [&](double level) { return std::clamp(level, 0.0, top); };
   if (!(scale > 0.0)) return levels;
   if (planes != 3) {
-    for (std::size_t k = 0; k < planes; ++k) levels[k] = static_cast<std::uint8_t>(clamped(std::round((values[k] - low) / scale)));
+    for (std::size_t k = 0; k < planes; ++k)
+      levels[k] = static_cast<std::uint8_t>(clamped(std::round((values[k] - low) / scale)));
     return levels;
   }
   constexpr double kFloor = 1e-3;  // tones are at least kReliefToneFloor; this only keeps the logs finite
@@ -185,13 +193,18 @@ std::array<std::uint8_t, 3> tone_levels(const std::array<double, 3>& values, std
 
 }  // namespace
 
-RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& options, std::span<const Plane> tone) {
-  if (heights.rows() < 4 || heights.cols() < 4) throw std::invalid_argument("a range map needs at least 4 x 4 texels for tiles");
-  if (tone.size() != 0 && tone.size() != 1 && tone.size() != 3) throw std::invalid_argument("a relief tone has one plane or three");
+RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& options,
+                             std::span<const Plane> tone) {
+  if (heights.rows() < 4 || heights.cols() < 4)
+    throw std::invalid_argument("a range map needs at least 4 x 4 texels for tiles");
+  if (tone.size() != 0 && tone.size() != 1 && tone.size() != 3)
+    throw std::invalid_argument("a relief tone has one plane or three");
   for (const Plane& plane : tone) {
-    if (plane.rows() != heights.rows() || plane.cols() != heights.cols()) throw std::invalid_argument("the relief tone is not the range map's size");
+    if (plane.rows() != heights.rows() || plane.cols() != heights.cols())
+      throw std::invalid_argument("the relief tone is not the range map's size");
   }
-  if (options.edge_colours == 0 || options.edge_colours > kMaxEdgeColours) throw std::invalid_argument("edge colours must be within 1..4");
+  if (options.edge_colours == 0 || options.edge_colours > kMaxEdgeColours)
+    throw std::invalid_argument("edge colours must be within 1..4");
   RangeTiles tiles;
   const auto largest = static_cast<std::uint32_t>(std::min(heights.rows(), heights.cols()));
   tiles.tile_size = std::max<std::uint32_t>(4, std::min({options.tile_size, largest, kMaxTileSize}) & ~1u);
@@ -200,7 +213,8 @@ RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& optio
   const double low = heights.minCoeff();
   const double high = heights.maxCoeff();
   tiles.height_offset = static_cast<float>(low);
-  if (options.height_bits < 1 || options.height_bits > 16) throw std::invalid_argument("height bits must be within 1..16");
+  if (options.height_bits < 1 || options.height_bits > 16)
+    throw std::invalid_argument("height bits must be within 1..16");
   const double top_level = static_cast<double>((1u << options.height_bits) - 1u);
   tiles.height_scale = static_cast<float>((high - low) / top_level);
   const std::uint32_t size = tiles.tile_size;
@@ -210,7 +224,8 @@ RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& optio
   // One quantization over every plane of the tone.
   double tone_low = 0.0;
   if (!tone.empty()) {
-    if (options.tone_bits < 1 || options.tone_bits > 8) throw std::invalid_argument("tone bits must be within 1..8");
+    if (options.tone_bits < 1 || options.tone_bits > 8)
+      throw std::invalid_argument("tone bits must be within 1..8");
     tone_low = tone[0].minCoeff();
     double tone_high = tone[0].maxCoeff();
     for (const Plane& plane : tone) {
@@ -218,7 +233,8 @@ RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& optio
       tone_high = std::max(tone_high, plane.maxCoeff());
     }
     tiles.tone_offset = static_cast<float>(tone_low);
-    tiles.tone_scale = static_cast<float>((tone_high - tone_low) / static_cast<double>((1u << options.tone_bits) - 1u));
+    tiles.tone_scale =
+        static_cast<float>((tone_high - tone_low) / static_cast<double>((1u << options.tone_bits) - 1u));
     tiles.tone.resize(tiles.patches.size() * tone.size());
   }
   const std::vector<PatchOrigin> origins = choose_patch_origins(heights, size, tiles.edge_colours, rng);
@@ -233,8 +249,10 @@ RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& optio
         std::array<double, 3> values{};
         for (std::size_t k = 0; k < tone.size(); ++k) values[k] = tone[k](row0 + r, col0 + c);
         const std::array<std::uint8_t, 3> levels =
-            tone_levels(values, tone.size(), tone_low, tiles.tone_scale, static_cast<double>((1u << options.tone_bits) - 1u));
-        for (std::size_t k = 0; k < tone.size(); ++k) tiles.tone[k * tiles.patches.size() + texel] = levels[k];
+            tone_levels(values, tone.size(), tone_low, tiles.tone_scale,
+                        static_cast<double>((1u << options.tone_bits) - 1u));
+        for (std::size_t k = 0; k < tone.size(); ++k)
+          tiles.tone[k * tiles.patches.size() + texel] = levels[k];
       }
     }
   }
@@ -243,11 +261,13 @@ RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& optio
   for (std::uint32_t t = 0; t < range_tile_count(tiles); ++t) {
     for (std::uint32_t q = 0; q < 4; ++q) {
       const auto cut = best_cut(tiles, t, static_cast<TileQuadrant>(q));
-      std::copy(cut.begin(), cut.end(), tiles.cuts.begin() + static_cast<std::ptrdiff_t>((std::size_t{t} * 4 + q) * half));
+      std::copy(cut.begin(), cut.end(),
+                tiles.cuts.begin() + static_cast<std::ptrdiff_t>((std::size_t{t} * 4 + q) * half));
     }
   }
   std::vector<PatchWindow> windows;
-  for (const PatchOrigin& o : origins) windows.push_back({static_cast<std::uint32_t>(o.row), static_cast<std::uint32_t>(o.col)});
+  for (const PatchOrigin& o : origins)
+    windows.push_back({static_cast<std::uint32_t>(o.row), static_cast<std::uint32_t>(o.col)});
   fill_unseen_patch_texels(tiles, windows);
   return tiles;
 }

@@ -31,6 +31,8 @@ void rasterize_text(std::string_view text, int x, int y, int scale, Plot&& plot)
   }
 }
 
-inline int text_width(std::string_view text, int scale) { return static_cast<int>(text.size()) * kGlyphAdvance * scale; }
+inline int text_width(std::string_view text, int scale) {
+  return static_cast<int>(text.size()) * kGlyphAdvance * scale;
+}
 
 }  // namespace carbtf::detail

@@ -10,21 +10,26 @@
 
 namespace carbtf {
 
-void draw_text(std::span<float> rgb, std::uint32_t width, std::uint32_t height, std::string_view text, int x, int y, int scale,
-               std::array<float, 3> colour) {
+void draw_text(std::span<float> rgb, std::uint32_t width, std::uint32_t height, std::string_view text, int x,
+               int y, int scale, std::array<float, 3> colour) {
   detail::rasterize_text(text, x, y, scale, [&](int px, int py) {
-    if (px < 0 || py < 0 || static_cast<std::uint32_t>(px) >= width || static_cast<std::uint32_t>(py) >= height) return;
-    std::copy(colour.begin(), colour.end(), rgb.begin() + static_cast<std::ptrdiff_t>((static_cast<std::size_t>(py) * width + static_cast<std::size_t>(px)) * 3));
+    if (px < 0 || py < 0 || static_cast<std::uint32_t>(px) >= width ||
+        static_cast<std::uint32_t>(py) >= height)
+      return;
+    std::copy(colour.begin(), colour.end(),
+              rgb.begin() + static_cast<std::ptrdiff_t>(
+                                (static_cast<std::size_t>(py) * width + static_cast<std::size_t>(px)) * 3));
   });
 }
 
 namespace {
 
 // Tableau 20: distinct, colour-blind-aware hues in light/dark pairs.
-constexpr std::array<std::array<int, 3>, 20> kPalette{{{31, 119, 180}, {174, 199, 232}, {255, 127, 14}, {255, 187, 120}, {44, 160, 44},
-                                                       {152, 223, 138}, {214, 39, 40}, {255, 152, 150}, {148, 103, 189}, {197, 176, 213},
-                                                       {140, 86, 75}, {196, 156, 148}, {227, 119, 194}, {247, 182, 210}, {127, 127, 127},
-                                                       {199, 199, 199}, {188, 189, 34}, {219, 219, 141}, {23, 190, 207}, {158, 218, 229}}};
+constexpr std::array<std::array<int, 3>, 20> kPalette{
+    {{31, 119, 180},  {174, 199, 232}, {255, 127, 14},  {255, 187, 120}, {44, 160, 44},
+     {152, 223, 138}, {214, 39, 40},   {255, 152, 150}, {148, 103, 189}, {197, 176, 213},
+     {140, 86, 75},   {196, 156, 148}, {227, 119, 194}, {247, 182, 210}, {127, 127, 127},
+     {199, 199, 199}, {188, 189, 34},  {219, 219, 141}, {23, 190, 207},  {158, 218, 229}}};
 
 void set_pixel(Figure& f, std::int64_t x, std::int64_t y, std::array<float, 3> colour) {
   if (x < 0 || y < 0 || x >= f.width || y >= f.height) return;
@@ -53,7 +58,8 @@ void draw_text_up(Figure& f, std::string_view text, int x, int y_bottom, std::ar
 
 // "1E-3", "0.1", "1", "10", "1E4": a decade's label, short.
 std::string decade_label(int exponent) {
-  if (exponent >= 0 && exponent <= 3) return std::to_string(static_cast<int>(std::lround(std::pow(10.0, exponent))));
+  if (exponent >= 0 && exponent <= 3)
+    return std::to_string(static_cast<int>(std::lround(std::pow(10.0, exponent))));
   if (exponent == -1) return "0.1";
   return "1E" + std::to_string(exponent);
 }
@@ -73,9 +79,10 @@ std::array<float, 3> subspace_colour(std::uint32_t index) {
   return {c[0] / 255.0f, c[1] / 255.0f, c[2] / 255.0f};
 }
 
-Figure index_table_figure(std::span<const std::uint8_t> index, std::uint32_t lights, std::uint32_t views, std::uint32_t cell,
-                          std::span<const std::uint32_t> ring_starts) {
-  if (index.size() != std::size_t{lights} * views || cell == 0) throw std::invalid_argument("index table figure: size mismatch");
+Figure index_table_figure(std::span<const std::uint8_t> index, std::uint32_t lights, std::uint32_t views,
+                          std::uint32_t cell, std::span<const std::uint32_t> ring_starts) {
+  if (index.size() != std::size_t{lights} * views || cell == 0)
+    throw std::invalid_argument("index table figure: size mismatch");
   Figure f = blank(views * cell, lights * cell, 1.0f);
   for (std::uint32_t l = 0; l < lights; ++l) {
     for (std::uint32_t v = 0; v < views; ++v) {
@@ -106,22 +113,29 @@ Figure eigenvalue_figure(std::span<const double> eigenvalues, std::uint32_t widt
     const double top = std::ceil(*std::max_element(logs.begin(), logs.end()));
     const double bottom = std::min(top - 1.0, std::floor(*std::min_element(logs.begin(), logs.end())));
     auto y_of = [&](double lg) { return margin + (top - lg) / (top - bottom) * plot_h; };
-    auto x_of = [&](std::size_t i) { return margin + (logs.size() == 1 ? 0.0 : static_cast<double>(i) / (logs.size() - 1) * plot_w); };
-    for (double decade = bottom; decade <= top; decade += 1.0) draw_line(f, margin, y_of(decade), margin + plot_w, y_of(decade), grid);
-    for (std::size_t i = 0; i + 1 < logs.size(); ++i) draw_line(f, x_of(i), y_of(logs[i]), x_of(i + 1), y_of(logs[i + 1]), curve);
+    auto x_of = [&](std::size_t i) {
+      return margin + (logs.size() == 1 ? 0.0 : static_cast<double>(i) / (logs.size() - 1) * plot_w);
+    };
+    for (double decade = bottom; decade <= top; decade += 1.0)
+      draw_line(f, margin, y_of(decade), margin + plot_w, y_of(decade), grid);
+    for (std::size_t i = 0; i + 1 < logs.size(); ++i)
+      draw_line(f, x_of(i), y_of(logs[i]), x_of(i + 1), y_of(logs[i + 1]), curve);
     for (std::size_t i = 0; i < logs.size(); ++i) {
       for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) set_pixel(f, std::lround(x_of(i)) + dx, std::lround(y_of(logs[i])) + dy, curve);
+        for (int dx = -1; dx <= 1; ++dx)
+          set_pixel(f, std::lround(x_of(i)) + dx, std::lround(y_of(logs[i])) + dy, curve);
     }
   }
   draw_line(f, margin, margin, margin, margin + plot_h, axis);
   draw_line(f, margin, margin + plot_h, margin + plot_w, margin + plot_h, axis);
-  draw_text(f, "EIGENVALUE (LOG10) AGAINST RANK, " + std::to_string(logs.size()) + " VALUES", static_cast<int>(margin), 10, axis);
+  draw_text(f, "EIGENVALUE (LOG10) AGAINST RANK, " + std::to_string(logs.size()) + " VALUES",
+            static_cast<int>(margin), 10, axis);
   return f;
 }
 
-Figure scatter_figure(std::span<const ScatterPoint> points, std::string_view x_title, std::string_view y_title,
-                      std::span<const std::string_view> legend, std::uint32_t width, std::uint32_t height) {
+Figure scatter_figure(std::span<const ScatterPoint> points, std::string_view x_title,
+                      std::string_view y_title, std::span<const std::string_view> legend, std::uint32_t width,
+                      std::uint32_t height) {
   Figure f = blank(width, height, 1.0f);
   const std::array<float, 3> axis{0.0f, 0.0f, 0.0f}, grid{0.88f, 0.88f, 0.88f}, label{0.25f, 0.25f, 0.25f};
   const double left = 70.0, right = 20.0, top = 20.0, bottom = 50.0;
@@ -142,16 +156,19 @@ Figure scatter_figure(std::span<const ScatterPoint> points, std::string_view x_t
   for (double d = x_lo; d <= x_hi; d += 1.0) {
     draw_line(f, x_of(d), top, x_of(d), top + plot_h, grid);
     const std::string text = decade_label(static_cast<int>(d));
-    draw_text(f, text, static_cast<int>(x_of(d)) - detail::text_width(text, 1) / 2, static_cast<int>(top + plot_h) + 6, label);
+    draw_text(f, text, static_cast<int>(x_of(d)) - detail::text_width(text, 1) / 2,
+              static_cast<int>(top + plot_h) + 6, label);
   }
   for (double d = y_lo; d <= y_hi; d += 1.0) {
     draw_line(f, left, y_of(d), left + plot_w, y_of(d), grid);
     const std::string text = decade_label(static_cast<int>(d));
-    draw_text(f, text, static_cast<int>(left) - 6 - detail::text_width(text, 1), static_cast<int>(y_of(d)) - 3, label);
+    draw_text(f, text, static_cast<int>(left) - 6 - detail::text_width(text, 1),
+              static_cast<int>(y_of(d)) - 3, label);
   }
   draw_line(f, left, top, left, top + plot_h, axis);
   draw_line(f, left, top + plot_h, left + plot_w, top + plot_h, axis);
-  draw_text(f, x_title, static_cast<int>(left + plot_w / 2) - detail::text_width(x_title, 1) / 2, static_cast<int>(height) - 18, axis);
+  draw_text(f, x_title, static_cast<int>(left + plot_w / 2) - detail::text_width(x_title, 1) / 2,
+            static_cast<int>(height) - 18, axis);
   draw_text_up(f, y_title, 8, static_cast<int>(top + plot_h / 2) + detail::text_width(y_title, 1) / 2, axis);
   for (const ScatterPoint& p : points) {
     if (!(p.x > 0.0) || !(p.y > 0.0)) continue;

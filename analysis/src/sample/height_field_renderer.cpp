@@ -48,8 +48,10 @@ struct PeriodicGrid {
     };
     const std::size_t c0 = wrap(fc), c1 = wrap(fc + 1), r0 = wrap(fr), r1 = wrap(fr + 1);
     for (int k = 0; k < channels; ++k) {
-      const double top = data[(r0 * size + c0) * channels + k] * (1 - tc) + data[(r0 * size + c1) * channels + k] * tc;
-      const double bottom = data[(r1 * size + c0) * channels + k] * (1 - tc) + data[(r1 * size + c1) * channels + k] * tc;
+      const double top =
+          data[(r0 * size + c0) * channels + k] * (1 - tc) + data[(r0 * size + c1) * channels + k] * tc;
+      const double bottom =
+          data[(r1 * size + c0) * channels + k] * (1 - tc) + data[(r1 * size + c1) * channels + k] * tc;
       out[k] = static_cast<float>(top * (1 - tr) + bottom * tr);
     }
   }
@@ -72,8 +74,8 @@ TexelDirection texel_direction(const Direction& d) {
 
 // Where the camera ray through plane point (col, row) first meets the surface, found by marching down
 // from above the highest point and refining by bisection.
-void view_hit(const PeriodicGrid& height, double h_min, double h_max, const TexelDirection& v, double col, double row,
-              double& hit_col, double& hit_row) {
+void view_hit(const PeriodicGrid& height, double h_min, double h_max, const TexelDirection& v, double col,
+              double row, double& hit_col, double& hit_row) {
   if (v.horizontal < 1e-9) {
     hit_col = col;
     hit_row = row;
@@ -127,17 +129,19 @@ std::vector<float> shadow_map(const Surface& surface, const PeriodicGrid& height
 
 std::vector<float> light_visibility(const Surface& surface, const Direction& light) {
   const std::uint32_t n = surface.size;
-  if (n == 0 || surface.height.size() != std::size_t{n} * n) throw std::invalid_argument("light_visibility: height map does not match the size");
+  if (n == 0 || surface.height.size() != std::size_t{n} * n)
+    throw std::invalid_argument("light_visibility: height map does not match the size");
   const PeriodicGrid height{surface.height.data(), n, 1};
   const double h_max = *std::max_element(surface.height.begin(), surface.height.end());
   return shadow_map(surface, height, h_max, texel_direction(light));
 }
 
-void render_btf(const Surface& surface, const std::vector<Direction>& lights, const std::vector<Direction>& views,
-                const RenderOptions& options,
+void render_btf(const Surface& surface, const std::vector<Direction>& lights,
+                const std::vector<Direction>& views, const RenderOptions& options,
                 const std::function<void(std::uint32_t, std::uint32_t, std::span<const float>)>& emit) {
   const std::uint32_t n = surface.size;
-  if (n == 0 || surface.height.size() != std::size_t{n} * n || surface.albedo.size() != std::size_t{n} * n * 3) {
+  if (n == 0 || surface.height.size() != std::size_t{n} * n ||
+      surface.albedo.size() != std::size_t{n} * n * 3) {
     throw std::invalid_argument("render_btf: surface maps do not match its size");
   }
   const std::size_t texels = std::size_t{n} * n;
@@ -185,11 +189,14 @@ void render_btf(const Surface& surface, const std::vector<Direction>& lights, co
       const PeriodicGrid shadow{shadows[l].data(), n, 1};
       for (std::size_t i = 0; i < texels; ++i) {
         const float* nrm = &hit_normal[i * 3];
-        const double length = std::sqrt(double{nrm[0]} * nrm[0] + double{nrm[1]} * nrm[1] + double{nrm[2]} * nrm[2]);
+        const double length =
+            std::sqrt(double{nrm[0]} * nrm[0] + double{nrm[1]} * nrm[1] + double{nrm[2]} * nrm[2]);
         const double n_dot_l =
             (nrm[0] * light_vector[0] + nrm[1] * light_vector[1] + nrm[2] * light_vector[2]) / length;
-        const double n_dot_h = std::max(0.0, (nrm[0] * half[0] + nrm[1] * half[1] + nrm[2] * half[2]) / length);
-        const double direct = n_dot_l > 0 ? options.irradiance * n_dot_l * shadow.at(hit[i * 2], hit[i * 2 + 1]) : 0.0;
+        const double n_dot_h =
+            std::max(0.0, (nrm[0] * half[0] + nrm[1] * half[1] + nrm[2] * half[2]) / length);
+        const double direct =
+            n_dot_l > 0 ? options.irradiance * n_dot_l * shadow.at(hit[i * 2], hit[i * 2 + 1]) : 0.0;
         const double lobe = lobe_scale * std::pow(n_dot_h, surface.gloss);
         for (int k = 0; k < 3; ++k) {
           const double a = hit_albedo[i * 3 + k];

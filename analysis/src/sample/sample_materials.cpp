@@ -39,12 +39,15 @@ namespace {
 
 // A uniform in [0, 1) for (seed, stream, i, j): the same counter-based generator as the noise.
 double uniform(std::uint64_t seed, std::uint32_t stream, std::uint32_t i, std::uint32_t j) {
-  const auto words = reference::philox4x32_10({i, j, stream, 0x5a4d504cu},
-                                              {static_cast<std::uint32_t>(seed), static_cast<std::uint32_t>(seed >> 32)});
+  const auto words =
+      reference::philox4x32_10({i, j, stream, 0x5a4d504cu},
+                               {static_cast<std::uint32_t>(seed), static_cast<std::uint32_t>(seed >> 32)});
   return words[0] * 0x1p-32;
 }
 
-double smooth(double t) { return t * t * t * (t * (t * 6 - 15) + 10); }
+double smooth(double t) {
+  return t * t * t * (t * (t * 6 - 15) + 10);
+}
 
 // Periodic value noise in [-1, 1] with `cells` lattice cells across the tile; u, v in [0, 1).
 double value_noise(std::uint64_t seed, std::uint32_t stream, double u, double v, std::uint32_t cells_u,
@@ -56,10 +59,12 @@ double value_noise(std::uint64_t seed, std::uint32_t stream, double u, double v,
   const std::uint32_t i1 = (i0 + 1) % cells_u, j1 = (j0 + 1) % cells_v;
   const double sx = smooth(x - fx), sy = smooth(y - fy);
   auto at = [&](std::uint32_t i, std::uint32_t j) { return 2 * uniform(seed, stream, i, j) - 1; };
-  return (at(i0, j0) * (1 - sx) + at(i1, j0) * sx) * (1 - sy) + (at(i0, j1) * (1 - sx) + at(i1, j1) * sx) * sy;
+  return (at(i0, j0) * (1 - sx) + at(i1, j0) * sx) * (1 - sy) +
+         (at(i0, j1) * (1 - sx) + at(i1, j1) * sx) * sy;
 }
 
-double fractal_noise(std::uint64_t seed, std::uint32_t stream, double u, double v, std::uint32_t cells, int octaves) {
+double fractal_noise(std::uint64_t seed, std::uint32_t stream, double u, double v, std::uint32_t cells,
+                     int octaves) {
   double sum = 0, weight = 1, total = 0;
   for (int o = 0; o < octaves; ++o) {
     const std::uint32_t c = cells << o;
@@ -114,7 +119,8 @@ void make_leather(const json& recipe, std::uint64_t seed, Surface& s) {
   const auto base = color(recipe, "base_color");
   const double variation = recipe.at("color_variation").get<double>();
   const double darkening = recipe.at("crease_darkening").get<double>();
-  if (cells == 0 || noise_cells == 0 || octaves <= 0) throw std::invalid_argument("cells and octaves must be > 0");
+  if (cells == 0 || noise_cells == 0 || octaves <= 0)
+    throw std::invalid_argument("cells and octaves must be > 0");
   const std::uint32_t n = s.size;
   for (std::uint32_t r = 0; r < n; ++r) {
     for (std::uint32_t c = 0; c < n; ++c) {
@@ -128,7 +134,8 @@ void make_leather(const json& recipe, std::uint64_t seed, Surface& s) {
       s.height[i] = static_cast<float>((1 - noise_weight) * pillow + noise_weight * 0.5 * (grain + 1));
       const double tint = 1 + variation * fractal_noise(seed, 40, u, v, 3, 3);
       const double shade = 1 - darkening * (1 - pillow);
-      for (int k = 0; k < 3; ++k) s.albedo[i * 3 + k] = static_cast<float>(std::clamp(base[k] * tint * shade, 0.0, 1.0));
+      for (int k = 0; k < 3; ++k)
+        s.albedo[i * 3 + k] = static_cast<float>(std::clamp(base[k] * tint * shade, 0.0, 1.0));
     }
   }
 }
@@ -139,7 +146,8 @@ void make_weave(const json& recipe, std::uint64_t seed, Surface& s) {
   const double undulation = recipe.at("undulation").get<double>();
   const auto warp = color(recipe, "warp_color"), weft = color(recipe, "weft_color");
   const double fiber = recipe.at("fiber_variation").get<double>();
-  if (threads == 0 || width <= 0 || width > 1) throw std::invalid_argument("threads > 0 and 0 < thread_width <= 1");
+  if (threads == 0 || width <= 0 || width > 1)
+    throw std::invalid_argument("threads > 0 and 0 < thread_width <= 1");
   const std::uint32_t n = s.size;
   for (std::uint32_t r = 0; r < n; ++r) {
     for (std::uint32_t c = 0; c < n; ++c) {
@@ -221,7 +229,8 @@ Surface make_sample_surface(const std::string& name, std::uint32_t size, std::ui
   if (!fs::is_regular_file(recipe_path, ec)) {
     std::string known;
     for (const std::string& n : sample_material_names()) known += (known.empty() ? "" : ", ") + n;
-    throw InputError(name, "no such sample material (built in: " + (known.empty() ? "none found" : known) + ")");
+    throw InputError(name,
+                     "no such sample material (built in: " + (known.empty() ? "none found" : known) + ")");
   }
   if (size < 8 || size > 4096) throw InputError(name, "size must be between 8 and 4096");
   json recipe;

@@ -13,9 +13,12 @@
 namespace carbtf {
 namespace {
 
-double uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
+double uniform01(std::mt19937_64& rng) {
+  return static_cast<double>(rng() >> 11) * 0x1.0p-53;
+}
 
-double squared_distance(const Eigen::MatrixXd& samples, Eigen::Index i, const Eigen::MatrixXd& centroids, Eigen::Index c) {
+double squared_distance(const Eigen::MatrixXd& samples, Eigen::Index i, const Eigen::MatrixXd& centroids,
+                        Eigen::Index c) {
   return (samples.row(i) - centroids.row(c)).squaredNorm();
 }
 
@@ -23,9 +26,11 @@ double squared_distance(const Eigen::MatrixXd& samples, Eigen::Index i, const Ei
 // distance to the nearest centre chosen so far. Stops early when every sample sits on a centre.
 Eigen::MatrixXd seed_centroids(const Eigen::MatrixXd& samples, std::uint32_t clusters, std::mt19937_64& rng) {
   const Eigen::Index n = samples.rows();
-  std::vector<Eigen::Index> chosen{std::min<Eigen::Index>(n - 1, static_cast<Eigen::Index>(uniform01(rng) * static_cast<double>(n)))};
+  std::vector<Eigen::Index> chosen{
+      std::min<Eigen::Index>(n - 1, static_cast<Eigen::Index>(uniform01(rng) * static_cast<double>(n)))};
   std::vector<double> nearest(static_cast<std::size_t>(n));
-  for (Eigen::Index i = 0; i < n; ++i) nearest[static_cast<std::size_t>(i)] = (samples.row(i) - samples.row(chosen[0])).squaredNorm();
+  for (Eigen::Index i = 0; i < n; ++i)
+    nearest[static_cast<std::size_t>(i)] = (samples.row(i) - samples.row(chosen[0])).squaredNorm();
   while (chosen.size() < clusters) {
     const double total = std::accumulate(nearest.begin(), nearest.end(), 0.0);
     if (!(total > 0.0)) break;
@@ -34,26 +39,31 @@ Eigen::MatrixXd seed_centroids(const Eigen::MatrixXd& samples, std::uint32_t clu
     Eigen::Index pick = -1;
     for (Eigen::Index i = 0; i < n; ++i) {
       running += nearest[static_cast<std::size_t>(i)];
-      if (nearest[static_cast<std::size_t>(i)] > 0.0) pick = i;  // the last candidate, if rounding leaves target unreached
+      if (nearest[static_cast<std::size_t>(i)] > 0.0)
+        pick = i;  // the last candidate, if rounding leaves target unreached
       if (running > target && nearest[static_cast<std::size_t>(i)] > 0.0) break;
     }
     chosen.push_back(pick);
     for (Eigen::Index i = 0; i < n; ++i) {
-      nearest[static_cast<std::size_t>(i)] = std::min(nearest[static_cast<std::size_t>(i)], (samples.row(i) - samples.row(pick)).squaredNorm());
+      nearest[static_cast<std::size_t>(i)] =
+          std::min(nearest[static_cast<std::size_t>(i)], (samples.row(i) - samples.row(pick)).squaredNorm());
     }
   }
   Eigen::MatrixXd centroids(static_cast<Eigen::Index>(chosen.size()), samples.cols());
-  for (std::size_t c = 0; c < chosen.size(); ++c) centroids.row(static_cast<Eigen::Index>(c)) = samples.row(chosen[c]);
+  for (std::size_t c = 0; c < chosen.size(); ++c)
+    centroids.row(static_cast<Eigen::Index>(c)) = samples.row(chosen[c]);
   return centroids;
 }
 
 }  // namespace
 
 KMeansResult kmeans(const Eigen::MatrixXd& samples, const KMeansOptions& options) {
-  if (samples.rows() == 0 || options.clusters == 0) throw std::invalid_argument("k-means needs samples and at least one cluster");
+  if (samples.rows() == 0 || options.clusters == 0)
+    throw std::invalid_argument("k-means needs samples and at least one cluster");
   const Eigen::Index n = samples.rows();
   std::mt19937_64 rng(options.seed);
-  Eigen::MatrixXd centroids = seed_centroids(samples, static_cast<std::uint32_t>(std::min<Eigen::Index>(options.clusters, n)), rng);
+  Eigen::MatrixXd centroids =
+      seed_centroids(samples, static_cast<std::uint32_t>(std::min<Eigen::Index>(options.clusters, n)), rng);
   const Eigen::Index k = centroids.rows();
   std::vector<std::uint32_t> labels(static_cast<std::size_t>(n), std::numeric_limits<std::uint32_t>::max());
   std::vector<double> distances(static_cast<std::size_t>(n));
@@ -111,7 +121,8 @@ KMeansResult kmeans(const Eigen::MatrixXd& samples, const KMeansOptions& options
   for (std::uint32_t c = 0; c < k; ++c) {
     if (std::isfinite(nearest_distance[c])) live.push_back(c);
   }
-  std::sort(live.begin(), live.end(), [&](std::uint32_t a, std::uint32_t b) { return nearest[a] < nearest[b]; });
+  std::sort(live.begin(), live.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return nearest[a] < nearest[b]; });
   std::vector<std::uint32_t> renumber(static_cast<std::size_t>(k), 0);
   result.centroids.resize(static_cast<Eigen::Index>(live.size()), samples.cols());
   for (std::uint32_t i = 0; i < live.size(); ++i) {

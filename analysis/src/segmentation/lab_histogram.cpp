@@ -32,18 +32,23 @@ std::array<float, 3> linear_srgb_to_lab(float r, float g, float b) {
 
 std::array<double, 3> lab_to_linear_srgb(double l, double a, double b) {
   constexpr double delta = 6.0 / 29.0;
-  const auto inverse_f = [](double f) { return f > delta ? f * f * f : 3.0 * delta * delta * (f - 4.0 / 29.0); };
+  const auto inverse_f = [](double f) {
+    return f > delta ? f * f * f : 3.0 * delta * delta * (f - 4.0 / 29.0);
+  };
   const double fy = (l + 16.0) / 116.0;
-  const double x = 0.95047 * inverse_f(fy + a / 500.0), y = inverse_f(fy), z = 1.08883 * inverse_f(fy - b / 200.0);
+  const double x = 0.95047 * inverse_f(fy + a / 500.0), y = inverse_f(fy),
+               z = 1.08883 * inverse_f(fy - b / 200.0);
   // XYZ to linear sRGB (IEC 61966-2-1).
   return {3.2404542 * x - 1.5371385 * y - 0.4985314 * z, -0.9692660 * x + 1.8760108 * y + 0.0415560 * z,
           0.0556434 * x - 0.2040259 * y + 1.0572252 * z};
 }
 
-std::vector<float> lab_cumulative_histogram(std::span<const float> rgb, std::uint32_t width, std::uint32_t height, std::uint32_t bins,
-                                            std::uint32_t stride) {
-  if (bins == 0 || stride == 0) throw std::invalid_argument("a Lab histogram needs at least one bin and a positive stride");
-  if (rgb.size() < std::size_t{width} * height * 3) throw std::invalid_argument("Lab histogram: image buffer too small");
+std::vector<float> lab_cumulative_histogram(std::span<const float> rgb, std::uint32_t width,
+                                            std::uint32_t height, std::uint32_t bins, std::uint32_t stride) {
+  if (bins == 0 || stride == 0)
+    throw std::invalid_argument("a Lab histogram needs at least one bin and a positive stride");
+  if (rgb.size() < std::size_t{width} * height * 3)
+    throw std::invalid_argument("Lab histogram: image buffer too small");
   std::vector<float> feature(std::size_t{bins} * 3, 0.0f);
   std::size_t count = 0;
   for (std::uint32_t row = 0; row < height; row += stride) {

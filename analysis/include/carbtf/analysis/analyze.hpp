@@ -34,7 +34,7 @@ struct AnalysisOptions {
   std::uint32_t pyramid_levels = 3;  // 1..6 (fewer where the image is too small for them)
   CarFitOptions car;
   PhotometricStereoOptions stereo;
-  int stereo_view = -1;              // -1: the view nearest the surface normal
+  int stereo_view = -1;  // -1: the view nearest the surface normal
   // Rescale sigma per level so that the collapsed pyramid keeps the measured contrast
   // (model/collapse_calibration.hpp). Off by default: it restores the variance, yet lowers the
   // calibrated fidelity on leather and coast_sand_rocks (issue 13 note).
@@ -100,9 +100,10 @@ struct AnalysisOptions {
   // mean s at 256^2 0.55 -> 0.47; coast_sand_rocks, whose images it also explains, would rise from 0.69
   // to 0.83, and its models are only 1% nearer; docs/design.md 5.2); always: keep it wherever fitted.
   AutoChoice relief_specular = AutoChoice::automatic;
-  double deshade_floor = 0.0;        // > 0: divide the relit range map out before fitting, floored here (model/deshade.hpp)
-  RangeTileOptions tiles;            // its seed is ignored: the tiles follow segmentation.seed
-  unsigned threads = 0;              // 0: all hardware threads
+  double deshade_floor =
+      0.0;  // > 0: divide the relit range map out before fitting, floored here (model/deshade.hpp)
+  RangeTileOptions tiles;  // its seed is ignored: the tiles follow segmentation.seed
+  unsigned threads = 0;    // 0: all hardware threads
   bool progress = true;
 };
 
@@ -116,10 +117,10 @@ struct AnalysisResult {
   Material material;
   Segmentation segmentation;
   NormalMap normals;
-  Plane range_map;                   // texel units, mean zero
-  Plane tone;                        // the relief tone, grey (empty without it)
-  std::vector<Plane> tone_planes;    // the stored tone's planes: none, the grey one, or R, G and B
-  std::vector<float> horizons;       // the range map's horizons for its cast shadows (empty without)
+  Plane range_map;                 // texel units, mean zero
+  Plane tone;                      // the relief tone, grey (empty without it)
+  std::vector<Plane> tone_planes;  // the stored tone's planes: none, the grey one, or R, G and B
+  std::vector<float> horizons;     // the range map's horizons for its cast shadows (empty without)
   std::uint32_t stereo_view = 0;
   std::vector<StageReport> stages;
   std::vector<std::string> log;

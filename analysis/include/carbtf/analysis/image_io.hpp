@@ -15,8 +15,8 @@ namespace carbtf {
 
 // How a float field is mapped to an 8-bit file (EXR, TIFF, PFM keep the floats as they are).
 struct FieldToDisplay {
-  float low = -4.0f;   // maps to 0
-  float high = 4.0f;   // maps to 255
+  float low = -4.0f;  // maps to 0
+  float high = 4.0f;  // maps to 255
 };
 
 // Writes `values` (width * height, row 0 at the top) to `path`; the format follows the extension:
@@ -38,9 +38,9 @@ bool is_float_image_extension(const std::filesystem::path& path);
 struct RgbImage {
   std::uint32_t width = 0;
   std::uint32_t height = 0;
-  bool linear = false;                 // which of the two vectors holds the pixels
-  std::vector<std::uint8_t> srgb8;     // width * height * 3 when !linear
-  std::vector<float> linear_rgb;       // width * height * 3 when linear
+  bool linear = false;              // which of the two vectors holds the pixels
+  std::vector<std::uint8_t> srgb8;  // width * height * 3 when !linear
+  std::vector<float> linear_rgb;    // width * height * 3 when linear
 };
 
 // What an image of a dataset must be, checked from its header before any pixel is decoded.
@@ -55,7 +55,8 @@ struct ImageShape {
 // anything that is not a complete, finite image: unknown or non-image content, corrupt or truncated
 // data, NaN or Inf samples, a zero size or more than 4096 x 4096 pixels, or (when `expected` is given)
 // another size or encoding; sizes are checked from the header, before the pixels are decoded.
-RgbImage decode_rgb_image(const std::string& name, std::span<const std::byte> bytes, const ImageShape* expected = nullptr);
+RgbImage decode_rgb_image(const std::string& name, std::span<const std::byte> bytes,
+                          const ImageShape* expected = nullptr);
 
 // Reads a whole regular file of at most 256 MiB into memory; throws InputError naming the file when it
 // cannot.
@@ -64,8 +65,8 @@ std::vector<std::byte> read_file_bytes(const std::filesystem::path& path);
 // Encodes RGB (width * height * 3 floats) for a file named `name`: 8-bit for .jpg/.png (JPEG quality
 // 95), 32-bit float for .exr. 8-bit files get the sRGB transfer function when `srgb_encode` (colours),
 // and the values as they are, clamped to [0, 1], otherwise (data such as normal maps).
-std::vector<std::byte> encode_rgb_image(const std::string& name, std::span<const float> rgb, std::uint32_t width,
-                                        std::uint32_t height, bool srgb_encode = true);
+std::vector<std::byte> encode_rgb_image(const std::string& name, std::span<const float> rgb,
+                                        std::uint32_t width, std::uint32_t height, bool srgb_encode = true);
 
 // encode_rgb_image() written to `path` (parent folders created); throws InputError naming the file.
 void write_rgb_image(const std::filesystem::path& path, std::span<const float> rgb, std::uint32_t width,
@@ -74,7 +75,8 @@ void write_rgb_image(const std::filesystem::path& path, std::span<const float> r
 // `bytes` (or `text`) written to `path` whole or not at all (write_file_whole() in the engine's
 // file_output.hpp), parent folders created; InputError naming the file when that fails or when `path`
 // is something other than a regular file (a device, FIFO, socket or folder is never replaced).
-void write_output_file(const std::filesystem::path& path, std::span<const std::byte> bytes, Flush flush = Flush::each_file);
+void write_output_file(const std::filesystem::path& path, std::span<const std::byte> bytes,
+                       Flush flush = Flush::each_file);
 void write_output_file(const std::filesystem::path& path, std::string_view text);
 
 }  // namespace carbtf

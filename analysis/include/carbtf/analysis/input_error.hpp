@@ -10,8 +10,10 @@ namespace carbtf {
 
 class InputError : public std::runtime_error {
  public:
-  InputError(const std::string& input, const std::string& problem) : std::runtime_error(printable(input) + ": " + problem) {}
-  InputError(const std::filesystem::path& input, const std::string& problem) : InputError(input.string(), problem) {}
+  InputError(const std::string& input, const std::string& problem)
+      : std::runtime_error(printable(input) + ": " + problem) {}
+  InputError(const std::filesystem::path& input, const std::string& problem)
+      : InputError(input.string(), problem) {}
 
  private:
   // A name from a hostile file may hold control bytes: a NUL would end the message there, and others

@@ -19,9 +19,9 @@ enum class ErrorCode {
   out_of_host_memory,
   out_of_device_memory,
   device_lost,
-  vulkan_error,              // any other failing VkResult
-  file_error,                // a file could not be read or written
-  invalid_material,          // a material file or Material is malformed, truncated or hostile
+  vulkan_error,      // any other failing VkResult
+  file_error,        // a file could not be read or written
+  invalid_material,  // a material file or Material is malformed, truncated or hostile
 };
 
 class [[nodiscard]] Status {

@@ -3,9 +3,10 @@
 // Pixels are kept as the source stored them, to fit a full 81 x 81 x 256^2 material in about 1.3 GB:
 // 8-bit sRGB for JPEG/PNG sources, IEEE half for linear (EXR, UBO2014 raw) sources. A compressed source
 // (UBO2014 DFMF, 151 x 151 x 400^2: 22 GB as half) is not expanded at all: an ImageDecoder rebuilds each
-// image when it is asked for. The model always sees linear float RGB: linear_rgb() converts on access. Images are row-major, row 0 at the top, RGB interleaved.
-// Pairs may be missing (partial datasets). Thread safety: concurrent reads are safe; set_* calls on
-// different pairs may run concurrently, on the same pair they must not.
+// image when it is asked for. The model always sees linear float RGB: linear_rgb() converts on access. Images
+// are row-major, row 0 at the top, RGB interleaved. Pairs may be missing (partial datasets). Thread safety:
+// concurrent reads are safe; set_* calls on different pairs may run concurrently, on the same pair they must
+// not.
 #pragma once
 
 #include <cstdint>
@@ -46,11 +47,11 @@ class ImageDecoder {
 class BtfDataset {
  public:
   BtfDataset() = default;
-  BtfDataset(std::vector<Direction> lights, std::vector<Direction> views, std::uint32_t width, std::uint32_t height,
-             ColorEncoding encoding);
+  BtfDataset(std::vector<Direction> lights, std::vector<Direction> views, std::uint32_t width,
+             std::uint32_t height, ColorEncoding encoding);
   // A dataset whose every image is rebuilt by `decoder` (encoding `decoded`; the set_* calls refuse).
-  BtfDataset(std::vector<Direction> lights, std::vector<Direction> views, std::uint32_t width, std::uint32_t height,
-             std::shared_ptr<const ImageDecoder> decoder);
+  BtfDataset(std::vector<Direction> lights, std::vector<Direction> views, std::uint32_t width,
+             std::uint32_t height, std::shared_ptr<const ImageDecoder> decoder);
 
   const std::vector<Direction>& lights() const { return lights_; }
   const std::vector<Direction>& views() const { return views_; }
@@ -91,9 +92,9 @@ class BtfDataset {
   std::uint32_t width_ = 0;
   std::uint32_t height_ = 0;
   ColorEncoding encoding_ = ColorEncoding::srgb8;
-  std::vector<std::vector<std::uint8_t>> srgb_;    // per slot, empty when missing
-  std::vector<std::vector<std::uint16_t>> half_;   // per slot, empty when missing
-  std::shared_ptr<const ImageDecoder> decoder_;    // every slot, when set
+  std::vector<std::vector<std::uint8_t>> srgb_;   // per slot, empty when missing
+  std::vector<std::vector<std::uint16_t>> half_;  // per slot, empty when missing
+  std::shared_ptr<const ImageDecoder> decoder_;   // every slot, when set
 };
 
 // The largest direction sets a dataset may have, and how sparse a large light x view table may be. The
@@ -108,7 +109,8 @@ inline constexpr std::size_t kMinMeasuredShareDenominator = 4;  // at least 1 pa
 // Throws InputError naming `input`, with the counts found and the limit, unless `lights` and `views`
 // are each at most kMaxDatasetDirections and a table of more than kSparseTablePairs pairs has at least
 // a quarter of them `measured`. The readers call it before they allocate anything for the table.
-void check_direction_table(const std::string& input, std::size_t lights, std::size_t views, std::size_t measured);
+void check_direction_table(const std::string& input, std::size_t lights, std::size_t views,
+                           std::size_t measured);
 
 // Throws InputError naming `input` unless the dataset's light and view directions are the material's
 // (within 1e-4 rad; the azimuth modulo a turn, and not at all at the pole): the check before a model

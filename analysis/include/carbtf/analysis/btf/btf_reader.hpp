@@ -11,8 +11,8 @@
 namespace carbtf {
 
 struct BtfLoadOptions {
-  unsigned threads = 0;   // decoding threads; 0: all hardware threads
-  bool progress = true;   // progress bar on stderr when it is a terminal
+  unsigned threads = 0;  // decoding threads; 0: all hardware threads
+  bool progress = true;  // progress bar on stderr when it is a terminal
 };
 
 // Loads whatever `path` is:

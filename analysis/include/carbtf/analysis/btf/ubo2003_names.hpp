@@ -11,9 +11,9 @@
 namespace carbtf {
 
 struct Ubo2003Name {
-  std::uint32_t index = 0;  // NNNNN
+  std::uint32_t index = 0;                                           // NNNNN
   int theta_light = 0, phi_light = 0, theta_view = 0, phi_view = 0;  // degrees
-  std::string extension;    // lower case, with the dot: ".jpg"
+  std::string extension;                                             // lower case, with the dot: ".jpg"
 };
 
 // Parses a file name (no folder). nullopt when it is not of the UBO2003 form.
@@ -22,7 +22,8 @@ std::optional<Ubo2003Name> parse_ubo2003_name(std::string_view file_name);
 bool parse_ubo2003_view_folder(std::string_view folder_name, int& theta, int& phi);
 
 // Names for the UBO2003 direction indices (0..80) of a light and a view.
-std::string ubo2003_file_name(std::uint32_t light_index, std::uint32_t view_index, std::string_view extension);
+std::string ubo2003_file_name(std::uint32_t light_index, std::uint32_t view_index,
+                              std::string_view extension);
 std::string ubo2003_view_folder(std::uint32_t view_index);
 
 }  // namespace carbtf

@@ -14,10 +14,10 @@
 //          + ln Gamma(beta/2) - ln Gamma(beta0/2).
 // - Stability: the recursion is stable when the within-row recursion and, for every column frequency,
 //   the row-to-row recursion have all characteristic roots inside the unit circle (Ekstrom & Woods'
-//   condition for non-symmetric half-plane filters; engine/car_stability.hpp); car_spectral_radius() gives the largest root
-//   modulus. If it exceeds 1 - stability_margin (unstable, or so close to a unit root that synthesis
-//   would drift), gamma is repaired by shrinking it towards zero, gamma *= s with the largest s (found
-//   by bisection) that meets the margin, and sigma is rescaled so the model's stationary variance
+//   condition for non-symmetric half-plane filters; engine/car_stability.hpp); car_spectral_radius() gives
+//   the largest root modulus. If it exceeds 1 - stability_margin (unstable, or so close to a unit root that
+//   synthesis would drift), gamma is repaired by shrinking it towards zero, gamma *= s with the largest s
+//   (found by bisection) that meets the margin, and sigma is rescaled so the model's stationary variance
 //   equals the band's variance. The band is flagged car_band_repaired and the log says so.
 // - A constant band gets no neighbours and sigma 0; a band too small for any candidate (fewer than
 //   4 (eta + 1) + 8 samples) is white noise of the band's variance.
@@ -47,20 +47,21 @@ struct CarFitOptions {
 
 struct CarFit {
   CarBandModel model;
-  int candidate = -1;                          // the chosen candidate, -1 for constant / white noise
-  std::vector<double> log_posterior;           // per candidate considered (-inf when it did not fit)
-  std::vector<double> gamma_standard_error;    // posterior standard deviation of each gamma (unit band)
-  std::size_t samples = 0;                     // n
-  double fitted_spectral_radius = 0.0;         // before any repair
-  double spectral_radius = 0.0;                // of the stored model
-  double shrink = 1.0;                         // the repair factor s (1: no repair)
-  std::string note;                            // empty, or what was repaired and why (for the log)
+  int candidate = -1;                        // the chosen candidate, -1 for constant / white noise
+  std::vector<double> log_posterior;         // per candidate considered (-inf when it did not fit)
+  std::vector<double> gamma_standard_error;  // posterior standard deviation of each gamma (unit band)
+  std::size_t samples = 0;                   // n
+  double fitted_spectral_radius = 0.0;       // before any repair
+  double spectral_radius = 0.0;              // of the stored model
+  double shrink = 1.0;                       // the repair factor s (1: no repair)
+  std::string note;                          // empty, or what was repaired and why (for the log)
 };
 
 CarFit fit_car_band(const Plane& band, const CarFitOptions& options = {});
 
 // Stationary variance of the recursion driven by unit-variance white noise: the mean of 1 / |A|^2 over
 // a grid of `grid` x `grid` frequencies (finite only for a stable recursion).
-double car_stationary_gain(const std::vector<CarNeighbour>& neighbourhood, const std::vector<double>& gamma, int grid = 128);
+double car_stationary_gain(const std::vector<CarNeighbour>& neighbourhood, const std::vector<double>& gamma,
+                           int grid = 128);
 
 }  // namespace carbtf

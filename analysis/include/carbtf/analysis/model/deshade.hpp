@@ -35,7 +35,8 @@ RangeFacet range_map_facet(const Plane& range_map, Eigen::Index row, Eigen::Inde
 
 // The share of `light` the relief's cast shadows leave at texel `texel` (row-major) of the range map
 // whose horizons (range_map_horizons()) these are; 1 without horizons.
-double horizon_visibility(std::span<const float> horizons, Eigen::Index texel, const std::array<double, 3>& light);
+double horizon_visibility(std::span<const float> horizons, Eigen::Index texel,
+                          const std::array<double, 3>& light);
 
 // Divides every channel by max(factor, floor); the channels and the factor share one size.
 void divide_shading(std::vector<Plane>& channels, const Plane& factor, double floor);
@@ -51,6 +52,7 @@ void divide_shading(std::vector<Plane>& channels, const std::vector<Plane>& fact
 // The render pass's default parallax scale (MaterialBindingInfo::parallax_scale), which the analysis
 // assumes when it undoes the parallax of a measured image.
 inline constexpr double kAnalysisParallaxScale = 1.0;
-void undo_parallax(std::vector<Plane>& channels, const Plane& range_map, const std::array<double, 3>& view, double scale);
+void undo_parallax(std::vector<Plane>& channels, const Plane& range_map, const std::array<double, 3>& view,
+                   double scale);
 
 }  // namespace carbtf

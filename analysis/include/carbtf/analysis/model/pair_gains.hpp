@@ -22,10 +22,10 @@ namespace carbtf {
 
 // The relief the render pass composes with each subspace image: the range map and what follows it.
 struct PairGainRelief {
-  const Plane& range_map;             // texel units
-  std::span<const Plane> tone;        // the stored tone's planes: none, one grey or R, G and B
-  std::span<const float> horizons;    // the range map's horizons, empty without cast shadows
-  SpecularLobe specular = {};         // the highlights the render adds, which no gain scales
+  const Plane& range_map;           // texel units
+  std::span<const Plane> tone;      // the stored tone's planes: none, one grey or R, G and B
+  std::span<const float> horizons;  // the range map's horizons, empty without cast shadows
+  SpecularLobe specular = {};       // the highlights the render adds, which no gain scales
 };
 
 // Gain codes for `material` (its subspace models fitted, lights and views the dataset's), in
@@ -36,7 +36,8 @@ struct PairGainRelief {
 // pair, or one whose model or measurement is black, keeps gain 1. `threads` 0: all hardware threads;
 // `progress` is called once per light, from any thread.
 inline constexpr std::size_t kPairGainSamples = 16384;  // a Lab mean's sampling error about 0.1 delta E
-std::vector<std::uint8_t> fit_pair_gains(const BtfDataset& dataset, const Material& material, const PairGainRelief& relief,
-                                         std::uint64_t seed, unsigned threads = 0, const std::function<void()>& progress = {});
+std::vector<std::uint8_t> fit_pair_gains(const BtfDataset& dataset, const Material& material,
+                                         const PairGainRelief& relief, std::uint64_t seed,
+                                         unsigned threads = 0, const std::function<void()>& progress = {});
 
 }  // namespace carbtf

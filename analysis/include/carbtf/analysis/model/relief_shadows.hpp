@@ -35,14 +35,15 @@ inline constexpr std::array<double, 3> kShadowScales = {0.0, 0.5, 1.0};
 inline constexpr double kShadowFitGain = 0.02;
 
 struct ShadowFit {
-  double scale = 0.0;        // the chosen RangeTiles::shadow_scale (0: no cast shadows)
-  double error = 0.0;        // its error: the mean over lights of RMS(image - model) / mean image
+  double scale = 0.0;          // the chosen RangeTiles::shadow_scale (0: no cast shadows)
+  double error = 0.0;          // its error: the mean over lights of RMS(image - model) / mean image
   double error_without = 0.0;  // the error without cast shadows
 };
 
 // The shadow scale for the images of `view` of `dataset` over `range_map`, for the render pass's relit
 // factor floor `light_z_floor` (see above). Throws std::invalid_argument when the range map is not the
 // dataset's size.
-ShadowFit fit_shadow_scale(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor);
+ShadowFit fit_shadow_scale(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map,
+                           double light_z_floor);
 
 }  // namespace carbtf

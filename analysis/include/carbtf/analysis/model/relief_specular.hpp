@@ -40,16 +40,17 @@ struct SpecularFit {
 // max(N . L, 0) * max(N . H, 0)^gloss at every texel of `range_map` (heights in texel units, edges
 // repeated), for unit tangent-frame directions towards the light and the viewer; with `horizons`
 // (range_map_horizons()), times the share of the light the relief's cast shadows leave.
-Plane specular_lobe(const Plane& range_map, const std::array<double, 3>& light, const std::array<double, 3>& view, double gloss,
-                    std::span<const float> horizons = {});
+Plane specular_lobe(const Plane& range_map, const std::array<double, 3>& light,
+                    const std::array<double, 3>& view, double gloss, std::span<const float> horizons = {});
 
 // specular_lobe() times the lobe's strength; all 0 without a lobe.
-Plane lobe_of(const SpecularLobe& lobe, const Plane& range_map, const std::array<double, 3>& light, const std::array<double, 3>& view,
-              std::span<const float> horizons = {});
+Plane lobe_of(const SpecularLobe& lobe, const Plane& range_map, const std::array<double, 3>& light,
+              const std::array<double, 3>& view, std::span<const float> horizons = {});
 
 // The lobe for the images of `view` of `dataset` over `range_map`, with the relief tone `tone` and the
 // render pass's relit factor floor (see above). Throws std::invalid_argument when the sizes differ.
-SpecularFit fit_relief_specular(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, const Plane& tone,
-                                double light_z_floor, std::span<const float> horizons = {});
+SpecularFit fit_relief_specular(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map,
+                                const Plane& tone, double light_z_floor,
+                                std::span<const float> horizons = {});
 
 }  // namespace carbtf

@@ -39,8 +39,9 @@ Plane relief_tone(const BtfDataset& dataset, std::uint32_t view, const Plane& ra
 // The relief tone of each colour channel (linear R, G, B), the formula above on that channel's image:
 // the tone's full colour, where a woven fabric's blue threads and white threads differ in hue, which
 // one grey plane with a slope per channel (relief_tone_chroma) cannot draw.
-std::vector<Plane> relief_tone_planes(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor,
-                                      std::span<const float> horizons = {}, const SpecularLobe& lobe = {});
+std::vector<Plane> relief_tone_planes(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map,
+                                      double light_z_floor, std::span<const float> horizons = {},
+                                      const SpecularLobe& lobe = {});
 
 // How far the tone's colour departs from grey: the RMS over texels and channels of each channel's
 // log tone minus the mean of the three. Requires three planes of one size.
@@ -67,14 +68,16 @@ void clamp_remainder(std::vector<Plane>& channels, double k);
 // improves); leather 0.25 and coast_sand_rocks 0.32, where a coloured tone only adds chroma the
 // measurement lacks (mean rel 0.334 -> 0.354 and 0.276 -> 0.293 with it).
 inline constexpr double kToneChromaExplained = 0.5;
-std::array<float, 3> relief_tone_chroma(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map, double light_z_floor,
-                                        const Plane& tone, std::span<const float> horizons = {}, const SpecularLobe& lobe = {});
+std::array<float, 3> relief_tone_chroma(const BtfDataset& dataset, std::uint32_t view, const Plane& range_map,
+                                        double light_z_floor, const Plane& tone,
+                                        std::span<const float> horizons = {}, const SpecularLobe& lobe = {});
 
 // The tone per colour channel as a subspace image of tone weight `weight` takes it:
 // max(1 + weight * chroma[c] * (tone_c - 1), 0), as the render pass composes it (SubspaceModel::tone_weight,
 // RangeTiles::tone_chroma); tone_c is plane c of a three-plane tone, or the one plane of a grey tone.
 // Throws std::invalid_argument for another plane count.
-std::vector<Plane> weighted_tone(std::span<const Plane> tone, double weight, const std::array<float, 3>& chroma);
+std::vector<Plane> weighted_tone(std::span<const Plane> tone, double weight,
+                                 const std::array<float, 3>& chroma);
 
 // The render pass's product for one measured pair, without parallax or direction interpolation:
 // every pixel of `rgb` (interleaved RGB, row-major, the planes' size) times its channel's tone x relit
@@ -90,6 +93,7 @@ void apply_relief(std::span<float> rgb, const std::vector<Plane>& tones, const P
 // gain for all channels: per-channel gains were measured worse (they move the chroma of a material
 // whose colour follows its relief). `measured` and `tones` have the channels' size; nothing changes
 // where a mean is not positive.
-void match_render_mean(std::vector<Plane>& smooth, const std::vector<Plane>& measured, const std::vector<Plane>& tones, const Plane& relit);
+void match_render_mean(std::vector<Plane>& smooth, const std::vector<Plane>& measured,
+                       const std::vector<Plane>& tones, const Plane& relit);
 
 }  // namespace carbtf

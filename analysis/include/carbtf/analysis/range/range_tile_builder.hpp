@@ -1,6 +1,6 @@
 // Building the Wang tiles that enlarge a range map (paper Sec. III, after Cohen et al. 2003; the
-// geometry and layout rule are in engine/include/carbtf/engine/material/range_tiles.hpp). Each edge colour takes
-// a source patch from the map at a seeded random position; each tile quadrant joins its two patches
+// geometry and layout rule are in engine/include/carbtf/engine/material/range_tiles.hpp). Each edge colour
+// takes a source patch from the map at a seeded random position; each tile quadrant joins its two patches
 // along the minimum-error cut, found by dynamic programming over monotone corner-to-centre paths with
 // cost (A - B)^2 summed over the two texels either side of the cut.
 #pragma once
@@ -18,7 +18,7 @@ struct RangeTileOptions {
   // four corner-to-centre cuts, and at 64 texels they cross most cells of a 25-texel relief, drawing
   // crease fragments (calibrated fidelity, issue 13 note).
   std::uint32_t tile_size = 128;
-  std::uint32_t edge_colours = 2;   // per direction, 1..4: 2 gives 16 tiles from 4 patches
+  std::uint32_t edge_colours = 2;  // per direction, 1..4: 2 gives 16 tiles from 4 patches
   // Height quantization, 1..16 bits over the map's range. 6 bits leave a step of 1/63 of the range
   // (0.15 texel on leather's 9.4-texel relief, a fifth of its texel-to-texel slope). The calibrated
   // fidelity of the three samples at 256^2 is that of 8 bits to within 0.003 in the mean (leather
@@ -44,6 +44,7 @@ struct RangeTileOptions {
 // shows are set to what the file's predictor expects (fill_unseen_patch_texels), so they cost nearly
 // nothing in the file. Throws std::invalid_argument for a map smaller than 4 x 4, or a tone of another
 // size or plane count.
-RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& options, std::span<const Plane> tone = {});
+RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& options,
+                             std::span<const Plane> tone = {});
 
 }  // namespace carbtf

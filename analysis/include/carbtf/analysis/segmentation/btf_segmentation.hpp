@@ -12,8 +12,8 @@
 namespace carbtf {
 
 struct SegmentationOptions {
-  std::uint32_t clusters = 20;             // K, 1..255
-  std::uint32_t bins = 32;                 // per Lab channel
+  std::uint32_t clusters = 20;  // K, 1..255
+  std::uint32_t bins = 32;      // per Lab channel
   std::uint64_t seed = 1;
   std::uint32_t max_feature_pixels = 16384;  // the feature samples every stride-th pixel to stay below this
   std::uint32_t spectrum_thumbnail = 16;
@@ -24,10 +24,10 @@ struct SegmentationOptions {
 struct Segmentation {
   std::uint32_t lights = 0;
   std::uint32_t views = 0;
-  std::vector<std::uint8_t> index;             // lights * views, [light * views + view]
-  std::vector<LightView> representatives;      // per subspace: the member nearest its centroid
-  std::vector<std::uint32_t> sizes;            // measured images per subspace
-  std::vector<double> eigenvalues;             // of the BTF space, descending
+  std::vector<std::uint8_t> index;         // lights * views, [light * views + view]
+  std::vector<LightView> representatives;  // per subspace: the member nearest its centroid
+  std::vector<std::uint32_t> sizes;        // measured images per subspace
+  std::vector<double> eigenvalues;         // of the BTF space, descending
   double inertia = 0.0;
   std::uint32_t iterations = 0;
 };

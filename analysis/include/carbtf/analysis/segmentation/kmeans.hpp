@@ -18,11 +18,11 @@ struct KMeansOptions {
 };
 
 struct KMeansResult {
-  Eigen::MatrixXd centroids;            // clusters x dimensions
-  std::vector<std::uint32_t> labels;    // per sample
-  std::vector<std::uint32_t> nearest;   // per cluster: the member nearest its centroid
-  std::vector<std::uint32_t> sizes;     // per cluster
-  double inertia = 0.0;                 // sum of squared distances to the assigned centroids
+  Eigen::MatrixXd centroids;           // clusters x dimensions
+  std::vector<std::uint32_t> labels;   // per sample
+  std::vector<std::uint32_t> nearest;  // per cluster: the member nearest its centroid
+  std::vector<std::uint32_t> sizes;    // per cluster
+  double inertia = 0.0;                // sum of squared distances to the assigned centroids
   std::uint32_t iterations = 0;
 };
 

@@ -15,9 +15,9 @@
 #include <span>
 #include <vector>
 
+#include "carbtf/engine/internal/synthesis_layout.hpp"
 #include "carbtf/engine/material/material.hpp"
 #include "carbtf/engine/synthesis/noise_block.hpp"
-#include "carbtf/engine/internal/synthesis_layout.hpp"
 
 namespace carbtf::reference {
 

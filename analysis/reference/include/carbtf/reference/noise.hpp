@@ -11,12 +11,13 @@
 namespace carbtf::reference {
 
 // Philox4x32-10 (Salmon et al. 2011) of `counter` under `key`.
-std::array<std::uint32_t, 4> philox4x32_10(std::array<std::uint32_t, 4> counter, std::array<std::uint32_t, 2> key);
+std::array<std::uint32_t, 4> philox4x32_10(std::array<std::uint32_t, 4> counter,
+                                           std::array<std::uint32_t, 2> key);
 
 // The division-free building blocks, exposed so tests can measure their accuracy.
-float noise_log(float u);      // ln(u), u in [2^-24, 1]
-float noise_cos2pi(float t);   // cos(2 pi t), t in [0, 1)
-float noise_sqrt(float v);     // sqrt(v), v >= 0
+float noise_log(float u);     // ln(u), u in [2^-24, 1]
+float noise_cos2pi(float t);  // cos(2 pi t), t in [0, 1)
+float noise_sqrt(float v);    // sqrt(v), v >= 0
 
 // N(0,1) sample at (seed, field, row, col); row and col are taken modulo 2^32 (negative rows are fine).
 float gaussian_noise(std::uint64_t seed, std::uint32_t field_id, std::int32_t row, std::int32_t col);

@@ -20,7 +20,8 @@ inline constexpr unsigned kMaxThreads = 256;
 
 inline void parallel_for(std::size_t count, unsigned threads, const std::function<void(std::size_t)>& body) {
   if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
-  threads = static_cast<unsigned>(std::min<std::size_t>({threads, kMaxThreads, std::max<std::size_t>(count, 1)}));
+  threads =
+      static_cast<unsigned>(std::min<std::size_t>({threads, kMaxThreads, std::max<std::size_t>(count, 1)}));
   std::atomic<std::size_t> next{0};
   std::exception_ptr error;
   std::mutex error_mutex;

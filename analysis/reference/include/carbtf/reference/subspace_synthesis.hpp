@@ -18,9 +18,9 @@
 #include <span>
 #include <vector>
 
+#include "carbtf/engine/internal/synthesis_layout.hpp"
 #include "carbtf/engine/material/direction_interpolation.hpp"
 #include "carbtf/engine/material/material.hpp"
-#include "carbtf/engine/internal/synthesis_layout.hpp"
 
 namespace carbtf::reference {
 

@@ -12,11 +12,13 @@ namespace carbtf {
 
 // The 12-neighbour causal neighbourhood (reach 2 rows up, |dc| <= 2), the largest the analysis fits.
 inline std::vector<CarNeighbour> wide_neighbourhood() {
-  return {{0, -1}, {0, -2}, {-1, -2}, {-1, -1}, {-1, 0}, {-1, 1}, {-1, 2}, {-2, -2}, {-2, -1}, {-2, 0}, {-2, 1}, {-2, 2}};
+  return {{0, -1}, {0, -2},  {-1, -2}, {-1, -1}, {-1, 0}, {-1, 1},
+          {-1, 2}, {-2, -2}, {-2, -1}, {-2, 0},  {-2, 1}, {-2, 2}};
 }
 
 // A band with `neighbourhood` and gammas spread so that sum |gamma| = `total` (stable when < 1).
-inline CarBandModel spread_band(std::vector<CarNeighbour> neighbourhood, float total, float sigma, float mean) {
+inline CarBandModel spread_band(std::vector<CarNeighbour> neighbourhood, float total, float sigma,
+                                float mean) {
   CarBandModel band;
   band.neighbourhood = std::move(neighbourhood);
   const float each = total / static_cast<float>(band.neighbourhood.size());
@@ -42,13 +44,15 @@ inline std::vector<std::vector<CarNeighbour>> neighbourhood_shapes() {
 inline Material synthetic_material(std::uint32_t subspaces, std::uint32_t levels, std::uint32_t channels = 3,
                                    std::uint32_t neighbours = 0) {
   Material m;
-  m.lights = {{0.0f, 0.0f}, {0.6f, 0.0f}, {0.6f, 2.1f}, {0.6f, 4.2f}, {1.2f, 1.0f}, {1.2f, 3.1f}, {1.2f, 5.2f}};
+  m.lights = {{0.0f, 0.0f}, {0.6f, 0.0f}, {0.6f, 2.1f}, {0.6f, 4.2f},
+              {1.2f, 1.0f}, {1.2f, 3.1f}, {1.2f, 5.2f}};
   m.views = m.lights;
   std::vector<std::vector<CarNeighbour>> shapes = neighbourhood_shapes();
   for (const auto& candidate : neighbourhood_shapes()) {
     if (candidate.size() == neighbours) shapes = {candidate};
   }
-  for (std::size_t i = 0; i < m.lights.size() * m.views.size(); ++i) m.subspace_index.push_back(static_cast<std::uint8_t>(i % subspaces));
+  for (std::size_t i = 0; i < m.lights.size() * m.views.size(); ++i)
+    m.subspace_index.push_back(static_cast<std::uint8_t>(i % subspaces));
   std::uint32_t shape = 0;
   for (std::uint32_t s = 0; s < subspaces; ++s) {
     SubspaceModel model;
@@ -60,13 +64,15 @@ inline Material synthetic_material(std::uint32_t subspaces, std::uint32_t levels
     for (std::uint32_t i = 0; i < channels; ++i) {
       model.colour_mean.push_back(0.1f + 0.2f * static_cast<float>(i) + 0.01f * static_cast<float>(s));
       for (std::uint32_t j = 0; j < channels; ++j) {
-        model.colour_transform.push_back(i == j ? 0.8f : 0.3f / static_cast<float>(1 + i + j) * (j % 2 ? -1.0f : 1.0f));
+        model.colour_transform.push_back(
+            i == j ? 0.8f : 0.3f / static_cast<float>(1 + i + j) * (j % 2 ? -1.0f : 1.0f));
       }
     }
     for (std::uint32_t level = 0; level < levels; ++level) {
       for (std::uint32_t c = 0; c < channels; ++c) {
         const float total = 0.55f + 0.1f * static_cast<float>((shape + level) % 4);
-        model.bands.push_back(spread_band(shapes[shape++ % shapes.size()], total, 0.05f + 0.02f * static_cast<float>(level),
+        model.bands.push_back(spread_band(shapes[shape++ % shapes.size()], total,
+                                          0.05f + 0.02f * static_cast<float>(level),
                                           level == model.levels - 1 ? 0.01f * static_cast<float>(c) : 0.0f));
       }
     }

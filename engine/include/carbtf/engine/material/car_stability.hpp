@@ -19,8 +19,8 @@ namespace carbtf {
 
 // True when every characteristic root of the recursion has modulus < `radius`, checked at
 // `frequencies` evenly spaced column frequencies. gamma has one entry per neighbour.
-bool car_roots_within(const std::vector<CarNeighbour>& neighbourhood, const std::vector<double>& gamma, double radius,
-                      int frequencies = 256);
+bool car_roots_within(const std::vector<CarNeighbour>& neighbourhood, const std::vector<double>& gamma,
+                      double radius, int frequencies = 256);
 
 // The largest characteristic root modulus (< 1: stable), to about 1e-12 by bisection on
 // car_roots_within(); +infinity when it exceeds 1e6 or the recursion is degenerate.

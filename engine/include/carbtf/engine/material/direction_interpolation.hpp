@@ -1,4 +1,5 @@
-// Barycentric interpolation over measured directions (paper Sec. III "BTF Interpolation", docs/design.md 4.5).
+// Barycentric interpolation over measured directions (paper Sec. III "BTF Interpolation",
+// docs/design.md 4.5).
 //
 // The measured directions of one set (lights or views) are mapped to the unit disk by the azimuthal
 // equidistant projection, (x, y) = theta / (pi / 2) * (cos phi, sin phi), which keeps the elevation
@@ -21,14 +22,15 @@
 namespace carbtf {
 
 struct DirectionTriangulation {
-  std::vector<std::array<double, 2>> points;           // projected directions, one per measured direction
+  std::vector<std::array<double, 2>> points;            // projected directions, one per measured direction
   std::vector<std::array<std::uint32_t, 3>> triangles;  // counter-clockwise
   std::vector<std::array<std::uint32_t, 2>> boundary;   // edges of the outer boundary
 };
 
 // Needs at least 3 directions not all on one line in the projection (else invalid_argument); a single
 // direction or two are allowed and give a degenerate triangulation (all weight on the nearest).
-Status build_direction_triangulation(std::span<const MaterialDirection> directions, DirectionTriangulation& out);
+Status build_direction_triangulation(std::span<const MaterialDirection> directions,
+                                     DirectionTriangulation& out);
 
 // The projection of (theta, phi) into the unit disk.
 std::array<double, 2> project_direction(double theta, double phi);
@@ -63,9 +65,10 @@ enum class PairCoupling : std::uint8_t {
 };
 
 // Slots 0-8 of the product (light-major); slots 0-4 of the staircase, the rest weight 0.
-PairWeights couple_pair_weights(const DirectionWeights& light, const DirectionWeights& view, PairCoupling coupling);
-PairWeights pair_weights(const DirectionTriangulation& lights, const DirectionTriangulation& views, double light_theta,
-                         double light_phi, double view_theta, double view_phi,
+PairWeights couple_pair_weights(const DirectionWeights& light, const DirectionWeights& view,
+                                PairCoupling coupling);
+PairWeights pair_weights(const DirectionTriangulation& lights, const DirectionTriangulation& views,
+                         double light_theta, double light_phi, double view_theta, double view_phi,
                          PairCoupling coupling = PairCoupling::product);
 
 }  // namespace carbtf

@@ -32,9 +32,9 @@ struct CarNeighbour {
 
 // Why a band's model differs from the plain Bayesian estimate; the analysis log says the same in words.
 enum CarBandFlags : std::uint32_t {
-  car_band_repaired = 1u << 0,       // the fitted recursion was unstable or near a unit root: gamma shrunk
-  car_band_constant = 1u << 1,       // the band is constant: gamma empty, sigma 0
-  car_band_white_noise = 1u << 2,    // too few samples for any neighbourhood: gamma empty
+  car_band_repaired = 1u << 0,     // the fitted recursion was unstable or near a unit root: gamma shrunk
+  car_band_constant = 1u << 1,     // the band is constant: gamma empty, sigma 0
+  car_band_white_noise = 1u << 2,  // too few samples for any neighbourhood: gamma empty
 };
 
 // One mono-spectral band of one pyramid level: Y(r) = mean + y(r), y(r) = sum_k gamma[k] y(r + n_k) +
@@ -44,8 +44,8 @@ struct CarBandModel {
   std::vector<float> gamma;  // one per neighbour, same order
   float sigma = 0.0f;        // noise standard deviation, in band units
   float mean = 0.0f;
-  float band_std = 0.0f;     // standard deviation of the analysed band (for tolerances and reports)
-  std::uint32_t flags = 0;   // CarBandFlags
+  float band_std = 0.0f;    // standard deviation of the analysed band (for tolerances and reports)
+  std::uint32_t flags = 0;  // CarBandFlags
   bool operator==(const CarBandModel&) const = default;
 };
 
@@ -59,9 +59,10 @@ struct SubspaceModel {
   std::uint32_t height = 0;
   std::uint32_t channels = 3;
   std::uint32_t levels = 1;
-  std::vector<float> colour_mean;       // channels, linear RGB (or spectral) mean
-  std::vector<float> colour_transform;  // channels x channels, row-major: colour[i] = mean[i] + sum_j T[i][j] band[j]
-  std::vector<CarBandModel> bands;      // levels * channels
+  std::vector<float> colour_mean;  // channels, linear RGB (or spectral) mean
+  std::vector<float>
+      colour_transform;  // channels x channels, row-major: colour[i] = mean[i] + sum_j T[i][j] band[j]
+  std::vector<CarBandModel> bands;  // levels * channels
   // How much of the relief tone this subspace image takes, in [0, 1]: the render multiplies it by
   // 1 + tone_weight * (tone - 1). The analysis chooses it per subspace by the texture measure, since
   // the tone (the crease darkening of the photometric-stereo view) helps some lights and views and

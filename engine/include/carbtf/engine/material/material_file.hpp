@@ -16,8 +16,9 @@
 //         (0 none, s <= 8: each byte minus the one s before, as PNG's Sub; 9, format 1.3: the raster
 //         filter, with its parameters, for the heights and tone: residuals of a median edge predictor;
 //         10, format 1.5: the window filter, which stores patches cut from overlapping places of one
-//         map as that map's texels, once; see material_file.cpp), one zlib stream; the reader bounds the claimed size (64 MiB, and
-//         1100:1 over the stream) and checks the filter's layout before it allocates
+//         map as that map's texels, once; see material_file.cpp), one zlib stream; the reader bounds the
+//         claimed size (64 MiB, and 1100:1 over the stream) and checks the filter's layout before it
+//         allocates
 //   TONE  (1.1, optional) f32 tone_offset, f32 tone_scale, u32 count, u8 tone[count]: the relief tone
 //         per patch texel (count = the patches' texel count). A 1.0 reader skips it and renders the
 //         smooth texture without the crease darkening it carries. From 1.7 the count may be three
@@ -62,7 +63,8 @@ struct MaterialEncoding {
 };
 
 // Encodes a valid material (check it with validate_material first: an invalid one is refused).
-Status encode_material(const Material& material, std::vector<std::uint8_t>& out, const MaterialEncoding& encoding = {});
+Status encode_material(const Material& material, std::vector<std::uint8_t>& out,
+                       const MaterialEncoding& encoding = {});
 
 // Decodes `bytes`; `name` (a path, say) prefixes every error message.
 Status decode_material(std::span<const std::uint8_t> bytes, const std::string& name, Material& out);
@@ -79,7 +81,8 @@ struct MaterialChunkInfo {
   std::string tag;
   std::uint64_t total_bytes = 0;  // header, payload and CRC
   bool known = false;
-  std::uint64_t inflated_bytes = 0;  // for a deflated chunk (listed under its inner tag): its size stored plain; else 0
+  std::uint64_t inflated_bytes =
+      0;  // for a deflated chunk (listed under its inner tag): its size stored plain; else 0
 };
 // Lists the chunks of a file that decode_material accepts (call it after a successful decode).
 Status list_material_chunks(std::span<const std::uint8_t> bytes, std::vector<MaterialChunkInfo>& out);

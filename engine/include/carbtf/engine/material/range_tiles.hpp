@@ -64,14 +64,16 @@ inline void quadrant_to_tile(std::uint32_t tile_size, TileQuadrant quadrant, std
 enum class RangeChannel : std::uint32_t { height = 0, tone = 1, tone_green = 2, tone_blue = 3 };
 // The tone channel of colour channel `k` (0 red, 1 green, 2 blue).
 inline RangeChannel tone_channel(std::size_t k) {
-  return static_cast<RangeChannel>(static_cast<std::uint32_t>(RangeChannel::tone) + static_cast<std::uint32_t>(k));
+  return static_cast<RangeChannel>(static_cast<std::uint32_t>(RangeChannel::tone) +
+                                   static_cast<std::uint32_t>(k));
 }
 
 // The value patch `patch` shows at tile texel (x, y), following the geometry above; the caller
 // passes a patch that covers (x, y).
-float patch_value_at_tile_texel(const RangeTiles& tiles, RangeChannel channel, std::uint32_t patch, std::uint32_t x,
-                                std::uint32_t y);
-inline float patch_height_at_tile_texel(const RangeTiles& tiles, std::uint32_t patch, std::uint32_t x, std::uint32_t y) {
+float patch_value_at_tile_texel(const RangeTiles& tiles, RangeChannel channel, std::uint32_t patch,
+                                std::uint32_t x, std::uint32_t y);
+inline float patch_height_at_tile_texel(const RangeTiles& tiles, std::uint32_t patch, std::uint32_t x,
+                                        std::uint32_t y) {
   return patch_value_at_tile_texel(tiles, RangeChannel::height, patch, x, y);
 }
 
@@ -98,14 +100,14 @@ struct PatchWindow {
 void fill_unseen_patch_texels(RangeTiles& tiles, std::span<const PatchWindow> windows);
 
 // The tile laid at tile coordinates (tile_row, tile_col) of the enlarged map for `seed`.
-std::uint32_t range_tile_at(const RangeTiles& tiles, std::uint64_t seed, std::int32_t tile_row, std::int32_t tile_col);
+std::uint32_t range_tile_at(const RangeTiles& tiles, std::uint64_t seed, std::int32_t tile_row,
+                            std::int32_t tile_col);
 
 // Writes the block [row0, row0 + height) x [col0, col0 + width) of the enlarged map for `seed` into
 // `out` (width * height heights, row-major). Requires tile_size > 0.
 void enlarge_range_map(const RangeTiles& tiles, std::uint64_t seed, std::int64_t row0, std::int64_t col0,
                        std::uint32_t width, std::uint32_t height, std::span<float> out,
                        RangeChannel channel = RangeChannel::height);
-
 
 // How much a tile join steps: the mean absolute height difference between neighbouring texels of the
 // composed tiles, over the pairs a cut separates and over the rest. A join shows as a line at grazing

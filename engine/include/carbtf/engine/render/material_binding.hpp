@@ -19,10 +19,10 @@
 #include <span>
 #include <vector>
 
-#include "carbtf/engine/vulkan/buffer.hpp"
-#include "carbtf/engine/vulkan/context.hpp"
 #include "carbtf/engine/material/direction_interpolation.hpp"
 #include "carbtf/engine/material/material.hpp"
+#include "carbtf/engine/vulkan/buffer.hpp"
+#include "carbtf/engine/vulkan/context.hpp"
 
 namespace carbtf {
 
@@ -48,7 +48,6 @@ struct MaterialTextures {
   // or UINT32_MAX. Measured images (one per pair, TextureArray) are drawn this way.
   std::vector<std::uint32_t> pair_layers;
 };
-
 
 // The textures of a prepared synthesizer.
 MaterialTextures material_textures(const SubspaceSynthesizer& synthesizer, const Material& material);
@@ -78,8 +77,8 @@ struct MaterialBindingInfo {
   std::uint32_t max_mip_levels = 0;
   // Read the subspace images and the range texture's heights, tone and horizons through a trilinear
   // sampler (carbtf_material.glsl's hardware filtering) where the device filters RGBA32F linearly: the
-  // fast path, within the device's sub-texel precision of the hand filtering. false: a sampler that does not filter, for hosts that compare the render with
-  // the CPU twin (render_reference.hpp) bit for bit or nearly.
+  // fast path, within the device's sub-texel precision of the hand filtering. false: a sampler that does not
+  // filter, for hosts that compare the render with the CPU twin (render_reference.hpp) bit for bit or nearly.
   bool hardware_filtering = true;
   // How the light's and the view's weights combine into (light, view) pair weights
   // (direction_interpolation.hpp): the paper's 9 pairs, or the staircase's 5, which reads 5 subspace
@@ -123,7 +122,8 @@ class MaterialBinding {
   std::uint32_t mip_levels() const noexcept;
   // Whether the material's relief casts shadows (RangeTiles::shadow_scale): a pipeline that draws only
   // materials without may set carbtf_material.glsl's specialization constant CARBTF_SHADOWS_CONSTANT_ID
-  // (1000 by default) to false, which saves the horizon reads (on lavapipe a fifth of a sphere frame's render pass).
+  // (1000 by default) to false, which saves the horizon reads (on lavapipe a fifth of a sphere frame's render
+  // pass).
   bool casts_shadows() const noexcept;
   // Whether the binding's sampler filters (MaterialBindingInfo::hardware_filtering, where the device
   // can): a pipeline may then set carbtf_material.glsl's specialization constant
@@ -166,6 +166,7 @@ float rendered_tone_weight(float tone_weight) noexcept;
 // A pair gain (pair_gain()) in the pair gain table's fixed point (MaterialTablesHeader::pair_gains), and
 // a pair's three gains as the render pass reads them, for CPU twins of the fragment stage.
 std::uint32_t pair_gain_units(float gain) noexcept;
-std::array<float, 3> rendered_pair_gain(const Material& material, std::uint32_t light, std::uint32_t view) noexcept;
+std::array<float, 3> rendered_pair_gain(const Material& material, std::uint32_t light,
+                                        std::uint32_t view) noexcept;
 
 }  // namespace carbtf

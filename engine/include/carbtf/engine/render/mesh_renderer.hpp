@@ -15,11 +15,11 @@
 #include <memory>
 #include <vector>
 
-#include "carbtf/engine/vulkan/buffer.hpp"
-#include "carbtf/engine/vulkan/context.hpp"
 #include "carbtf/engine/render/material_binding.hpp"
 #include "carbtf/engine/render/mesh.hpp"
 #include "carbtf/engine/render/render_scene.hpp"
+#include "carbtf/engine/vulkan/buffer.hpp"
+#include "carbtf/engine/vulkan/context.hpp"
 
 namespace carbtf {
 

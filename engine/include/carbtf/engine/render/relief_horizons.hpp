@@ -32,17 +32,19 @@ inline constexpr float kReliefShadowSoftness = 0.1f;
 // width * height heights (texel units, row-major) -> width * height * kReliefHorizonDirections
 // horizon tangents of the heights times `scale`, the edge texels repeated or, for periodic textures,
 // the addresses wrapped.
-void relief_horizons(std::span<const float> heights, std::uint32_t width, std::uint32_t height, bool wrap, float scale,
-                     std::vector<float>& out);
+void relief_horizons(std::span<const float> heights, std::uint32_t width, std::uint32_t height, bool wrap,
+                     float scale, std::vector<float>& out);
 
 // Azimuths 4 * half to 4 * half + 3 of `horizons` (width * height * kReliefHorizonDirections, or empty
 // for none) as `texels` RGBA texels: the range texture's layer 2 + half, zeros without horizons.
-void horizon_layer(std::span<const float> horizons, std::size_t texels, std::uint32_t half, std::vector<float>& out);
+void horizon_layer(std::span<const float> horizons, std::size_t texels, std::uint32_t half,
+                   std::vector<float>& out);
 
 // The share of a directional light (tangent frame, z up, need not be unit) that the relief leaves
 // on a texel of the given horizons: 1 above the horizon at the light's azimuth (interpolated between
 // the two nearest directions), 0 below, a linear ramp of width kReliefShadowSoftness between.
 // carbtf_relief_visibility() in carbtf_material.glsl computes the same.
-float relief_visibility(std::span<const float, kReliefHorizonDirections> horizons, const std::array<float, 3>& light);
+float relief_visibility(std::span<const float, kReliefHorizonDirections> horizons,
+                        const std::array<float, 3>& light);
 
 }  // namespace carbtf

@@ -43,8 +43,9 @@ class ResidentImages {
   std::vector<std::uint32_t> missing(std::span<const std::uint32_t> needed) const;
 
   // Records, after `synthesizer`'s recorded synthesis of at least `added`, the copy of their layers into
-  // theirs and the blits that make their mip levels, ending visible to fragment-shader reads; they count as resident from now. invalid_argument,
-  // recording nothing, when the synthesizer's images are of another size or lack one of `added`.
+  // theirs and the blits that make their mip levels, ending visible to fragment-shader reads; they count as
+  // resident from now. invalid_argument, recording nothing, when the synthesizer's images are of another size
+  // or lack one of `added`.
   Status record_add(VkCommandBuffer command_buffer, const SubspaceSynthesizer& synthesizer,
                     std::span<const std::uint32_t> added) noexcept;
 

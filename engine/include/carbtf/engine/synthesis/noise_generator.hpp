@@ -8,8 +8,8 @@
 #include <memory>
 #include <vector>
 
-#include "carbtf/engine/vulkan/context.hpp"
 #include "carbtf/engine/synthesis/noise_block.hpp"
+#include "carbtf/engine/vulkan/context.hpp"
 
 namespace carbtf {
 
@@ -30,7 +30,8 @@ class NoiseGenerator {
 
   // Convenience: generates `block` into `out` (resized to width * height) with submit-and-wait.
   // When `gpu_milliseconds` is given and the queue has timestamps, it receives the GPU time.
-  Status generate(const NoiseBlock& block, std::vector<float>& out, double* gpu_milliseconds = nullptr) noexcept;
+  Status generate(const NoiseBlock& block, std::vector<float>& out,
+                  double* gpu_milliseconds = nullptr) noexcept;
 
   // Caps the rows one dispatch covers (0: only the device limits). Tests use it to exercise splitting.
   void set_max_rows_per_dispatch(std::uint32_t rows) noexcept { max_rows_per_dispatch_ = rows; }

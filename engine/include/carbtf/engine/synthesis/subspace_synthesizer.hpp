@@ -21,12 +21,12 @@
 #include <span>
 #include <vector>
 
-#include "carbtf/engine/vulkan/buffer.hpp"
-#include "carbtf/engine/vulkan/context.hpp"
 #include "carbtf/engine/material/direction_interpolation.hpp"
 #include "carbtf/engine/material/material.hpp"
-#include "carbtf/engine/synthesis/synthesis_request.hpp"
 #include "carbtf/engine/synthesis/synthesis_block.hpp"
+#include "carbtf/engine/synthesis/synthesis_request.hpp"
+#include "carbtf/engine/vulkan/buffer.hpp"
+#include "carbtf/engine/vulkan/context.hpp"
 
 namespace carbtf {
 
@@ -39,9 +39,9 @@ class SubspaceSynthesizer {
   // Plans `request` for `material` and (re)allocates the output image, the work buffer and the item
   // tables. The previous preparation's work buffer serves again when it is large enough, and its image
   // when the size and layer count match (image() then returns the same handle, its contents to be
-  // overwritten by the next record()). Copies what it needs from `material`. Fails with invalid_argument for a request the
-  // material or the device cannot serve (unknown subspace, too many channels or neighbours, an image
-  // beyond the device's limits), naming the cause.
+  // overwritten by the next record()). Copies what it needs from `material`. Fails with invalid_argument for
+  // a request the material or the device cannot serve (unknown subspace, too many channels or neighbours, an
+  // image beyond the device's limits), naming the cause.
   Status prepare(const Material& material, const SynthesisRequest& request) noexcept;
 
   // Frees the prepared synthesis: its image, work buffer and tables (image() is null afterwards). The
@@ -57,7 +57,8 @@ class SubspaceSynthesizer {
   // beyond the model's own set to 0 and alpha to 1. Null before a successful prepare().
   VkImage image() const noexcept;
   VkImageView image_view() const noexcept;  // all mip levels
-  std::uint32_t mip_levels() const noexcept;  // of the image (SynthesisRequest::mip_levels); 0 before prepare()
+  std::uint32_t mip_levels()
+      const noexcept;  // of the image (SynthesisRequest::mip_levels); 0 before prepare()
   // The layer of subspace `subspace`, or UINT32_MAX when it was not requested.
   std::uint32_t layer_of(std::uint32_t subspace) const noexcept;
   std::uint32_t width() const noexcept;
@@ -78,13 +79,14 @@ class SubspaceSynthesizer {
 
   // Convenience: prepare, record, submit and wait, leaving the images on the device (image(),
   // read_band(), interpolate()): for captures and checks that need no host copy of every image.
-  Status run(const Material& material, const SynthesisRequest& request, SynthesisTiming* timing = nullptr) noexcept;
+  Status run(const Material& material, const SynthesisRequest& request,
+             SynthesisTiming* timing = nullptr) noexcept;
   // Convenience: prepare, record, submit, wait, read back. `timing` may be null. `out`'s vectors are
   // resized in place: passing the same result again reuses its memory instead of faulting in new pages.
   Status synthesize(const Material& material, const SynthesisRequest& request, SynthesizedImages& out,
                     SynthesisTiming* timing = nullptr) noexcept;
-  // After a synthesize() or run() with request.capture set: band (level, channel) of `subspace` over its level
-  // window (row-major; rows x cols of that level's region): the noise, the CAR field y (its mean not
+  // After a synthesize() or run() with request.capture set: band (level, channel) of `subspace` over its
+  // level window (row-major; rows x cols of that level's region): the noise, the CAR field y (its mean not
   // yet added) or the collapsed level G, as captured.
   Status read_band(std::uint32_t subspace, std::uint32_t level, std::uint32_t channel,
                    std::vector<float>& out, std::uint32_t& rows, std::uint32_t& cols) const noexcept;

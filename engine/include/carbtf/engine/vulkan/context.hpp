@@ -29,7 +29,7 @@ struct DeviceInfo {
   std::uint32_t api_version = 0;
   std::uint32_t vendor_id = 0;
   std::uint32_t device_id = 0;
-  std::uint32_t queue_family_index = 0;  // the compute-capable family carbtf uses
+  std::uint32_t queue_family_index = 0;    // the compute-capable family carbtf uses
   std::uint32_t timestamp_valid_bits = 0;  // 0: no timestamps on that family
   float timestamp_period_ns = 0.0f;
   VkDeviceSize max_storage_buffer_range = 0;
@@ -79,7 +79,7 @@ struct ContextCreateInfo {
 struct AdoptInfo {
   VkInstance instance = VK_NULL_HANDLE;
   VkPhysicalDevice physical_device = VK_NULL_HANDLE;
-  VkDevice device = VK_NULL_HANDLE;  // created with required_device_extensions() enabled
+  VkDevice device = VK_NULL_HANDLE;      // created with required_device_extensions() enabled
   std::uint32_t queue_family_index = 0;  // must support compute
   VkQueue queue = VK_NULL_HANDLE;
   // The host's loader entry point; null means the system loader (libvulkan.so.1).

@@ -1,7 +1,7 @@
 // Host images uploaded into a sampled 2D-array image: for instance the measured BTF images of the
 // (light, view) pairs a frame needs, drawn through a MaterialBinding beside the model
-// (MaterialTextures::pair_layers), or a material's enlarged range map and relief tone. RGBA8 (sRGB or UNORM), R32F, RG32F or
-// RGBA32F texels.
+// (MaterialTextures::pair_layers), or a material's enlarged range map and relief tone. RGBA8 (sRGB or UNORM),
+// R32F, RG32F or RGBA32F texels.
 //
 // Use: create(); set_layer() for every layer (host memory, staged); record_upload() into a command
 // buffer of yours, or upload_and_wait(). The image ends in VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL.

@@ -12,13 +12,13 @@ namespace carbtf {
 template <typename T>
 struct HandleTraits;
 
-#define CARBTF_HANDLE_TRAITS(Type, object_type, destroy_call)                             \
-  template <>                                                                             \
-  struct HandleTraits<Type> {                                                             \
-    static constexpr VkObjectType kObjectType = object_type;                              \
+#define CARBTF_HANDLE_TRAITS(Type, object_type, destroy_call)                               \
+  template <>                                                                               \
+  struct HandleTraits<Type> {                                                               \
+    static constexpr VkObjectType kObjectType = object_type;                                \
     static void destroy(const VulkanFunctions& vk, VkDevice device, Type handle) noexcept { \
-      vk.destroy_call(device, handle, nullptr);                                           \
-    }                                                                                     \
+      vk.destroy_call(device, handle, nullptr);                                             \
+    }                                                                                       \
   };
 CARBTF_HANDLE_TRAITS(VkBuffer, VK_OBJECT_TYPE_BUFFER, vkDestroyBuffer)
 CARBTF_HANDLE_TRAITS(VkImage, VK_OBJECT_TYPE_IMAGE, vkDestroyImage)
@@ -26,7 +26,8 @@ CARBTF_HANDLE_TRAITS(VkImageView, VK_OBJECT_TYPE_IMAGE_VIEW, vkDestroyImageView)
 CARBTF_HANDLE_TRAITS(VkBufferView, VK_OBJECT_TYPE_BUFFER_VIEW, vkDestroyBufferView)
 CARBTF_HANDLE_TRAITS(VkDeviceMemory, VK_OBJECT_TYPE_DEVICE_MEMORY, vkFreeMemory)
 CARBTF_HANDLE_TRAITS(VkShaderModule, VK_OBJECT_TYPE_SHADER_MODULE, vkDestroyShaderModule)
-CARBTF_HANDLE_TRAITS(VkDescriptorSetLayout, VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT, vkDestroyDescriptorSetLayout)
+CARBTF_HANDLE_TRAITS(VkDescriptorSetLayout, VK_OBJECT_TYPE_DESCRIPTOR_SET_LAYOUT,
+                     vkDestroyDescriptorSetLayout)
 CARBTF_HANDLE_TRAITS(VkPipelineLayout, VK_OBJECT_TYPE_PIPELINE_LAYOUT, vkDestroyPipelineLayout)
 CARBTF_HANDLE_TRAITS(VkPipeline, VK_OBJECT_TYPE_PIPELINE, vkDestroyPipeline)
 CARBTF_HANDLE_TRAITS(VkCommandPool, VK_OBJECT_TYPE_COMMAND_POOL, vkDestroyCommandPool)
