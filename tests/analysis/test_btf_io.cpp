@@ -141,7 +141,7 @@ TEST_CASE("the UBO2003 direction table and names agree with the database's conve
   CHECK_FALSE(parse_ubo2003_name("00000_tl000_pl000_tv000_pv000.jpg").has_value());
 }
 
-TEST_CASE("a sample written as a UBO2003 folder and as a zip reads back the same", "[btf][roundtrip]") {
+TEST_CASE("a sample written as a UBO2003 folder and as a zip reads back the same", "[btf][roundtrip][slow]") {
   const RenderedSample& sample = rendered_leather();
   const fs::path folder = scratch_folder("roundtrip");
   for (const std::string extension : {".jpg", ".png", ".exr"}) {

@@ -263,7 +263,7 @@ TEST_CASE("block initialization values are refused where they cannot hold", "[sy
 namespace carbtf {
 
 TEST_CASE("a synthesized subspace image keeps the measured contrast through the pyramid collapse",
-          "[synthesis][calibration]") {
+          "[synthesis][calibration][slow]") {
   // Before the collapse calibration the leather sample's synthesized images kept 54-69% of the measured
   // variance in every band although each band kept its own: the loss is in the collapse.
   constexpr std::uint32_t size = 64;
@@ -313,7 +313,7 @@ TEST_CASE("a synthesized subspace image keeps the measured contrast through the 
 namespace carbtf {
 
 TEST_CASE("each subspace image takes the pyramid level count whose model looks nearest the measurement",
-          "[analysis][levels]") {
+          "[analysis][levels][slow]") {
   // Issue 13 item 3a: fabric's weave period falls in the coarse level's band; the measure prefers two
   // levels for most of its subspace images at 256^2. Fixed, every subspace takes pyramid_levels.
   const BtfDataset dataset = rendered_sample("fabric", 128);

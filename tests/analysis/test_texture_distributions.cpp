@@ -57,7 +57,7 @@ Ranking ranking_of(const std::string& name, const std::string& other_name, doubl
 TEST_CASE(
     "the distribution measure ranks mild distortions below phase-randomising, and that below another "
     "material and white noise",
-    "[quality][distributions]") {
+    "[quality][distributions][slow]") {
   const auto [name, other] = GENERATE(table<std::string, std::string>(
       {{"leather", "fabric"}, {"fabric", "coast_sand_rocks"}, {"coast_sand_rocks", "leather"}}));
   const double theta = GENERATE(15.0, 30.0, 45.0, 60.0, 75.0);

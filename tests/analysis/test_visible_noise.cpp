@@ -67,7 +67,7 @@ Material sign_flipped(Material m, int& flips) {
 TEST_CASE(
     "a fitted model's noise is the measure's best where it is visible: sigma halved or doubled and a "
     "CAR coefficient's sign flipped look further from the measurement",
-    "[analysis][quality][noise]") {
+    "[analysis][quality][noise][slow]") {
   const std::string name = GENERATE(std::string("coast_sand_rocks"), std::string("fabric"));
   const BtfDataset dataset =
       test::rendered_dataset(make_sample_surface(name, kSize, 4), ubo2003_directions());

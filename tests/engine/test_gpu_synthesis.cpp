@@ -202,7 +202,7 @@ TEST_CASE("blocks at negative and odd offsets, split dispatches and small batche
 }
 
 TEST_CASE("a 4096x4096 subspace image leaves no texel unwritten and matches the CPU",
-          "[gpu_synthesis][gpu][large]") {
+          "[gpu_synthesis][gpu][large][slow]") {
   test::ValidatedContext context;
   auto synthesizer = make_synthesizer(*context);
   const Material m = synthetic_material(1, 3);

@@ -795,7 +795,7 @@ TEST_CASE("pair gains read back while a file without PGAN has none and a hostile
 }
 
 TEST_CASE("10,000 random corruptions and truncations are rejected or read without a crash",
-          "[material_file][fuzz]") {
+          "[material_file][fuzz][slow]") {
   const bool deflate = GENERATE(false, true);
   INFO("deflated chunks: " << deflate);
   const std::vector<std::uint8_t> good = deflate ? deflated(sample_material()) : encoded(sample_material());

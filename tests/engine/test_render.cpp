@@ -104,7 +104,8 @@ TEST_CASE("lookup grids give the triangulation's weights, inside and beyond the 
   }
 }
 
-TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment stage", "[render][gpu]") {
+TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment stage",
+          "[render][gpu][slow]") {
   test::ValidatedContext context;
   // With a relief tone and a different tone weight per subspace (0 to 1), which both sides must apply,
   // and a coloured tone whose red channel darkens to the clamp at 0 in the creases and whose blue

@@ -88,7 +88,7 @@ TEST_CASE("carbtf devices lists the default device", "[cli]") {
   CHECK_THAT(r.output, Catch::Contains("default"));
 }
 
-TEST_CASE("carbtf demo runs the whole pipeline and writes a report", "[cli]") {
+TEST_CASE("carbtf demo runs the whole pipeline and writes a report", "[cli][slow]") {
   const fs::path folder = scratch_folder("demo");
   const fs::path report = folder / "report";
   const Run r = run("demo --size 48 --texture-size 64 --validation --out " + report.string());
@@ -116,7 +116,7 @@ TEST_CASE("carbtf demo runs the whole pipeline and writes a report", "[cli]") {
   fs::remove_all(folder);
 }
 
-TEST_CASE("every command answers --help", "[cli]") {
+TEST_CASE("every command answers --help", "[cli][slow]") {
   for (const std::string command :
        {"", "noise", "devices", "demo", "sample", "info", "analyze", "normals", "synth", "conform", "render",
         "fidelity", "bench noise", "bench data", "bench analyze", "bench synth", "bench frame"}) {
@@ -178,7 +178,7 @@ struct AnalysedLeather {
 
 }  // namespace
 
-TEST_CASE("carbtf analyze writes a material and a report that carbtf info describes", "[cli]") {
+TEST_CASE("carbtf analyze writes a material and a report that carbtf info describes", "[cli][slow]") {
   static const AnalysedLeather analysed;
   const fs::path& folder = analysed.folder;
   const fs::path& material = analysed.material;

@@ -148,22 +148,22 @@ void check_fidelity_ranking(const std::string& name) {
 }  // namespace
 
 TEST_CASE("carbtf fidelity ranks a deliberately broken leather model worse than the fitted one",
-          "[cli][fidelity]") {
+          "[cli][fidelity][slow]") {
   check_fidelity_ranking("leather");
 }
 
 TEST_CASE("carbtf fidelity ranks a deliberately broken fabric model worse than the fitted one",
-          "[cli][fidelity]") {
+          "[cli][fidelity][slow]") {
   check_fidelity_ranking("fabric");
 }
 
 TEST_CASE("carbtf fidelity ranks a deliberately broken coast_sand_rocks model worse than the fitted one",
-          "[cli][fidelity]") {
+          "[cli][fidelity][slow]") {
   check_fidelity_ranking("coast_sand_rocks");
 }
 
 TEST_CASE("carbtf bench fidelity sets each model option's size beside its fidelity",
-          "[cli][fidelity][bench]") {
+          "[cli][fidelity][bench][slow]") {
   const fs::path folder = test::scratch_folder("bench_fidelity");
   REQUIRE(run("sample leather --size 64 --out " + (folder / "sample").string()).status == 0);
   const fs::path btf = folder / "sample" / "btf";
@@ -204,7 +204,7 @@ TEST_CASE("carbtf bench fidelity sets each model option's size beside its fideli
 }
 
 TEST_CASE("carbtf fidelity scores the pairs asked for or a spread over every light and view",
-          "[cli][fidelity]") {
+          "[cli][fidelity][slow]") {
   const fs::path folder = test::scratch_folder("fidelity_pairs");
   REQUIRE(run("sample leather --size 64 --out " + (folder / "sample").string()).status == 0);
   const fs::path btf = folder / "sample" / "btf", material = folder / "leather.cbtf";

@@ -31,7 +31,7 @@ std::string text_of(const fs::path& path) {
 }  // namespace
 
 TEST_CASE("scripts/gpu_check.sh runs every check at lavapipe sizes and writes one report",
-          "[cli][gpu_check]") {
+          "[cli][gpu_check][slow]") {
   const fs::path folder = test::scratch_folder("gpu_check");
   const fs::path report = folder / "report" / "gpu_check.md";
   const test::Run r =
@@ -57,7 +57,7 @@ TEST_CASE("scripts/gpu_check.sh runs every check at lavapipe sizes and writes on
   fs::remove_all(folder);
 }
 
-TEST_CASE("scripts/gpu_check.sh reports a failed step and exits non-zero", "[cli][gpu_check]") {
+TEST_CASE("scripts/gpu_check.sh reports a failed step and exits non-zero", "[cli][gpu_check][slow]") {
   const fs::path folder = test::scratch_folder("gpu_check_failing");
   SECTION("a carbtf that is not there") {
     const test::Run r = test::run_shell(

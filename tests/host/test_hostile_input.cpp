@@ -183,7 +183,7 @@ TEST_CASE("a UBO2014 .btf that is a FIFO or truncated is refused with one line",
   fs::remove_all(folder);
 }
 
-TEST_CASE("bench analyze removes only what it created in its --out folder", "[cli][hostile]") {
+TEST_CASE("bench analyze removes only what it created in its --out folder", "[cli][hostile][slow]") {
   const fs::path folder = test::scratch_folder("hostile_bench");
   const fs::path out = folder / "mine";
   fs::create_directories(out);

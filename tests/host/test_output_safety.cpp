@@ -85,7 +85,7 @@ TEST_CASE(
 }
 
 TEST_CASE("a material write that fails is one error, with no partial file and no temporary left",
-          "[cli][hostile][output]") {
+          "[cli][hostile][output][slow]") {
   const SmallSample& sample = small_sample();
   const fs::path folder = carbtf::test::scratch_folder("output_safety_full");
   const fs::path out = folder / "m.cbtf";
