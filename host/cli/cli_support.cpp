@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <limits>
@@ -229,6 +230,29 @@ BtfDataset load_measurement_of(const Material& material, const std::string& path
   for (const std::string& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   require_directions_of(dataset, material, option + " " + path);
   return dataset;
+}
+
+void require_subspaces(const Material& material, const std::vector<std::uint32_t>& subspaces,
+                       const std::string& material_path) {
+  for (std::uint32_t s : subspaces) {
+    if (s >= material.subspaces.size()) {
+      throw CommandError("--subspaces: subspace " + std::to_string(s) + " does not exist; " + material_path +
+                         " has " + std::to_string(material.subspaces.size()) + " (0 to " +
+                         std::to_string(material.subspaces.size() - 1) + ")");
+    }
+  }
+}
+
+std::size_t differing_values(const std::vector<std::vector<float>>& a,
+                             const std::vector<std::vector<float>>& b, std::size_t& values) {
+  std::size_t differing = 0;
+  values = 0;
+  for (std::size_t s = 0; s < a.size(); ++s) {
+    values += a[s].size();
+    for (std::size_t i = 0; i < a[s].size(); ++i)
+      differing += std::memcmp(&a[s][i], &b[s][i], sizeof(float)) != 0;
+  }
+  return differing;
 }
 
 }  // namespace carbtf::cli

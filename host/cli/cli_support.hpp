@@ -76,6 +76,14 @@ BtfDataset load_measurement_of(const Material& material, const std::string& path
 void parse_frame_size(const std::string& text, const std::string& option, std::uint32_t& width,
                       std::uint32_t& height);
 
+// How many values of `a` and `b` (images of equal sizes) differ in their bits; `values` counts them all.
+std::size_t differing_values(const std::vector<std::vector<float>>& a,
+                             const std::vector<std::vector<float>>& b, std::size_t& values);
+
+// CommandError naming `material_path` unless every index in `subspaces` is one of the material's.
+void require_subspaces(const Material& material, const std::vector<std::uint32_t>& subspaces,
+                       const std::string& material_path);
+
 // The `fraction` quantile of benchmark samples, interpolating linearly between order statistics
 // (0.5: the median, the mean of the two middle samples for an even count); 0 for no samples.
 double percentile(std::vector<double> samples, double fraction);

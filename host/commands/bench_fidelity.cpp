@@ -6,7 +6,6 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <functional>
 #include <sstream>
 
 #include "carbtf/analysis/analyze.hpp"
@@ -18,73 +17,12 @@
 #include "cli/owned_folder.hpp"
 #include "commands/commands.hpp"
 #include "fidelity/fidelity_run.hpp"
+#include "fidelity/model_variants.hpp"
 
 namespace carbtf::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-struct ModelVariant {
-  const char* name;
-  const char* description;
-  std::function<void(AnalysisOptions&)> apply;
-};
-
-const std::vector<ModelVariant>& model_variants() {
-  static const std::vector<ModelVariant> variants{
-      {"paper", "no relief tone, 64-texel tiles, 16-bit heights (the model before issue 13)",
-       [](AnalysisOptions& o) {
-         o.relief_tone = false;
-         o.tiles.tile_size = 64;
-         o.tiles.height_bits = 16;
-       }},
-      {"tiles128", "no relief tone, 128-texel tiles", [](AnalysisOptions& o) { o.relief_tone = false; }},
-      {"tone64", "relief tone, 64-texel tiles", [](AnalysisOptions& o) { o.tiles.tile_size = 64; }},
-      {"tone96", "relief tone, 96-texel tiles", [](AnalysisOptions& o) { o.tiles.tile_size = 96; }},
-      {"tone128_12bit", "relief tone, 128-texel tiles, 12-bit heights",
-       [](AnalysisOptions& o) { o.tiles.height_bits = 12; }},
-      {"fine", "the default with 8-bit heights and a 7-bit tone (the default before format 1.5)",
-       [](AnalysisOptions& o) {
-         o.tiles.height_bits = 8;
-         o.tiles.tone_bits = 7;
-       }},
-      {"compact", "the default with 5-bit heights and a 3-bit tone",
-       [](AnalysisOptions& o) {
-         o.tiles.height_bits = 5;
-         o.tiles.tone_bits = 3;
-       }},
-      {"default",
-       "relief tone (R, G, B planes where its colour is not grey), 128-texel tiles with feathered cuts, "
-       "6-bit heights, "
-       "4-bit tone; clamp, levels and noise gains chosen per subspace",
-       [](AnalysisOptions&) {}},
-      {"specular", "the default with the relief's specular lobe wherever it is fitted (--specular)",
-       [](AnalysisOptions& o) { o.relief_specular = AutoChoice::always; }},
-      {"no_specular", "the default without the relief's specular lobe",
-       [](AnalysisOptions& o) { o.relief_specular = AutoChoice::never; }},
-      {"deshade", "the default with the relit range map divided out (floor 0.3)",
-       [](AnalysisOptions& o) { o.deshade_floor = 0.3; }},
-      {"no_pair_gains", "the default without the per-pair colour gains",
-       [](AnalysisOptions& o) { o.pair_gains = false; }},
-      {"no_noise_gains", "the default with every subspace's fitted sigma",
-       [](AnalysisOptions& o) { o.noise_gains = {1.0}; }},
-      {"grey_tone", "the default with a grey relief tone everywhere",
-       [](AnalysisOptions& o) { o.tone_planes = TonePlanes::never; }},
-      {"hard_cuts", "the default with hard range-tile cuts", [](AnalysisOptions& o) { o.tiles.feather = 0; }},
-      {"tone_weights",
-       "the default with each subspace's share of the relief tone (0 or 1) chosen with its clamp",
-       [](AnalysisOptions& o) {
-         o.tone_weights = {0.0, 1.0};
-       }},
-      {"fixed_levels", "the default with 3 pyramid levels in every subspace",
-       [](AnalysisOptions& o) { o.other_level_counts = {}; }},
-      {"no_shadows", "the default without the relief's cast shadows",
-       [](AnalysisOptions& o) { o.relief_shadows = AutoChoice::never; }},
-      {"shadows", "the default with the relief's cast shadows at full strength",
-       [](AnalysisOptions& o) { o.relief_shadows = AutoChoice::always; }},
-  };
-  return variants;
-}
 
 struct FidelityBenchOptions {
   DeviceOptions device;

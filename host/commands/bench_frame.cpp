@@ -1,26 +1,18 @@
 // `carbtf bench frame`: N frames of a material on a mesh with the camera and the light orbiting it.
 // Each frame works out what it needs (scene pruning), synthesizes only the subspace images no earlier
 // frame needed and copies them into their layers (ResidentImages), then renders. It reports, per frame
-// and as median and p95, the GPU timestamps of synthesis with its copy (on frames that add images) and
-// of the render pass, and the CPU wall time of the whole frame (pruning, recording, submit, wait), as a
-// table and a CSV.
+// and as median and p95, the GPU timestamps of synthesis with its copy and of the render pass, and the
+// frame's CPU wall time (pruning, recording, submit, wait), as a table and a CSV.
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 
 #include "bench/frame_bench.hpp"
-#include "carbtf/analysis/analyze.hpp"
-#include "carbtf/analysis/btf/btf_reader.hpp"
-#include "carbtf/analysis/sample/sample_btf.hpp"
-#include "carbtf/analysis/sample/sample_materials.hpp"
-#include "carbtf/engine/material/material_file.hpp"
-#include "carbtf/engine/render/material_binding.hpp"
-#include "carbtf/engine/render/mesh_renderer.hpp"
-#include "carbtf/engine/render/resident_images.hpp"
+#include "bench/frame_parts.hpp"
+#include "bench/frame_pass.hpp"
 #include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
 #include "carbtf/engine/vulkan/gpu_timer.hpp"
 #include "cli/cli_support.hpp"
-#include "cli/owned_folder.hpp"
 #include "commands/commands.hpp"
 #include "scene/material_render.hpp"
 #include "scene/orbit.hpp"
@@ -47,27 +39,6 @@ struct FrameBenchOptions {
   std::string out = "bench_frame";
 };
 
-Material bench_material(const FrameBenchOptions& options, OwnedFolder& out) {
-  Material material;
-  if (!options.material.empty()) {
-    check(read_material_file(options.material, material), "cannot read the material");
-    return material;
-  }
-  std::printf("no --material: analysing the leather sample (64^2) into %s\n",
-              (out.root() / "leather.cbtf").c_str());
-  std::fflush(stdout);
-  const Surface surface = make_sample_surface("leather", 64, 1);
-  const fs::path btf = out.claim("leather_btf");
-  write_sample_btf(surface, btf, ".png", false);
-  std::vector<std::string> warnings;
-  AnalysisOptions analysis;
-  analysis.progress = false;
-  material = analyze_btf(load_btf(btf, {}, warnings), analysis).material;
-  check(write_material_file(out.root() / "leather.cbtf", material), "cannot write the material");
-  out.release(btf);
-  return material;
-}
-
 // The binding every frame draws through (seed 1, as the synthesis), with cost probe bits for --parts.
 MaterialBindingInfo bench_binding_info(const FrameBenchOptions& options, std::uint32_t cost_probe_bits) {
   MaterialBindingInfo info{1};
@@ -82,7 +53,7 @@ void run_bench_frame(const FrameBenchOptions& options) {
   OwnedFolder folder(options.out);
   folder.keep();  // the results stay; only the scratch BTF is released
   const fs::path out = folder.root();
-  const Material material = bench_material(options, folder);
+  const Material material = material_or_leather_sample(options.material, folder);
   const Mesh mesh = load_mesh(options.mesh);
   auto context = make_context(options.device);
   if (context->device_info().timestamp_valid_bits == 0) {
@@ -95,9 +66,7 @@ void run_bench_frame(const FrameBenchOptions& options) {
   check(GpuTimer::create(*context, 3, timer), "cannot create the GPU timer");
 
   std::uint32_t texture_size = options.texture_size;
-  std::unique_ptr<ResidentImages> resident;
-  std::unique_ptr<MaterialBinding> binding;
-  std::unique_ptr<MeshRenderer> renderer;
+  FramePass pass;
   RenderTargetInfo target;
   target.width = options.width;
   target.height = options.height;
@@ -113,33 +82,23 @@ void run_bench_frame(const FrameBenchOptions& options) {
     const auto start = std::chrono::steady_clock::now();
     SceneNeeds needs;
     check(pruner->needs(mesh, scene, options.width, options.height, needs), "cannot prune the scene");
-    if (!resident) {
+    if (!pass.resident) {
       // The first frame fixes the texture size and the pass; later frames only add images.
       if (texture_size == 0) texture_size = needs.texture_size;
       const std::uint32_t overlap = needs.periodic ? default_periodic_overlap(texture_size, texture_size) : 0;
-      check(ResidentImages::create(*context, material, texture_size, overlap, resident, options.mip_levels),
-            "cannot hold the images");
-      check(MaterialBinding::create(*context, material, resident->textures(), bench_binding_info(options, 0),
-                                    binding),
-            "cannot bind");
-      check(context->submit_and_wait([&](VkCommandBuffer cb) {
-        resident->record_transition(cb);
-        return binding->record_upload(cb);
-      }),
-            "cannot upload the material");
-      check(MeshRenderer::create(*context, *binding, target, renderer), "cannot build the render pass");
-      check(renderer->set_mesh(mesh), "cannot upload the mesh");
+      pass = make_frame_pass(*context, material, mesh, target, texture_size, overlap,
+                             bench_binding_info(options, 0));
     }
     FrameRecord record;
     record.frame = i;
     // Only the images no earlier frame needed: synthesized on their own, copied into their layers.
-    const std::vector<std::uint32_t> added = resident->missing(needs.subspaces);
+    const std::vector<std::uint32_t> added = pass.resident->missing(needs.subspaces);
     record.synthesized = added.size();
     if (!added.empty()) {
       SynthesisRequest request;
       request.seed = 1;
       request.width = request.height = texture_size;
-      request.periodic_overlap = resident->textures().periodic_overlap;
+      request.periodic_overlap = pass.resident->textures().periodic_overlap;
       request.subspaces = added;
       check(synthesizer->prepare(material, request), "cannot plan the synthesis");
     }
@@ -148,16 +107,16 @@ void run_bench_frame(const FrameBenchOptions& options) {
       timer.record_timestamp(cb, 0, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT);
       if (!added.empty()) {
         if (Status s = synthesizer->record(cb); !s.ok()) return s;
-        if (Status s = resident->record_add(cb, *synthesizer, added); !s.ok()) return s;
-        if (Status s = binding->set_layers(material, resident->layers()); !s.ok()) return s;
+        if (Status s = pass.resident->record_add(cb, *synthesizer, added); !s.ok()) return s;
+        if (Status s = pass.binding->set_layers(material, pass.resident->layers()); !s.ok()) return s;
       }
       timer.record_timestamp(cb, 1);
-      if (Status s = renderer->record(cb, scene); !s.ok()) return s;
+      if (Status s = pass.renderer->record(cb, scene); !s.ok()) return s;
       timer.record_timestamp(cb, 2);
       return Status{};
     }),
           "frame " + std::to_string(i) + " failed");
-    record.resident = resident->resident_count();
+    record.resident = pass.resident->resident_count();
     record.wall_ms = seconds_since(start) * 1e3;
     check(timer.elapsed_ms(0, 1, record.synthesis_gpu_ms), "cannot read the GPU timestamps");
     check(timer.elapsed_ms(1, 2, record.render_gpu_ms), "cannot read the GPU timestamps");
@@ -165,68 +124,8 @@ void run_bench_frame(const FrameBenchOptions& options) {
     records.push_back(record);
   }
   if (options.parts) {
-    std::printf(
-        "bench frame: the render pass again with each part of the fragment stage replaced by a constant, "
-        "and with the other --direction-taps\n");
-    std::fflush(stdout);
-    // The last variant draws the material with the other --direction-taps: the full picture, another
-    // interpolation between the measured directions.
-    const PairCoupling other_coupling =
-        options.pair_coupling == PairCoupling::staircase ? PairCoupling::product : PairCoupling::staircase;
-    const std::string other_taps = std::string(direction_taps_name(options.pair_coupling)) +
-                                   " direction taps (" + direction_taps_name(other_coupling) +
-                                   " in their place)";
-    struct Variant {
-      std::string part;
-      std::uint32_t cost_probe = 0;
-      PairCoupling coupling = PairCoupling::product;
-    };
-    const std::vector<Variant> probes = {
-        {"none (the full pass)", 0u, options.pair_coupling},
-        {"direction lookups", cost_probe::lookups, options.pair_coupling},
-        {"pair table reads", cost_probe::pair_reads, options.pair_coupling},
-        {"subspace image reads", cost_probe::subspace_reads, options.pair_coupling},
-        {"relief (normal, tone, horizons)", cost_probe::relief, options.pair_coupling},
-        {"parallax height read", cost_probe::parallax, options.pair_coupling},
-        {other_taps, 0u, other_coupling}};
-    std::vector<FramePartTimes> parts;
-    std::vector<std::unique_ptr<MaterialBinding>> bindings(probes.size());
-    std::vector<std::unique_ptr<MeshRenderer>> renderers(probes.size());
-    for (std::size_t p = 0; p < probes.size(); ++p) {
-      MaterialBindingInfo info = bench_binding_info(options, probes[p].cost_probe);
-      info.pair_coupling = probes[p].coupling;
-      check(MaterialBinding::create(*context, material, resident->textures(), info, bindings[p]),
-            "cannot bind");
-      check(bindings[p]->upload_and_wait(), "cannot upload the material");
-      check(MeshRenderer::create(*context, *bindings[p], target, renderers[p]),
-            "cannot build the render pass");
-      check(renderers[p]->set_mesh(mesh), "cannot upload the mesh");
-      parts.push_back({probes[p].part, {}});
-    }
-    // Frame by frame, every variant in turn, so that the machine's drift falls on all of them alike.
-    for (std::uint32_t i = 0; i < options.frames; ++i) {
-      const RenderScene scene = orbiting_scene(i, options.frames, options.lights);
-      for (std::size_t p = 0; p < probes.size(); ++p) {
-        check(context->submit_and_wait([&](VkCommandBuffer cb) {
-          timer.record_reset(cb);
-          timer.record_timestamp(cb, 0, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT);
-          if (Status s = renderers[p]->record(cb, scene); !s.ok()) return s;
-          timer.record_timestamp(cb, 1);
-          return Status{};
-        }),
-              "frame " + std::to_string(i) + " without the " + parts[p].part + " failed");
-        double ms = 0.0;
-        check(timer.elapsed_ms(0, 1, ms), "cannot read the GPU timestamps");
-        parts[p].render_gpu_ms.push_back(ms);
-      }
-    }
-    check_validation(*context);
-    const std::string heading = "bench frame --parts: render pass GPU time, " +
-                                std::to_string(options.frames) + " frames per variant, " +
-                                context->device_info().name +
-                                " (timing only: a replaced part makes the picture wrong)\n\n";
-    std::printf("\n%s%s", heading.c_str(), write_frame_parts_report(out, parts, heading).c_str());
-    std::printf("wrote %s/bench_frame_parts.csv and bench_frame_parts.md\n\n", out.string().c_str());
+    FramePartsSetup setup{*context, timer, material, pass.resident->textures(), target, mesh};
+    run_frame_parts(setup, bench_binding_info(options, 0), options.frames, options.lights, out);
   }
   check_validation(*context);
 
@@ -237,8 +136,9 @@ void run_bench_frame(const FrameBenchOptions& options) {
       "%s, %s direction taps, %zu of %zu subspace images resident at the end\n\n",
       options.frames, options.width, options.height, options.mesh.c_str(), options.lights,
       options.lights == 1 ? "" : "s", context->device_info().name.c_str(), texture_size,
-      binding->mip_levels(), binding->hardware_filtering() ? "by the sampler" : "by hand",
-      direction_taps_name(binding->pair_coupling()), resident->resident_count(), material.subspaces.size());
+      pass.binding->mip_levels(), pass.binding->hardware_filtering() ? "by the sampler" : "by hand",
+      direction_taps_name(pass.binding->pair_coupling()), pass.resident->resident_count(),
+      material.subspaces.size());
   std::printf("%s%s", line, write_frame_bench_report(out, records, line).c_str());
   std::printf("wrote %s/bench_frame.csv and bench_frame.md\n", out.string().c_str());
 }

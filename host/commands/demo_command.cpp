@@ -5,7 +5,6 @@
 // an index.html.
 #include <chrono>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <sstream>
 #include <thread>
@@ -116,12 +115,8 @@ void run_demo(const DemoOptions& options) {
   const std::vector<std::vector<float>> cpu = reference::synthesize_subspaces(material, {}, block);
   timed("CPU reference synthesis (" + std::to_string(std::thread::hardware_concurrency()) + " threads)",
         seconds_since(start));
-  std::size_t texels = 0, differing = 0;
-  for (std::size_t s = 0; s < cpu.size(); ++s) {
-    texels += cpu[s].size();
-    for (std::size_t i = 0; i < cpu[s].size(); ++i)
-      differing += std::memcmp(&cpu[s][i], &images.images[s][i], sizeof(float)) != 0;
-  }
+  std::size_t texels = 0;
+  const std::size_t differing = differing_values(cpu, images.images, texels);
   for (std::size_t s = 0; s < images.images.size(); ++s) {
     write_rgb_image(folder / ("synthesized_" + two_digits(s) + ".png"),
                     channels_to_rgb(images.images[s], images.channels[s], std::size_t{n} * n), n, n);
@@ -147,11 +142,7 @@ void run_demo(const DemoOptions& options) {
   const MaterialRender sphere_render = prepare_material_render(*context, material, *synthesizer, options.seed,
                                                                1.0f, 960, 640, make_sphere(), true);
   for (const float side : {0.0f, 180.0f}) {
-    RenderScene scene;
-    const std::array<float, 3> eye = unit_vector_degrees(60, 35 + side);
-    scene.camera.eye = {3.4f * eye[0], 3.4f * eye[1], 3.4f * eye[2]};
-    scene.lights = {{false, unit_vector_degrees(50, 80 + side), {1, 1, 1}},
-                    {false, unit_vector_degrees(70, 250 + side), {0.25f, 0.25f, 0.3f}}};
+    const RenderScene scene = demo_sphere_scene(side);
     RenderedImage sphere;
     start = std::chrono::steady_clock::now();
     check(sphere_render.renderer->render(scene, sphere), "rendering the sphere failed");

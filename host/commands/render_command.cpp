@@ -63,18 +63,13 @@ void run_render(const RenderOptions& options) {
   const std::unique_ptr<ScenePruner> pruner = make_scene_pruner(material);
   SceneNeeds needs;
   check(pruner->needs(mesh, scene, width, height, needs), "cannot work out what the scene needs");
-  SynthesisRequest request;
-  request.seed = options.seed;
-  request.width = request.height = options.texture_size ? options.texture_size : needs.texture_size;
-  request.mip_levels = 0;  // all: the render pass samples them
-  if (measured && !options.texture_size) {
-    // Beside the measurement, the model at the measurement's scale: one texel per measured pixel.
-    request.width = measured->width();
-    request.height = measured->height();
-  }
-  if (options.prune) request.subspaces = needs.subspaces;
-  // A closed mesh meets itself where u wraps: periodic images show no seam there.
-  if (needs.periodic) request.periodic_overlap = default_periodic_overlap(request.width, request.height);
+  // Beside a measurement, the model at the measurement's scale: one texel per measured pixel.
+  std::uint32_t texture_width = options.texture_size ? options.texture_size : needs.texture_size;
+  std::uint32_t texture_height = texture_width;
+  if (measured && !options.texture_size)
+    texture_width = measured->width(), texture_height = measured->height();
+  const SynthesisRequest request =
+      frame_synthesis_request(needs, options.seed, texture_width, texture_height, options.prune);
   const std::size_t synthesized = options.prune ? needs.subspaces.size() : material.subspaces.size();
   std::printf("[1/3] synthesizing %zu of %zu subspace images of %ux%u on %s\n", synthesized,
               material.subspaces.size(), request.width, request.height, context->device_info().name.c_str());

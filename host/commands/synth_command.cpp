@@ -4,16 +4,15 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <numbers>
 
 #include "carbtf/analysis/image_io.hpp"
-#include "carbtf/engine/material/material_directions.hpp"
 #include "carbtf/engine/material/material_file.hpp"
 #include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
 #include "carbtf/reference/subspace_synthesis.hpp"
 #include "cli/cli_support.hpp"
 #include "commands/commands.hpp"
 #include "report/pictures.hpp"
+#include "scene/direction_query.hpp"
 
 namespace carbtf::cli {
 namespace {
@@ -39,12 +38,6 @@ struct SynthOptions {
   bool periodic = false;
 };
 
-// The weights of the --light/--view query and the subspace images they need.
-struct Interpolation {
-  PairWeights weights;
-  std::vector<std::uint32_t> subspaces;  // those with a non-zero weight
-};
-
 void run_synth(const SynthOptions& options) {
   Material material;
   check(read_material_file(options.material, material), "cannot read the material");
@@ -60,31 +53,11 @@ void run_synth(const SynthOptions& options) {
   if (options.periodic) request.periodic_overlap = default_periodic_overlap(request.width, request.height);
   request.subspaces = options.subspaces;
   request.scheme = options.scheme;
-  for (std::uint32_t s : request.subspaces) {
-    if (s >= material.subspaces.size()) {
-      throw CommandError("--subspaces: subspace " + std::to_string(s) + " does not exist; " +
-                         options.material + " has " + std::to_string(material.subspaces.size()) + " (0 to " +
-                         std::to_string(material.subspaces.size() - 1) + ")");
-    }
-  }
+  require_subspaces(material, request.subspaces, options.material);
   Interpolation interpolation;
   if (!options.light.empty()) {
-    constexpr double kDegree = std::numbers::pi / 180.0;
-    MaterialDirections directions;
-    check(MaterialDirections::build(material, directions), "cannot interpolate the material's directions");
-    interpolation.weights = directions.weights(options.light[0] * kDegree, options.light[1] * kDegree,
-                                               options.view[0] * kDegree, options.view[1] * kDegree);
-    interpolation.subspaces = directions.subspaces_of(interpolation.weights);
-    if (request.subspaces.empty()) {
-      request.subspaces = interpolation.subspaces;  // only what the interpolated image needs
-    } else {
-      for (std::uint32_t s : interpolation.subspaces) {
-        if (std::find(request.subspaces.begin(), request.subspaces.end(), s) == request.subspaces.end()) {
-          throw CommandError("the (light, view) image needs subspace " + std::to_string(s) +
-                             ", which --subspaces leaves out");
-        }
-      }
-    }
+    interpolation = interpolation_of(material, options.light, options.view);
+    request.subspaces = subspaces_with(request.subspaces, interpolation);
   }
   std::vector<std::uint32_t> listed = request.subspaces;
   if (listed.empty()) {

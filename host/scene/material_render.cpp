@@ -46,4 +46,16 @@ std::unique_ptr<ScenePruner> make_scene_pruner(const Material& material) {
   return pruner;
 }
 
+SynthesisRequest frame_synthesis_request(const SceneNeeds& needs, std::uint64_t seed, std::uint32_t width,
+                                         std::uint32_t height, bool prune) {
+  SynthesisRequest request;
+  request.seed = seed;
+  request.width = width;
+  request.height = height;
+  request.mip_levels = 0;
+  if (prune) request.subspaces = needs.subspaces;
+  if (needs.periodic) request.periodic_overlap = default_periodic_overlap(request.width, request.height);
+  return request;
+}
+
 }  // namespace carbtf::cli

@@ -39,4 +39,10 @@ std::unique_ptr<ScenePruner> make_scene_pruner(const Material& material);
 double timed_synthesis(Context& context, SubspaceSynthesizer& synthesizer, const Material& material,
                        const SynthesisRequest& request);
 
+// What a frame synthesizes: images of width x height with every mip level (the render pass
+// samples them), only the subspaces it needs where `prune`, and periodic where a closed mesh meets
+// itself as u wraps (no seam there).
+SynthesisRequest frame_synthesis_request(const SceneNeeds& needs, std::uint64_t seed, std::uint32_t width,
+                                         std::uint32_t height, bool prune);
+
 }  // namespace carbtf::cli

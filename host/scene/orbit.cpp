@@ -68,4 +68,13 @@ RenderScene orbiting_scene(std::uint32_t i, std::uint32_t n, std::uint32_t light
   return scene;
 }
 
+RenderScene demo_sphere_scene(float turn_degrees) {
+  RenderScene scene;
+  const std::array<float, 3> eye = unit_vector_degrees(60, 35 + turn_degrees);
+  scene.camera.eye = {3.4f * eye[0], 3.4f * eye[1], 3.4f * eye[2]};
+  scene.lights = {{false, unit_vector_degrees(50, 80 + turn_degrees), {1, 1, 1}},
+                  {false, unit_vector_degrees(70, 250 + turn_degrees), {0.25f, 0.25f, 0.3f}}};
+  return scene;
+}
+
 }  // namespace carbtf::cli

@@ -31,4 +31,8 @@ RenderScene scene_from_options(const std::vector<double>& camera, float fov_y_de
 // azimuth, each 1 / lights strong.
 RenderScene orbiting_scene(std::uint32_t i, std::uint32_t n, std::uint32_t lights = 1);
 
+// The demo's sphere seen from 60 degrees off the pole at azimuth 35 + `turn` degrees, 3.4 away, under
+// a key light and a dim bluish fill that turn with it (0: the front; 180: the back, where u wraps).
+RenderScene demo_sphere_scene(float turn_degrees);
+
 }  // namespace carbtf::cli
