@@ -326,6 +326,7 @@ Status MeshRenderer::set_mesh(const Mesh& mesh) noexcept {
 Status MeshRenderer::record(VkCommandBuffer cb, const RenderScene& scene) noexcept {
   Resources& r = *resources_;
   if (r.index_count == 0) return {ErrorCode::invalid_argument, "no mesh: call set_mesh() before record()"};
+  CARBTF_TRY(check_render_lights(scene));
   const VulkanFunctions& vk = context_->vk();
   const float aspect = static_cast<float>(r.target.width) / static_cast<float>(r.target.height);
 
@@ -340,8 +341,7 @@ Status MeshRenderer::record(VkCommandBuffer cb, const RenderScene& scene) noexce
     const glm::vec3 towards = glm::normalize(vec3_of(c.eye) - vec3_of(c.target));
     frame.camera = {towards.x, towards.y, towards.z, 0.0f};
   }
-  const std::uint32_t lights =
-      std::min<std::uint32_t>(static_cast<std::uint32_t>(scene.lights.size()), gpu::CARBTF_RENDER_MAX_LIGHTS);
+  const auto lights = static_cast<std::uint32_t>(scene.lights.size());  // checked above
   for (std::uint32_t i = 0; i < lights; ++i) {
     const RenderLight& light = scene.lights[i];
     glm::vec3 p = vec3_of(light.position);

@@ -154,6 +154,7 @@ Status ScenePruner::needs(const Mesh& mesh, const RenderScene& scene, std::uint3
     CARBTF_TRY(validate_mesh(mesh));
     if (frame_width == 0 || frame_height == 0)
       return {ErrorCode::invalid_argument, "the frame has no pixels"};
+    CARBTF_TRY(check_render_lights(scene));
     const DirectionSet& lights = lookups_->lights;
     const DirectionSet& views = lookups_->views;
     const PruningOptions& options = lookups_->options;
@@ -166,7 +167,7 @@ Status ScenePruner::needs(const Mesh& mesh, const RenderScene& scene, std::uint3
     const glm::vec3 eye(scene.camera.eye[0], scene.camera.eye[1], scene.camera.eye[2]);
     const glm::vec3 target(scene.camera.target[0], scene.camera.target[1], scene.camera.target[2]);
     const bool perspective = scene.camera.fov_y_degrees > 0.0f;
-    const std::size_t light_count = std::min<std::size_t>(scene.lights.size(), kMaxRenderLights);
+    const std::size_t light_count = scene.lights.size();  // checked above
 
     std::set<std::pair<std::uint32_t, std::uint32_t>> pairs;
     std::vector<std::pair<double, double>> densities;  // (pixels per unit of uv area, pixels) per triangle

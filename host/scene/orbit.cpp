@@ -58,8 +58,11 @@ RenderScene orbiting_scene(std::uint32_t i, std::uint32_t n, std::uint32_t light
   const double turn = 360.0 * i / std::max(n, 1u);
   RenderScene scene;
   scene.camera = orbit_camera(60.0, 35.0 + turn, 3.6f);
-  const std::uint32_t count =
-      std::clamp<std::uint32_t>(lights, 1, static_cast<std::uint32_t>(kMaxRenderLights));
+  if (lights == 0 || lights > kMaxRenderLights) {
+    throw CommandError("--lights: " + std::to_string(lights) + " is not in 1-" +
+                       std::to_string(kMaxRenderLights) + " (the lights one draw shades with)");
+  }
+  const std::uint32_t count = lights;
   const float strength = 1.0f / static_cast<float>(count);
   for (std::uint32_t k = 0; k < count; ++k) {
     scene.lights.push_back(

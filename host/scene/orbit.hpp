@@ -27,8 +27,8 @@ RenderScene scene_from_options(const std::vector<double>& camera, float fov_y_de
                                const std::vector<std::vector<double>>& point_lights);
 
 // Frame i of n of `bench frame`: the camera orbits at 60 degrees from the pole, 3.6 away, and
-// `lights` directional lights (1 to kMaxRenderLights) the other way at 40 degrees, spread evenly in
-// azimuth, each 1 / lights strong.
+// `lights` directional lights (1 to kMaxRenderLights; CommandError otherwise) the other way at 40
+// degrees, spread evenly in azimuth, each 1 / lights strong.
 RenderScene orbiting_scene(std::uint32_t i, std::uint32_t n, std::uint32_t lights = 1);
 
 // The demo's sphere seen from 60 degrees off the pole at azimuth 35 + `turn` degrees, 3.4 away, under

@@ -535,6 +535,44 @@ TEST_CASE("scene pruning: a scene seen from above needs fewer subspace images an
   context.require_clean();
 }
 
+TEST_CASE("a scene with more lights than a draw shades with is refused, not cut", "[render][gpu]") {
+  test::ValidatedContext context;
+  const Material m = ubo_material();
+  const Mesh mesh = make_plane(4);
+  RenderScene scene;
+  scene.camera.eye = {0.1f, 0.2f, 2.8f};
+  scene.camera.up = {0, 1, 0};
+  scene.lights.assign(kMaxRenderLights + 1, RenderLight{});
+  std::unique_ptr<ScenePruner> pruner;
+  REQUIRE(ScenePruner::create(m, {}, pruner).ok());
+  SceneNeeds needs;
+  const Status pruned = pruner->needs(mesh, scene, 96, 96, needs);
+  CHECK(pruned.code() == ErrorCode::invalid_argument);
+  CHECK_THAT(pruned.message(), Catch::Contains("5 lights") && Catch::Contains("at most 4"));
+
+  std::unique_ptr<SubspaceSynthesizer> synthesizer;
+  REQUIRE(SubspaceSynthesizer::create(*context, synthesizer).ok());
+  REQUIRE(synthesizer->prepare(m, render_request({})).ok());
+  REQUIRE(context->submit_and_wait([&](VkCommandBuffer cb) { return synthesizer->record(cb); }).ok());
+  std::unique_ptr<MaterialBinding> binding;
+  REQUIRE(MaterialBinding::create(*context, m, material_textures(*synthesizer, m), MaterialBindingInfo{3},
+                                  binding)
+              .ok());
+  REQUIRE(binding->upload_and_wait().ok());
+  RenderTargetInfo target;
+  target.width = target.height = 32;
+  std::unique_ptr<MeshRenderer> renderer;
+  REQUIRE(MeshRenderer::create(*context, *binding, target, renderer).ok());
+  REQUIRE(renderer->set_mesh(mesh).ok());
+  RenderedImage frame;
+  const Status drawn = renderer->render(scene, frame);
+  CHECK(drawn.code() == ErrorCode::invalid_argument);
+  CHECK_THAT(drawn.message(), Catch::Contains("kMaxRenderLights"));
+  scene.lights.resize(kMaxRenderLights);  // at the limit: drawn
+  CHECK(renderer->render(scene, frame).ok());
+  context.require_clean();
+}
+
 TEST_CASE("subspace images made resident frame by frame render the pixels of one synthesis of them all",
           "[render][gpu]") {
   test::ValidatedContext context;

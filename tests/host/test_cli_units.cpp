@@ -101,6 +101,8 @@ TEST_CASE("bench frame's orbit turns the camera and spreads the lights the other
     CHECK(std::acos(light.position[2]) * 180.0 / std::numbers::pi == Approx(40.0));
     CHECK(light.colour[0] == Approx(0.5f));
   }
+  CHECK_THROWS_AS(orbiting_scene(0, 4, 0), CommandError);
+  CHECK_THROWS_AS(orbiting_scene(0, 4, kMaxRenderLights + 1), CommandError);
 }
 
 TEST_CASE("the fidelity run's pairs: the default five and the spread", "[cli_units]") {

@@ -165,6 +165,8 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
   if (!input.tone_map.empty() && input.tone_map.size() != 3 * input.range_map.size()) {
     throw std::invalid_argument("render_plane: the relief tone is not the range map's size");
   }
+  if (const Status s = check_render_lights(scene); !s.ok())
+    throw std::invalid_argument("render_plane: " + s.message());
   MaterialDirections directions;
   if (const Status s = MaterialDirections::build(material, directions); !s.ok()) {
     throw std::invalid_argument("render_plane: the material's directions: " + s.message());
@@ -271,7 +273,7 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
       const glm::vec3 tone_offset = chroma * (sampler.tone_at(shifted, lod) - 1.0f);
 
       glm::vec3 colour(0.0f);
-      for (std::size_t i = 0; i < std::min<std::size_t>(scene.lights.size(), 4); ++i) {
+      for (std::size_t i = 0; i < scene.lights.size(); ++i) {  // at most kMaxRenderLights: checked on entry
         const RenderLight& light = scene.lights[i];
         const glm::vec3 p(light.position[0], light.position[1], light.position[2]);
         const glm::vec3 to_light = light.point ? p - world : glm::normalize(p);

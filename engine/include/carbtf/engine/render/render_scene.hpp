@@ -5,11 +5,17 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
+
+#include "carbtf/engine/status.hpp"
 
 namespace carbtf {
 
-// Lights one draw shades with (CARBTF_RENDER_MAX_LIGHTS in the shaders); further lights are ignored.
+// The most lights one draw shades with: the size of the shaders' light arrays (CARBTF_RENDER_MAX_LIGHTS in
+// carbtf_gpu_shared.h, checked equal where the renderer is built). A scene with more is refused, not
+// cut: MeshRenderer::record()/render() and ScenePruner::needs() return invalid_argument, and the CPU
+// render reference throws std::invalid_argument, each naming the count and the limit.
 inline constexpr std::uint32_t kMaxRenderLights = 4;
 
 struct RenderLight {
@@ -30,10 +36,18 @@ struct RenderCamera {
 
 struct RenderScene {
   RenderCamera camera;
-  std::vector<RenderLight> lights;  // at most kMaxRenderLights are used
+  std::vector<RenderLight> lights;  // at most kMaxRenderLights
   // Object -> world, column-major; rotation, translation and uniform scale only.
   std::array<float, 16> model{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
 };
+
+// Success, or invalid_argument naming the scene's light count and kMaxRenderLights.
+inline Status check_render_lights(const RenderScene& scene) {
+  if (scene.lights.size() <= kMaxRenderLights) return {};
+  return {ErrorCode::invalid_argument, "the scene has " + std::to_string(scene.lights.size()) +
+                                           " lights; a draw shades with at most " +
+                                           std::to_string(kMaxRenderLights) + " (kMaxRenderLights)"};
+}
 
 // The camera's world -> clip matrix (Vulkan clip space: y down, depth in [0, 1]), column-major.
 std::array<float, 16> view_projection(const RenderCamera& camera, float aspect);
