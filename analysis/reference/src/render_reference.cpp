@@ -8,8 +8,8 @@
 #include <glm/glm.hpp>
 
 #include "carbtf/engine/material/material_directions.hpp"
+#include "carbtf/engine/material/mip_levels.hpp"
 #include "carbtf/engine/render/material_binding.hpp"
-#include "carbtf/engine/render/mip_levels.hpp"
 #include "carbtf/engine/render/relief_horizons.hpp"
 #include "carbtf/engine/render/relief_normals.hpp"
 

@@ -33,7 +33,7 @@ struct MaterialTextures {
   VkImageView view = VK_NULL_HANDLE;  // RGBA32F 2D-array view, one layer per synthesized subspace image
   VkImageLayout layout = VK_IMAGE_LAYOUT_GENERAL;  // the layout the images are in when drawn
   // Mip levels of `view`, level 0 included, each the mean of 2 x 2 texels of the one below
-  // (render/mip_levels.hpp; SynthesisRequest::mip_levels, ResidentImages and TextureArray make them).
+  // (material/mip_levels.hpp; SynthesisRequest::mip_levels, ResidentImages and TextureArray make them).
   // The render pass samples them (and as many of the range map's); 1: level 0 alone.
   std::uint32_t mip_levels = 1;
   std::uint32_t width = 0;

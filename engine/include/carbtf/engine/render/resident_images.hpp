@@ -29,7 +29,7 @@ namespace carbtf {
 class ResidentImages {
  public:
   // size x size texels per image (SynthesisBlock width and height), periodic when `periodic_overlap`
-  // > 0, with up to `mip_levels` levels (0: all the size allows, render/mip_levels.hpp; 1: level 0
+  // > 0, with up to `mip_levels` levels (0: all the size allows, material/mip_levels.hpp; 1: level 0
   // alone), which record_add() makes. invalid_argument for an empty size or a material without
   // subspace images.
   static Status create(Context& context, const Material& material, std::uint32_t size,

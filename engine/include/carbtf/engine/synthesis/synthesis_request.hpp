@@ -42,7 +42,7 @@ struct SynthesisRequest : SynthesisBlock {
   // larger synthesis they came from. Empty: zeros. Read during prepare() only.
   std::span<const float> initial_values;
   // Mip levels of the output image, level 0 included, each the mean of 2 x 2 texels of the one below
-  // (render/mip_levels.hpp), which record() makes after the colour pass: what a render pass samples
+  // (material/mip_levels.hpp), which record() makes after the colour pass: what a render pass samples
   // (MaterialTextures::mip_levels). 0: all the size allows; 1 (the default): level 0 alone, for
   // read-back and conformance. A device that cannot blit RGBA32F with a linear filter gets 1.
   std::uint32_t mip_levels = 1;

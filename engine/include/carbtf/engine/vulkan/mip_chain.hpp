@@ -1,4 +1,4 @@
-// Records the mip levels of the textures the render pass samples (render/mip_levels.hpp says how many):
+// Records the mip levels of the textures the render pass samples (material/mip_levels.hpp says how many):
 // a blit with a linear filter at a scale of exactly one half makes each texel the mean of 2 x 2. The
 // owner of an image records them: the synthesizer, ResidentImages, TextureArray.
 #pragma once
@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <span>
 
-#include "carbtf/engine/render/mip_levels.hpp"
+#include "carbtf/engine/material/mip_levels.hpp"
 #include "carbtf/engine/status.hpp"
 #include "carbtf/engine/vulkan/context.hpp"
 

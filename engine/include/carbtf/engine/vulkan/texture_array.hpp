@@ -5,7 +5,7 @@
 //
 // Use: create(); set_layer() for every layer (host memory, staged); record_upload() into a command
 // buffer of yours, or upload_and_wait(). The image ends in VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL.
-// It has up to `mip_levels` levels (0: all of mip_level_count(), render/mip_levels.hpp), where the
+// It has up to `mip_levels` levels (0: all of mip_level_count(), material/mip_levels.hpp), where the
 // device blits the format with a linear filter; else one. The upload fills them by blits, or, created
 // with `host_levels`, copies the levels the caller gave with set_level() (for texels whose level
 // above is not the mean of the level below in every channel).

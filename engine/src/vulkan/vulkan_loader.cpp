@@ -1,4 +1,4 @@
-#include "vulkan_loader.hpp"
+#include "vulkan/vulkan_loader.hpp"
 
 #include <dlfcn.h>
 

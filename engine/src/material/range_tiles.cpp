@@ -7,7 +7,7 @@
 #include <cmath>
 #include <vector>
 
-#include "raster_prediction.hpp"
+#include "material/raster_prediction.hpp"
 
 namespace carbtf {
 namespace {

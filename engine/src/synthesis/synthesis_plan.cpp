@@ -1,10 +1,10 @@
-#include "synthesis_plan.hpp"
+#include "synthesis/synthesis_plan.hpp"
 
 #include <algorithm>
 #include <limits>
 #include <string>
 
-#include "vk_check.hpp"
+#include "vulkan/vk_check.hpp"
 
 namespace carbtf::detail {
 namespace {

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "vk_check.hpp"
+#include "vulkan/vk_check.hpp"
 
 namespace carbtf {
 

@@ -20,7 +20,7 @@
 #include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
 #include "carbtf/engine/vulkan/mip_chain.hpp"
 #include "carbtf/engine/vulkan/texture_array.hpp"
-#include "vk_check.hpp"
+#include "vulkan/vk_check.hpp"
 
 namespace carbtf {
 

@@ -9,8 +9,8 @@
 
 #include "carbtf/engine/vulkan/buffer.hpp"
 #include "carbtf/engine/vulkan/gpu_timer.hpp"
-#include "compute_pipeline.hpp"
-#include "vk_check.hpp"
+#include "vulkan/compute_pipeline.hpp"
+#include "vulkan/vk_check.hpp"
 
 namespace carbtf {
 

@@ -6,8 +6,8 @@
 #include <string>
 
 #include "carbtf/engine/vulkan/mip_chain.hpp"
-#include "image_barrier.hpp"
-#include "vk_check.hpp"
+#include "vulkan/image_barrier.hpp"
+#include "vulkan/vk_check.hpp"
 
 namespace carbtf {
 

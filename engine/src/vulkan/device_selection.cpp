@@ -1,4 +1,4 @@
-#include "device_selection.hpp"
+#include "vulkan/device_selection.hpp"
 
 #include <algorithm>
 #include <cctype>

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "carbtf/engine/vulkan/mip_chain.hpp"
-#include "vk_check.hpp"
+#include "vulkan/vk_check.hpp"
 
 namespace carbtf {
 

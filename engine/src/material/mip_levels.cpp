@@ -1,4 +1,4 @@
-#include "carbtf/engine/render/mip_levels.hpp"
+#include "carbtf/engine/material/mip_levels.hpp"
 
 #include <glm/common.hpp>
 

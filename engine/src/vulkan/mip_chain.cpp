@@ -3,8 +3,8 @@
 #include <new>
 #include <vector>
 
-#include "image_barrier.hpp"
-#include "vk_check.hpp"
+#include "vulkan/image_barrier.hpp"
+#include "vulkan/vk_check.hpp"
 
 namespace carbtf {
 

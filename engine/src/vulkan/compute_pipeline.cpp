@@ -1,11 +1,11 @@
-#include "compute_pipeline.hpp"
+#include "vulkan/compute_pipeline.hpp"
 
 #include <algorithm>
 #include <array>
 #include <string>
 #include <vector>
 
-#include "vk_check.hpp"
+#include "vulkan/vk_check.hpp"
 
 namespace carbtf::detail {
 namespace {

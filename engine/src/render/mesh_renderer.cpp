@@ -13,8 +13,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
-#include "compute_pipeline.hpp"
-#include "vk_check.hpp"
+#include "vulkan/compute_pipeline.hpp"
+#include "vulkan/vk_check.hpp"
 
 namespace carbtf {
 

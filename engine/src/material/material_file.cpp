@@ -13,9 +13,9 @@
 
 #include <zlib.h>
 
-#include "byte_stream.hpp"
-#include "raster_prediction.hpp"
-#include "raster_windows.hpp"
+#include "material/byte_stream.hpp"
+#include "material/raster_prediction.hpp"
+#include "material/raster_windows.hpp"
 
 namespace carbtf {
 namespace {

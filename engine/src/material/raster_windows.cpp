@@ -1,10 +1,10 @@
-#include "raster_windows.hpp"
+#include "material/raster_windows.hpp"
 
 #include <algorithm>
 #include <cstdlib>
 #include <limits>
 
-#include "raster_prediction.hpp"
+#include "material/raster_prediction.hpp"
 
 namespace carbtf::detail {
 namespace {

@@ -1,6 +1,6 @@
 #include "carbtf/engine/vulkan/gpu_timer.hpp"
 
-#include "vk_check.hpp"
+#include "vulkan/vk_check.hpp"
 
 namespace carbtf {
 

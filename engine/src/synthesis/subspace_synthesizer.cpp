@@ -24,10 +24,10 @@
 
 #include "carbtf/engine/vulkan/gpu_timer.hpp"
 #include "carbtf/engine/vulkan/mip_chain.hpp"
-#include "compute_pipeline.hpp"
-#include "image_barrier.hpp"
-#include "synthesis_plan.hpp"
-#include "vk_check.hpp"
+#include "synthesis/synthesis_plan.hpp"
+#include "vulkan/compute_pipeline.hpp"
+#include "vulkan/image_barrier.hpp"
+#include "vulkan/vk_check.hpp"
 
 namespace carbtf {
 namespace {

@@ -6,9 +6,9 @@
 #include <mutex>
 #include <new>
 
-#include "device_selection.hpp"
-#include "vk_check.hpp"
-#include "vulkan_loader.hpp"
+#include "vulkan/device_selection.hpp"
+#include "vulkan/vk_check.hpp"
+#include "vulkan/vulkan_loader.hpp"
 
 namespace carbtf {
 

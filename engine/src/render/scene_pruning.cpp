@@ -14,7 +14,7 @@
 
 #include "carbtf/engine/internal/direction_lookup.hpp"
 #include "carbtf/engine/material/material_directions.hpp"
-#include "vk_check.hpp"
+#include "vulkan/vk_check.hpp"
 
 namespace carbtf {
 
