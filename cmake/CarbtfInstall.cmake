@@ -2,7 +2,7 @@
 #   find_package(carbtf REQUIRED)  and links  carbtf::engine.
 include(CMakePackageConfigHelpers)
 
-install(TARGETS carbtf_engine EXPORT carbtfTargets
+install(TARGETS carbtf_engine carbtf_model EXPORT carbtfTargets
   ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}" COMPONENT engine
   LIBRARY DESTINATION "${CMAKE_INSTALL_LIBDIR}" COMPONENT engine)
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/engine/include/carbtf"

@@ -9,9 +9,9 @@
 
 #include "carbtf/engine/material/material_directions.hpp"
 #include "carbtf/engine/material/mip_levels.hpp"
-#include "carbtf/engine/render/material_binding.hpp"
 #include "carbtf/engine/render/relief_horizons.hpp"
 #include "carbtf/engine/render/relief_normals.hpp"
+#include "carbtf/engine/render/rendered_values.hpp"
 
 namespace carbtf::reference {
 

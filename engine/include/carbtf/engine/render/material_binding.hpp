@@ -21,6 +21,7 @@
 
 #include "carbtf/engine/material/direction_interpolation.hpp"
 #include "carbtf/engine/material/material.hpp"
+#include "carbtf/engine/render/rendered_values.hpp"  // the CPU twin of what the pass reads
 #include "carbtf/engine/vulkan/buffer.hpp"
 #include "carbtf/engine/vulkan/context.hpp"
 
@@ -158,15 +159,5 @@ class MaterialBinding {
   Context* context_ = nullptr;
   std::unique_ptr<Resources> resources_;
 };
-
-// A subspace's tone weight (SubspaceModel::tone_weight) as the render pass reads it: rounded to the half
-// float the pair table holds (MaterialTablesHeader::pair_table), for CPU twins of the fragment stage.
-float rendered_tone_weight(float tone_weight) noexcept;
-
-// A pair gain (pair_gain()) in the pair gain table's fixed point (MaterialTablesHeader::pair_gains), and
-// a pair's three gains as the render pass reads them, for CPU twins of the fragment stage.
-std::uint32_t pair_gain_units(float gain) noexcept;
-std::array<float, 3> rendered_pair_gain(const Material& material, std::uint32_t light,
-                                        std::uint32_t view) noexcept;
 
 }  // namespace carbtf

@@ -1,0 +1,57 @@
+# cmake -DSOURCE_DIR=... -P check_model_vulkan_free.cmake
+# carbtf::model, carbtf::reference and the analysis are Vulkan-free (docs/design.md 2): fails naming
+# every file of analysis/ or of the model's sources that includes a Vulkan header, directly or through
+# an engine header that does (found here by following the engine's own includes).
+cmake_minimum_required(VERSION 3.16)  # IN_LIST
+if(NOT DEFINED SOURCE_DIR)
+  message(FATAL_ERROR "check_model_vulkan_free.cmake needs -DSOURCE_DIR=...")
+endif()
+set(engine_include "${SOURCE_DIR}/engine/include")
+
+# The engine headers that reach <vulkan/...>: those that include it, then those that include one of
+# them, until nothing changes.
+file(GLOB_RECURSE headers RELATIVE "${engine_include}" "${engine_include}/*.hpp")
+set(vulkan_headers "")
+set(changed TRUE)
+while(changed)
+  set(changed FALSE)
+  foreach(header IN LISTS headers)
+    if(header IN_LIST vulkan_headers)
+      continue()
+    endif()
+    file(STRINGS "${engine_include}/${header}" includes REGEX "^#include [<\"]")
+    foreach(line IN LISTS includes)
+      string(REGEX REPLACE "^#include [<\"]([^>\"]+)[>\"].*" "\\1" target "${line}")
+      if(target MATCHES "^vulkan/" OR target IN_LIST vulkan_headers)
+        list(APPEND vulkan_headers "${header}")
+        set(changed TRUE)
+        break()
+      endif()
+    endforeach()
+  endforeach()
+endwhile()
+
+file(GLOB_RECURSE checked "${SOURCE_DIR}/analysis/*.cpp" "${SOURCE_DIR}/analysis/*.hpp")
+foreach(model_source material/*.cpp synthesis/synthesis_layout.cpp render/relief_horizons.cpp
+        render/relief_normals.cpp render/render_scene.cpp render/rendered_values.cpp status.cpp file_output.cpp)
+  file(GLOB found "${SOURCE_DIR}/engine/src/${model_source}")
+  list(APPEND checked ${found})
+endforeach()
+set(offending "")
+foreach(file IN LISTS checked)
+  file(STRINGS "${file}" includes REGEX "^#include [<\"]")
+  foreach(line IN LISTS includes)
+    string(REGEX REPLACE "^#include [<\"]([^>\"]+)[>\"].*" "\\1" target "${line}")
+    string(REGEX REPLACE "^carbtf/engine/" "" inside "${target}")
+    if(target MATCHES "^vulkan/" OR (target MATCHES "^carbtf/engine/" AND "carbtf/engine/${inside}" IN_LIST vulkan_headers))
+      file(RELATIVE_PATH relative "${SOURCE_DIR}" "${file}")
+      string(APPEND offending "  ${relative} includes ${target}\n")
+    endif()
+  endforeach()
+endforeach()
+list(LENGTH checked count)
+list(LENGTH vulkan_headers vulkan_count)
+if(offending)
+  message(FATAL_ERROR "Vulkan in what must be Vulkan-free (analysis/, carbtf::model):\n${offending}")
+endif()
+message(STATUS "${count} files of analysis/ and carbtf::model include none of the ${vulkan_count} engine headers that reach Vulkan")
