@@ -33,7 +33,7 @@ endwhile()
 
 file(GLOB_RECURSE checked "${SOURCE_DIR}/analysis/*.cpp" "${SOURCE_DIR}/analysis/*.hpp")
 foreach(model_source material/*.cpp synthesis/synthesis_layout.cpp render/relief_horizons.cpp
-        render/relief_normals.cpp render/render_scene.cpp render/rendered_values.cpp status.cpp file_output.cpp)
+        render/mesh.cpp render/relief_normals.cpp render/render_scene.cpp render/rendered_values.cpp status.cpp file_output.cpp)
   file(GLOB found "${SOURCE_DIR}/engine/src/${model_source}")
   list(APPEND checked ${found})
 endforeach()
