@@ -170,8 +170,14 @@ bool half_is_finite(std::uint16_t bits) {
   return (bits & 0x7c00u) != 0x7c00u;
 }
 
-float light_cosine(const Header& header, std::size_t light) {
-  return header.cosine_in_data ? 1.0f : static_cast<float>(std::cos(header.lights[light].theta));
+// Per light, the factor that makes the file's values photographs: 1 where the cosine is in the data.
+std::vector<float> light_cosines(const Header& header) {
+  std::vector<float> cosines(header.lights.size(), 1.0f);
+  if (!header.cosine_in_data) {
+    for (std::size_t l = 0; l < cosines.size(); ++l)
+      cosines[l] = static_cast<float>(std::cos(header.lights[l].theta));
+  }
+  return cosines;
 }
 
 // ---- DFMF ----
@@ -261,7 +267,11 @@ class DfmfDecoder final : public ImageDecoder {
  public:
   DfmfDecoder(std::string file, Header header, ubo2014::ColourTransform colour,
               std::array<ChannelFactors, 3> channels)
-      : file_(std::move(file)), header_(std::move(header)), colour_(colour), channels_(std::move(channels)) {}
+      : file_(std::move(file)),
+        header_(std::move(header)),
+        colour_(colour),
+        channels_(std::move(channels)),
+        cosines_(light_cosines(header_)) {}
 
   void decode(LightView pair, std::span<float> rgb) const override {
     const std::size_t pair_index = std::size_t{pair.view} * header_.lights.size() + pair.light;
@@ -275,7 +285,7 @@ class DfmfDecoder final : public ImageDecoder {
         rgb[t * 3 + c] = sum;
       }
     }
-    const float cosine = light_cosine(header_, pair.light);
+    const float cosine = cosines_[pair.light];
     for (std::size_t t = 0; t < header_.texels(); ++t) {
       const auto value = ubo2014::to_rgb(colour_, {rgb[t * 3], rgb[t * 3 + 1], rgb[t * 3 + 2]});
       for (std::size_t c = 0; c < 3; ++c) {
@@ -302,6 +312,7 @@ class DfmfDecoder final : public ImageDecoder {
   Header header_;
   ubo2014::ColourTransform colour_;
   std::array<ChannelFactors, 3> channels_;
+  std::vector<float> cosines_;
 };
 
 BtfDataset read_dfmf(BoundedFile& file, Header header, std::vector<std::string>& warnings) {
@@ -380,6 +391,7 @@ BtfDataset read_bdi(BoundedFile& file, Header header, const BtfLoadOptions& opti
   std::vector<std::vector<std::uint16_t>> images(header.pairs(),
                                                  std::vector<std::uint16_t>(header.texels() * 3, 0));
   std::vector<std::uint16_t> chunk;
+  const std::vector<float> cosines = light_cosines(header);
   Progress progress("reading " + std::to_string(chunks) + " BDI chunks", chunks, options.progress);
   for (std::uint64_t k = 0; k < chunks; ++k) {
     const std::uint64_t first = k * per_chunk;
@@ -400,7 +412,7 @@ BtfDataset read_bdi(BoundedFile& file, Header header, const BtfLoadOptions& opti
         for (std::size_t l = 0; l < header.lights.size(); ++l) {
           const std::uint16_t* value = &abrdf[(v * header.lights.size() + l) * 3];
           std::uint16_t* out = &images[l * header.views.size() + v][std::size_t{texel} * 3];
-          const float cosine = light_cosine(header, l);
+          const float cosine = cosines[l];
           for (int c = 0; c < 3; ++c) {
             if (!half_is_finite(value[c])) {
               file.fail(name, "light " + std::to_string(l) + ", view " + std::to_string(v) + ", texel (" +
