@@ -4,40 +4,16 @@
 //   header  "CBTF", u16 major version, u16 minor version, u32 chunk count
 //   chunks  4-byte tag, u32 payload size, payload, u32 CRC-32 (IEEE 802.3) of tag, size and payload
 // Chunks (each at most once; unknown tags with a valid CRC are skipped, so minor versions can add some):
-//   SETT  analysis settings: u32 count, then per pair u32 key length, key, u32 value length, value
-//   DIRS  u32 lights, u32 views, then (f32 theta, f32 phi) radians per light, then per view
-//   INDX  u32 lights, u32 views, u8 subspace per (light, view), light-major
-//   SUBS  u32 count; per subspace u32 light, view, width, height, channels, levels; f32 mean[channels];
-//         f32 transform[channels^2]; per band (level-major) u32 flags, f32 mean, f32 band_std,
-//         f32 sigma, u32 neighbours, (i8 dr, i8 dc) per neighbour, f32 gamma per neighbour
-//   RNGE  u32 tile_size, u32 edge_colours, f32 height_offset, f32 height_scale,
-//         u16 patches[2 * colours * size^2], u16 cuts[colours^4 * 4 * size / 2] (tile_size 0: none)
-//   DEFL  (1.1) any chunk but SETT deflated: 4-byte inner tag, u32 inner payload size, u8 filter
-//         (0 none, s <= 8: each byte minus the one s before, as PNG's Sub; 9, format 1.3: the raster
-//         filter, with its parameters, for the heights and tone: residuals of a median edge predictor;
-//         10, format 1.5: the window filter, which stores patches cut from overlapping places of one
-//         map as that map's texels, once; see material_file.cpp), one zlib stream; the reader bounds the
-//         claimed size (64 MiB, and 1100:1 over the stream) and checks the filter's layout before it
-//         allocates
-//   TONE  (1.1, optional) f32 tone_offset, f32 tone_scale, u32 count, u8 tone[count]: the relief tone
-//         per patch texel (count = the patches' texel count). A 1.0 reader skips it and renders the
-//         smooth texture without the crease darkening it carries. From 1.7 the count may be three
-//         times that: one plane per colour channel (R, G, B); a 1.1-1.6 reader rejects such a file.
-//   TWGT  (1.2, optional) u32 count, f32 tone_weight per subspace (count = the subspaces): how much of
-//         the relief tone each subspace image takes. Absent, every weight is 1 (as a 1.1 file means);
-//         a 1.1 reader skips it and applies the whole tone everywhere.
-//   TCHR  (1.4, optional) f32 tone_chroma[3]: how far each colour channel follows the relief tone.
-//         Absent, all 1 (a grey tone, as earlier files mean); an earlier reader skips it.
-//   FTHR  (1.6, optional) u32 feather: the cuts' cross-fade in texels (RangeTiles::feather). Absent, 0
-//         (hard cuts, as earlier files mean); an earlier reader skips it and draws hard cuts.
-//   SHDW  (1.8, optional) f32 shadow scale: the relief's cast shadows (RangeTiles::shadow_scale). Absent,
-//         0 (no shadows, as earlier files mean); an earlier reader skips it and draws no shadows.
-//   PGAN  (1.9, optional) u32 lights, u32 views, u8 gain code per colour channel (R, G, B planes) and
-//         (light, view) pair, light-major (Material::pair_gains). Absent, every gain is 1 (as earlier
-//         files mean); an earlier reader skips it and renders each pair at its subspace's mean colour.
-//   SPEC  (1.10, optional) f32 strength, f32 gloss: the relief's specular lobe (RangeTiles::
-//         specular_strength, specular_gloss). Absent, no lobe (as earlier files mean); an earlier reader
-//         skips it and draws no highlights.
+//   DIRS directions, INDX subspace index, SUBS subspace models, RNGE range tiles; and, optional, SETT
+//   analysis settings, TONE relief tone (1.1), TWGT tone weights (1.2), TCHR tone chroma (1.4), FTHR feathered cuts
+//   (1.6), SHDW cast shadows (1.8), PGAN pair gains (1.9), SPEC specular lobe (1.10). Each chunk's
+//   layout is written at the top of its codec, src/material/file/chunks/<name>_chunk.cpp, and the table
+//   of them is src/material/file/chunk_table.cpp. An optional chunk is absent when it would hold its
+//   default, so an earlier reader skips it and reads the material without that feature.
+//   DEFL  (1.1) any chunk but SETT deflated, through a filter for its rasters (1.3: residuals of a median
+//         edge predictor; 1.5: windows of one map stored once): src/material/file/deflated_chunk.hpp and
+//         chunk_filters.hpp. The reader bounds the claimed size (64 MiB, and 1100:1 over the stream)
+//         and checks the filter's layout before it allocates.
 // A reader of major version 1 rejects any other major version. Every count is bounded (material.hpp)
 // before anything is allocated, every read is bounds-checked, and the decoded material is validated,
 // so a truncated, corrupted or hostile file gives an error, never a crash or an unbounded allocation.

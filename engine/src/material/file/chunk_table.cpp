@@ -1,0 +1,35 @@
+#include "material/file/chunk_table.hpp"
+
+#include <array>
+#include <string_view>
+
+namespace carbtf::detail {
+
+// Each defined in chunks/, with its layout.
+extern const ChunkCodec kSettingsChunk, kDirectionsChunk, kIndexChunk, kSubspacesChunk, kRangeChunk,
+    kToneChunk, kToneWeightsChunk, kToneChromaChunk, kFeatherChunk, kShadowsChunk, kPairGainsChunk,
+    kSpecularChunk;
+
+namespace {
+
+// The writer's order. A reader takes the chunks in any order; a new chunk is one more row here.
+constexpr std::array<const ChunkCodec*, 12> kMaterialChunks{
+    &kSettingsChunk, &kDirectionsChunk, &kIndexChunk,       &kSubspacesChunk,
+    &kRangeChunk,    &kToneChunk,       &kToneWeightsChunk, &kToneChromaChunk,
+    &kFeatherChunk,  &kShadowsChunk,    &kPairGainsChunk,   &kSpecularChunk};
+
+}  // namespace
+
+std::span<const ChunkCodec* const> material_chunks() {
+  return kMaterialChunks;
+}
+
+int material_chunk_number(std::span<const std::uint8_t> tag) {
+  const std::string_view text(reinterpret_cast<const char*>(tag.data()), tag.size());
+  for (std::size_t i = 0; i < kMaterialChunks.size(); ++i) {
+    if (kMaterialChunks[i]->tag == text) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+}  // namespace carbtf::detail
