@@ -20,6 +20,7 @@
 #include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
 #include "carbtf/engine/vulkan/mip_chain.hpp"
 #include "carbtf/engine/vulkan/texture_array.hpp"
+#include "vulkan/descriptor_writes.hpp"
 #include "vulkan/vk_check.hpp"
 
 namespace carbtf {
@@ -395,18 +396,14 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     const VkDescriptorImageInfo range{sampler, r.range_image->view(),
                                       VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     const VkDescriptorBufferInfo tables{r.table_buffer.handle(), 0, VK_WHOLE_SIZE};
+    const detail::DescriptorResource resources[4] = {
+        {.type = bindings[0].descriptorType, .image = &subspaces},
+        {.type = bindings[1].descriptorType, .image = &range},
+        {.type = bindings[2].descriptorType, .buffer = &tables},
+        {.type = bindings[3].descriptorType, .texel_buffer = &quads_view}};
     VkWriteDescriptorSet writes[4];
-    for (int i = 0; i < 4; ++i) {
-      writes[i] = vk_struct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
-      writes[i].dstSet = r.set;
-      writes[i].dstBinding = bindings[i].binding;
-      writes[i].descriptorCount = 1;
-      writes[i].descriptorType = bindings[i].descriptorType;
-    }
-    writes[0].pImageInfo = &subspaces;
-    writes[1].pImageInfo = &range;
-    writes[2].pBufferInfo = &tables;
-    writes[3].pTexelBufferView = &quads_view;
+    for (int i = 0; i < 4; ++i)
+      writes[i] = detail::descriptor_write(bindings[i].binding, resources[i], r.set);
     vk.vkUpdateDescriptorSets(device, 4, writes, 0, nullptr);
     out = std::move(binding);
     return {};

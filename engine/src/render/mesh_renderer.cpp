@@ -13,7 +13,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "vulkan/barriers.hpp"
 #include "vulkan/compute_pipeline.hpp"
+#include "vulkan/descriptor_writes.hpp"
 #include "vulkan/vk_check.hpp"
 
 namespace carbtf {
@@ -355,11 +357,8 @@ Status MeshRenderer::record(VkCommandBuffer cb, const RenderScene& scene) noexce
   vk.vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, r.layout.get(), 0, 1, &material_set, 0,
                              nullptr);
   const VkDescriptorBufferInfo uniform_info{r.uniforms.handle(), 0, sizeof(gpu::RenderFrameUniforms)};
-  auto write = vk_struct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
-  write.dstBinding = 0;
-  write.descriptorCount = 1;
-  write.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-  write.pBufferInfo = &uniform_info;
+  const VkWriteDescriptorSet write =
+      detail::descriptor_write(0, {.type = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, .buffer = &uniform_info});
   vk.vkCmdPushDescriptorSetKHR(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, r.layout.get(), 1, 1, &write);
   const VkDeviceSize zero = 0;
   const VkBuffer vertex_buffer = r.vertices.handle();
@@ -373,14 +372,8 @@ Status MeshRenderer::record(VkCommandBuffer cb, const RenderScene& scene) noexce
   copy.imageExtent = {r.target.width, r.target.height, 1};
   vk.vkCmdCopyImageToBuffer(cb, r.colour.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, r.readback.handle(),
                             1, &copy);
-  auto to_host = vk_struct<VkBufferMemoryBarrier>(VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER);
-  to_host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-  to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-  to_host.srcQueueFamilyIndex = to_host.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  to_host.buffer = r.readback.handle();
-  to_host.size = VK_WHOLE_SIZE;
-  vk.vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 0, nullptr, 1,
-                          &to_host, 0, nullptr);
+  detail::memory_barrier(vk, cb, {VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT},
+                         {VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT});
   return {};
 }
 

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "carbtf/engine/vulkan/mip_chain.hpp"
-#include "vulkan/image_barrier.hpp"
+#include "vulkan/barriers.hpp"
 #include "vulkan/vk_check.hpp"
 
 namespace carbtf {
@@ -51,12 +51,10 @@ Status ResidentImages::create(Context& context, const Material& material, std::u
 }
 
 void ResidentImages::record_transition(VkCommandBuffer command_buffer) const noexcept {
-  const VkImageMemoryBarrier barrier =
-      layout_change(image_.handle(), 0, subspaces_, 0, VK_ACCESS_SHADER_READ_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                    VK_IMAGE_LAYOUT_GENERAL, VK_REMAINING_MIP_LEVELS);
-  context_->vk().vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
-                                      VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0, 0, nullptr, 0, nullptr, 1,
-                                      &barrier);
+  detail::transition_colour(context_->vk(), command_buffer, image_.handle(),
+                            {0, VK_REMAINING_MIP_LEVELS, 0, subspaces_}, VK_IMAGE_LAYOUT_UNDEFINED,
+                            VK_IMAGE_LAYOUT_GENERAL, {VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0},
+                            {VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT});
 }
 
 std::vector<std::uint32_t> ResidentImages::missing(std::span<const std::uint32_t> needed) const {
@@ -112,13 +110,11 @@ Status ResidentImages::record_add(VkCommandBuffer command_buffer, const Subspace
     const VulkanFunctions& vk = context_->vk();
     constexpr VkPipelineStageFlags shaders =
         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
-    vk.vkCmdPipelineBarrier(command_buffer, shaders, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0,
-                            nullptr, static_cast<std::uint32_t>(before.size()), before.data());
+    detail::image_barriers(vk, command_buffer, shaders, VK_PIPELINE_STAGE_TRANSFER_BIT, before);
     vk.vkCmdCopyImage(command_buffer, synthesizer.image(), source, image_.handle(), target,
                       static_cast<std::uint32_t>(copies.size()), copies.data());
-    vk.vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                            shaders | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr,
-                            static_cast<std::uint32_t>(after.size()), after.data());
+    detail::image_barriers(vk, command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                           shaders | VK_PIPELINE_STAGE_TRANSFER_BIT, after);
     if (mipped) {
       CARBTF_TRY(record_mip_blits(*context_, command_buffer,
                                   {image_.handle(), 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
@@ -129,8 +125,7 @@ Status ResidentImages::record_add(VkCommandBuffer command_buffer, const Subspace
         back.push_back(layout_change(image_.handle(), s, 1, VK_ACCESS_TRANSFER_READ_BIT,
                                      VK_ACCESS_SHADER_READ_BIT, source, general));
       }
-      vk.vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT, shaders, 0, 0, nullptr, 0,
-                              nullptr, static_cast<std::uint32_t>(back.size()), back.data());
+      detail::image_barriers(vk, command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT, shaders, back);
     }
     resident_.insert(added.begin(), added.end());
     return {};

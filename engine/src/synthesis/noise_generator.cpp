@@ -9,6 +9,7 @@
 
 #include "carbtf/engine/vulkan/buffer.hpp"
 #include "carbtf/engine/vulkan/gpu_timer.hpp"
+#include "vulkan/barriers.hpp"
 #include "vulkan/compute_pipeline.hpp"
 #include "vulkan/vk_check.hpp"
 
@@ -114,11 +115,9 @@ Status NoiseGenerator::generate(const NoiseBlock& block, std::vector<float>& out
       }
       CARBTF_TRY(record(command_buffer, block, buffer.handle(), 0));
       if (timed) timer.record_timestamp(command_buffer, 1, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
-      auto to_host = vk_struct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
-      to_host.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-      to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-      context_->vk().vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                                          VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &to_host, 0, nullptr, 0, nullptr);
+      detail::memory_barrier(context_->vk(), command_buffer,
+                             {VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT},
+                             {VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT});
       return {};
     };
     CARBTF_TRY(context_->submit_and_wait(record_work));

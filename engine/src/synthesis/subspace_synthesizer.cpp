@@ -2,31 +2,19 @@
 
 #include <algorithm>
 #include <cstring>
-#include <functional>
 #include <limits>
 #include <new>
 #include <string>
 
 #include <carbtf_gpu_shared.h>
-#include <carbtf_spirv/car_prepare.h>
-#include <carbtf_spirv/car_serial.h>
-#include <carbtf_spirv/car_serial_taps12.h>
-#include <carbtf_spirv/car_serial_taps4.h>
-#include <carbtf_spirv/car_serial_taps8.h>
-#include <carbtf_spirv/car_wavefront.h>
-#include <carbtf_spirv/car_wavefront_taps12.h>
-#include <carbtf_spirv/car_wavefront_taps4.h>
-#include <carbtf_spirv/car_wavefront_taps8.h>
-#include <carbtf_spirv/collapse_level.h>
-#include <carbtf_spirv/colour_fold.h>
-#include <carbtf_spirv/colour_transform.h>
-#include <carbtf_spirv/interpolate.h>
 
 #include "carbtf/engine/vulkan/gpu_timer.hpp"
 #include "carbtf/engine/vulkan/mip_chain.hpp"
+#include "synthesis/image_readback.hpp"
+#include "synthesis/synthesis_passes.hpp"
+#include "synthesis/synthesis_pipelines.hpp"
 #include "synthesis/synthesis_plan.hpp"
-#include "vulkan/compute_pipeline.hpp"
-#include "vulkan/image_barrier.hpp"
+#include "vulkan/barriers.hpp"
 #include "vulkan/vk_check.hpp"
 
 namespace carbtf {
@@ -36,52 +24,12 @@ namespace {
 constexpr std::uint32_t kSafeLoopIterations = 60000;
 // Offsets in the kernels are 32-bit element indices.
 constexpr VkDeviceSize kMaxWindowBytes = VkDeviceSize{1} << 31;
-constexpr float kPoison = std::numeric_limits<float>::quiet_NaN();
 
-// Timestamps per batch: after prepare, after CAR, after collapse, after colour; plus one at the start.
-constexpr std::uint32_t kTimestampsPerBatch = 4;
+using detail::BatchTables;
+using detail::kTimestampsPerBatch;
 
 std::uint32_t ceil_div(std::uint64_t a, std::uint64_t b) {
   return static_cast<std::uint32_t>((a + b - 1) / b);
-}
-
-void compute_barrier(const VulkanFunctions& vk, VkCommandBuffer command_buffer, VkPipelineStageFlags source,
-                     VkAccessFlags source_access, VkPipelineStageFlags destination,
-                     VkAccessFlags destination_access) {
-  auto barrier = vk_struct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
-  barrier.srcAccessMask = source_access;
-  barrier.dstAccessMask = destination_access;
-  vk.vkCmdPipelineBarrier(command_buffer, source, destination, 0, 1, &barrier, 0, nullptr, 0, nullptr);
-}
-
-// One layout transition of layers [0, layers) of a colour image, with its execution and memory dependency.
-void transition_image(const VulkanFunctions& vk, VkCommandBuffer command_buffer, VkImage image,
-                      std::uint32_t layers, VkImageLayout from, VkImageLayout to, VkPipelineStageFlags source,
-                      VkAccessFlags source_access, VkPipelineStageFlags destination,
-                      VkAccessFlags destination_access) {
-  const VkImageMemoryBarrier barrier =
-      detail::colour_barrier(image, {0, 1, 0, layers}, source_access, destination_access, from, to);
-  vk.vkCmdPipelineBarrier(command_buffer, source, destination, 0, 0, nullptr, 0, nullptr, 1, &barrier);
-}
-
-void shader_to_shader(const VulkanFunctions& vk, VkCommandBuffer command_buffer) {
-  compute_barrier(vk, command_buffer, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                  VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT,
-                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
-}
-
-// Copies `bytes` of the work buffer to the host-visible `destination` at `offset`, between the stage
-// that wrote them and the next one (which waits for the copy before overwriting).
-void record_capture(const VulkanFunctions& vk, VkCommandBuffer command_buffer, VkBuffer source,
-                    VkBuffer destination, VkDeviceSize offset, VkDeviceSize bytes) {
-  compute_barrier(vk, command_buffer, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                  VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-  const VkBufferCopy region{0, offset, bytes};
-  vk.vkCmdCopyBuffer(command_buffer, source, destination, 1, &region);
-  compute_barrier(vk, command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_HOST_BIT,
-                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_HOST_READ_BIT);
 }
 
 VkDeviceSize align_up(VkDeviceSize value, VkDeviceSize alignment) {
@@ -102,42 +50,7 @@ const char* car_scheme_name(CarScheme scheme) noexcept {
   return "unknown";
 }
 
-// The CAR kernels come in variants by how many taps they unroll (detail::car_tap_variant()); each run
-// of a batch's fields uses the smallest that covers it. Built when a preparation first needs one.
-using detail::kCarTapVariants;
-static_assert(kCarTapVariants == 4, "one compiled kernel per tap count (compute_shaders/CMakeLists.txt)");
-
-struct SpirvCode {
-  const std::uint32_t* words;
-  std::size_t bytes;
-};
-constexpr SpirvCode kCarSerial[kCarTapVariants] = {
-    {carbtf_spirv_car_serial_taps4, sizeof(carbtf_spirv_car_serial_taps4)},
-    {carbtf_spirv_car_serial_taps8, sizeof(carbtf_spirv_car_serial_taps8)},
-    {carbtf_spirv_car_serial_taps12, sizeof(carbtf_spirv_car_serial_taps12)},
-    {carbtf_spirv_car_serial, sizeof(carbtf_spirv_car_serial)}};
-constexpr SpirvCode kCarWavefront[kCarTapVariants] = {
-    {carbtf_spirv_car_wavefront_taps4, sizeof(carbtf_spirv_car_wavefront_taps4)},
-    {carbtf_spirv_car_wavefront_taps8, sizeof(carbtf_spirv_car_wavefront_taps8)},
-    {carbtf_spirv_car_wavefront_taps12, sizeof(carbtf_spirv_car_wavefront_taps12)},
-    {carbtf_spirv_car_wavefront, sizeof(carbtf_spirv_car_wavefront)}};
-
-struct SubspaceSynthesizer::Pipelines {
-  detail::ComputePipeline prepare;
-  detail::ComputePipeline serial[kCarTapVariants];  // [detail::car_tap_variant()]; null until needed
-  detail::ComputePipeline wavefront[kCarTapVariants];
-  detail::ComputePipeline collapse;
-  detail::ComputePipeline colour;
-  detail::ComputePipeline colour_fold;
-  detail::ComputePipeline interpolate;
-};
-
-// Where each batch's tables lie in the table buffer.
-struct BatchTables {
-  VkDeviceSize fields = 0;
-  std::vector<VkDeviceSize> collapse;
-  VkDeviceSize colour = 0;
-};
+struct SubspaceSynthesizer::Pipelines : detail::SynthesisPipelines {};
 
 struct SubspaceSynthesizer::Prepared {
   detail::SynthesisPlan plan;
@@ -165,32 +78,7 @@ Status SubspaceSynthesizer::create(Context& context, std::unique_ptr<SubspaceSyn
     std::unique_ptr<SubspaceSynthesizer> synthesizer(new SubspaceSynthesizer());
     synthesizer->context_ = &context;
     synthesizer->pipelines_ = std::make_unique<Pipelines>();
-    Pipelines& p = *synthesizer->pipelines_;
-    using detail::BindingKind;
-    auto build = [&](const std::uint32_t* spirv, std::size_t bytes, std::uint32_t bindings,
-                     std::uint32_t push_bytes, const char* name, detail::ComputePipeline& pipeline,
-                     std::initializer_list<std::pair<std::uint32_t, BindingKind>> kinds = {}) -> Status {
-      detail::ComputePipelineInfo info;
-      info.spirv = spirv;
-      info.spirv_bytes = bytes;
-      info.binding_count = bindings;
-      for (const auto& [binding, kind] : kinds) info.bindings[binding] = kind;
-      info.push_constant_bytes = push_bytes;
-      info.debug_name = name;
-      return detail::ComputePipeline::create(context, info, pipeline);
-    };
-    constexpr std::uint32_t pass_bytes = sizeof(gpu::SynthPassParams);
-    CARBTF_TRY(build(carbtf_spirv_car_prepare, sizeof(carbtf_spirv_car_prepare), 3, pass_bytes,
-                     "carbtf car_prepare", p.prepare));
-    CARBTF_TRY(build(carbtf_spirv_collapse_level, sizeof(carbtf_spirv_collapse_level), 2, pass_bytes,
-                     "carbtf collapse_level", p.collapse));
-    CARBTF_TRY(build(carbtf_spirv_colour_transform, sizeof(carbtf_spirv_colour_transform), 3, pass_bytes,
-                     "carbtf colour_transform", p.colour, {{2, BindingKind::storage_image}}));
-    CARBTF_TRY(build(carbtf_spirv_colour_fold, sizeof(carbtf_spirv_colour_fold), 3, pass_bytes,
-                     "carbtf colour_fold", p.colour_fold, {{2, BindingKind::storage_image}}));
-    CARBTF_TRY(build(carbtf_spirv_interpolate, sizeof(carbtf_spirv_interpolate), 2,
-                     sizeof(gpu::InterpolateParams), "carbtf interpolate", p.interpolate,
-                     {{0, BindingKind::storage_image}, {1, BindingKind::storage_image}}));
+    CARBTF_TRY(synthesizer->pipelines_->create(context));
     out = std::move(synthesizer);
     return {};
   } catch (const std::bad_alloc&) {
@@ -199,17 +87,7 @@ Status SubspaceSynthesizer::create(Context& context, std::unique_ptr<SubspaceSyn
 }
 
 Status SubspaceSynthesizer::build_car_pipeline(CarScheme scheme, std::uint32_t variant) noexcept {
-  const bool serial = scheme == CarScheme::serial;
-  detail::ComputePipeline& pipeline = (serial ? pipelines_->serial : pipelines_->wavefront)[variant];
-  if (pipeline.pipeline) return {};
-  const SpirvCode code = (serial ? kCarSerial : kCarWavefront)[variant];
-  detail::ComputePipelineInfo info;
-  info.spirv = code.words;
-  info.spirv_bytes = code.bytes;
-  info.binding_count = 2;
-  info.push_constant_bytes = sizeof(gpu::SynthPassParams);
-  info.debug_name = serial ? "carbtf car_serial" : "carbtf car_wavefront";
-  return detail::ComputePipeline::create(*context_, info, pipeline);
+  return pipelines_->build_car(*context_, scheme, variant);
 }
 
 void SubspaceSynthesizer::release() noexcept {
@@ -416,221 +294,49 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
   Prepared& p = *prepared_;
   const VulkanFunctions& vk = context_->vk();
   const detail::SynthesisPlan& plan = p.plan;
-  const Pipelines& pipelines = *pipelines_;
   timed = timed && p.timer_ready;
   p.dispatches = 0;
-  std::uint32_t loop_cap = max_loop_iterations_ > 0 ? max_loop_iterations_ : kSafeLoopIterations;
-
   if (timed) {
     p.timer.record_reset(command_buffer);
     p.timer.record_timestamp(command_buffer, 0, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT);
   }
-  // The image: previous contents discarded, then GENERAL for storage writes.
   const auto layers = static_cast<std::uint32_t>(plan.subspaces.size());
-  const VkImage image = p.image.handle();
-  if (p.poison) {
-    transition_image(vk, command_buffer, image, layers, VK_IMAGE_LAYOUT_UNDEFINED,
-                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0,
-                     VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
-    VkClearColorValue nan{};
-    nan.float32[0] = nan.float32[1] = nan.float32[2] = nan.float32[3] = kPoison;
-    const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers};
-    vk.vkCmdClearColorImage(command_buffer, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &nan, 1, &all);
-    transition_image(vk, command_buffer, image, layers, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                     VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                     VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                     VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT);
-  } else {
-    transition_image(vk, command_buffer, image, layers, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL,
-                     VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                     VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT);
-  }
-
-  const VkBuffer tables = p.table_buffer.handle();
-  gpu::SynthPassParams params{};
-  params.seed_lo = static_cast<std::uint32_t>(p.seed);
-  params.seed_hi = static_cast<std::uint32_t>(p.seed >> 32);
+  detail::record_image_start(vk, command_buffer, p.image.handle(), layers, p.poison);
+  std::uint32_t stamp = 1;
   for (std::size_t b = 0; b < plan.batches.size(); ++b) {
     const detail::PlannedBatch& batch = plan.batches[b];
-    const BatchTables& t = p.tables[b];
-    const VkDeviceSize window_bytes = batch.window_floats * sizeof(float);
-    const auto arena = detail::BindingResource::of(p.arena.handle(), 0, window_bytes);
-    const auto field_count = static_cast<std::uint32_t>(batch.fields.size());
-    const auto capture = [&] {
-      record_capture(vk, command_buffer, p.arena.handle(), p.capture.handle(), p.capture_offsets[b],
-                     window_bytes);
-    };
-    const VkDeviceSize field_bytes = field_count * sizeof(gpu::CarFieldGpu);
-
-    // The previous batch's colour pass (or the clear) must be done before its work memory is reused.
-    if (p.poison) {
-      compute_barrier(vk, command_buffer,
-                      VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                      VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
-                      VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
-      std::uint32_t nan_bits = 0;
-      std::memcpy(&nan_bits, &kPoison, sizeof(nan_bits));
-      vk.vkCmdFillBuffer(command_buffer, p.arena.handle(), 0, window_bytes, nan_bits);
-    }
-    compute_barrier(vk, command_buffer, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                    VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
-                    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                    VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
-
-    // Frames, then the noise where the recursion reads it from memory (the wavefront scheme) or a
-    // capture compares it. Without block initialization values no field reads a frame (frame_offset is
-    // CARBTF_NO_FRAME), and the binding only needs a valid buffer: the field table stands in.
-    {
-      const detail::BindingResource frames =
-          p.frames.handle() != VK_NULL_HANDLE
-              ? detail::BindingResource::of(p.frames.handle(), 0, p.frames.size())
-              : detail::BindingResource::of(tables, t.fields, field_bytes);
-      const detail::BindingResource resources[3] = {
-          detail::BindingResource::of(tables, t.fields, field_bytes), arena, frames};
-      // The frames as rows of one workgroup width (lavapipe pays per workgroup, so no more of them than
-      // the cells need).
-      constexpr std::uint32_t kFrameCellsPerRow = gpu::CARBTF_SYNTH_GROUP_X;
-      params.flags = 0u;
-      params.max_cols = kFrameCellsPerRow;
-      for (const detail::LevelGroup& group : batch.levels) {
-        params.begin = group.first;
-        params.item_count = group.first + group.count;
-        pipelines.prepare.bind(*context_, command_buffer, resources, &params, sizeof(params));
-        vk.vkCmdDispatch(
-            command_buffer, kFrameCellsPerRow / gpu::CARBTF_SYNTH_GROUP_X,
-            ceil_div(ceil_div(group.max_frame_cells, kFrameCellsPerRow), gpu::CARBTF_SYNTH_GROUP_Y),
-            group.count);
-        ++p.dispatches;
-      }
-      if (p.scheme == CarScheme::wavefront || p.capture_stage == SynthesisStage::noise) {
-        shader_to_shader(vk, command_buffer);
-        params.flags = gpu::CARBTF_PREPARE_NOISE;
-        for (const detail::LevelGroup& group : batch.levels) {
-          params.begin = group.first;
-          params.item_count = group.first + group.count;
-          pipelines.prepare.bind(*context_, command_buffer, resources, &params, sizeof(params));
-          // A row of `cols` columns touches at most ceil(pitch / 4) + 1 counter quads (cols <= pitch - 2).
-          vk.vkCmdDispatch(command_buffer,
-                           ceil_div(ceil_div(group.max_pitch, 4u) + 1u, gpu::CARBTF_SYNTH_GROUP_X),
-                           ceil_div(group.max_padded_rows, gpu::CARBTF_SYNTH_GROUP_Y), group.count);
-          ++p.dispatches;
-        }
-      }
-      params.begin = 0;
-      params.flags = 0;
-      params.max_cols = 0;
-    }
-    const std::uint32_t stamp = 1 + kTimestampsPerBatch * static_cast<std::uint32_t>(b);
-    if (timed) p.timer.record_timestamp(command_buffer, stamp, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
-    if (p.capture_stage == SynthesisStage::noise) capture();
-
-    // The recursions, run by run (each with its kernel variant), split so that no invocation loops
-    // past the cap.
-    {
-      const detail::BindingResource resources[2] = {
-          detail::BindingResource::of(tables, t.fields, field_bytes), arena};
-      const bool serial = p.scheme == CarScheme::serial;
-      for (const detail::CarRun& run : batch.car_runs) {
-        const detail::ComputePipeline& pipeline =
-            (serial ? pipelines.serial : pipelines.wavefront)[run.tap_variant];
-        std::uint64_t total = 0;
-        std::uint64_t chunk = 0;
-        if (serial) {
-          total = run.max_region_quads;
-          chunk = loop_cap;
-        } else {
-          // Each step loops over at most ceil(rows / group) rows, plus the step loop itself.
-          total = run.max_steps;
-          chunk = std::max<std::uint64_t>(
-              1, loop_cap / (ceil_div(run.max_region_rows, gpu::CARBTF_CAR_WAVEFRONT_GROUP) + 1));
-        }
-        params.field_begin = run.first;
-        params.item_count = run.first + run.count;
-        for (std::uint64_t begin = 0; begin < total; begin += chunk) {
-          shader_to_shader(vk, command_buffer);
-          params.begin = static_cast<std::uint32_t>(begin);
-          params.end = static_cast<std::uint32_t>(std::min(total, begin + chunk));
-          pipeline.bind(*context_, command_buffer, resources, &params, sizeof(params));
-          vk.vkCmdDispatch(command_buffer,
-                           serial ? ceil_div(run.count, gpu::CARBTF_CAR_SERIAL_GROUP) : run.count, 1, 1);
-          ++p.dispatches;
-        }
-      }
-      params.begin = params.end = params.field_begin = 0;
-    }
-    if (timed) p.timer.record_timestamp(command_buffer, stamp + 1, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
-    if (p.capture_stage == SynthesisStage::car) capture();
-
-    // Collapse, coarsest level first.
-    for (std::size_t level = batch.collapse.size(); level-- > 0;) {
-      const auto& items = batch.collapse[level];
-      shader_to_shader(vk, command_buffer);
-      const detail::BindingResource resources[2] = {
-          detail::BindingResource::of(tables, t.collapse[level], items.size() * sizeof(gpu::CollapseItemGpu)),
-          arena};
-      params.item_count = static_cast<std::uint32_t>(items.size());
-      pipelines.collapse.bind(*context_, command_buffer, resources, &params, sizeof(params));
-      // One invocation per CARBTF_COLLAPSE_SPAN 2 x 2 blocks on even absolute coordinates: n pixels span
-      // at most n / 2 + 1 blocks.
-      vk.vkCmdDispatch(command_buffer,
-                       ceil_div(batch.levels[level].max_window_cols / 2 + 1,
-                                gpu::CARBTF_SYNTH_GROUP_X * gpu::CARBTF_COLLAPSE_SPAN),
-                       ceil_div(batch.levels[level].max_window_rows / 2 + 1, gpu::CARBTF_SYNTH_GROUP_Y),
-                       params.item_count);
-      ++p.dispatches;
-    }
-    if (timed) p.timer.record_timestamp(command_buffer, stamp + 2, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
-    if (p.capture_stage == SynthesisStage::collapse) capture();
-
-    // Colour transform into the output layers.
-    {
-      shader_to_shader(vk, command_buffer);
-      const detail::BindingResource resources[3] = {
-          detail::BindingResource::of(tables, t.colour, batch.colour.size() * sizeof(gpu::ColourItemGpu)),
-          arena, detail::BindingResource::of(p.image.level0_view())};
-      params.item_count = static_cast<std::uint32_t>(batch.colour.size());
-      pipelines.colour.bind(*context_, command_buffer, resources, &params, sizeof(params));
-      vk.vkCmdDispatch(command_buffer,
-                       ceil_div(plan.width, gpu::CARBTF_SYNTH_GROUP_X * gpu::CARBTF_COLOUR_SPAN),
-                       ceil_div(plan.height, gpu::CARBTF_SYNTH_GROUP_Y), params.item_count);
-      ++p.dispatches;
-      if (plan.periodic_overlap > 0) {
-        // The fold's texels (the first columns and rows), which the pass above leaves: disjoint texels.
-        const std::uint64_t fold_texels =
-            std::uint64_t{plan.periodic_overlap} * (plan.width + plan.height - plan.periodic_overlap);
-        pipelines.colour_fold.bind(*context_, command_buffer, resources, &params, sizeof(params));
-        vk.vkCmdDispatch(command_buffer, ceil_div(fold_texels, gpu::CARBTF_FOLD_GROUP), 1, params.item_count);
-        ++p.dispatches;
+    const detail::BatchRecording recording{
+        .context = *context_,
+        .command_buffer = command_buffer,
+        .pipelines = *pipelines_,
+        .plan = plan,
+        .batch = batch,
+        .tables = p.tables[b],
+        .table_buffer = p.table_buffer.handle(),
+        .arena = p.arena.handle(),
+        .window_bytes = batch.window_floats * sizeof(float),
+        .frames = p.frames.handle(),
+        .frames_bytes = p.frames.handle() != VK_NULL_HANDLE ? p.frames.size() : 0,
+        .output = p.image.level0_view(),
+        .seed = p.seed,
+        .scheme = p.scheme,
+        .noise_in_memory = p.scheme == CarScheme::wavefront || p.capture_stage == SynthesisStage::noise,
+        .poison = p.poison,
+        .loop_cap = max_loop_iterations_ > 0 ? max_loop_iterations_ : kSafeLoopIterations,
+        .dispatches = p.dispatches};
+    for (const detail::BatchPass& pass : detail::kBatchPasses) {
+      pass.record(recording);
+      if (pass.timestamp_after && timed)
+        p.timer.record_timestamp(command_buffer, stamp, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
+      stamp += pass.timestamp_after ? 1 : 0;
+      if (pass.completes != SynthesisStage::none && pass.completes == p.capture_stage) {
+        detail::record_capture(vk, command_buffer, p.arena.handle(), p.capture.handle(), p.capture_offsets[b],
+                               recording.window_bytes);
       }
     }
-    if (timed) p.timer.record_timestamp(command_buffer, stamp + 3, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
   }
-  compute_barrier(vk, command_buffer, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT |
-                      VK_PIPELINE_STAGE_TRANSFER_BIT,
-                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
-  if (p.image.info().mip_levels > 1) {
-    // Level 0 is the blits' source, then GENERAL again like the levels they write.
-    transition_image(vk, command_buffer, image, layers, VK_IMAGE_LAYOUT_GENERAL,
-                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                     VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-    std::vector<std::uint32_t> all;
-    try {
-      all.resize(layers);
-    } catch (const std::bad_alloc&) {
-      return {ErrorCode::out_of_host_memory, "out of host memory recording the mip levels"};
-    }
-    for (std::uint32_t i = 0; i < layers; ++i) all[i] = i;
-    CARBTF_TRY(record_mip_blits(*context_, command_buffer,
-                                {image, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, plan.width, plan.height},
-                                image, 1, p.image.info().mip_levels - 1, all, VK_IMAGE_LAYOUT_GENERAL));
-    transition_image(vk, command_buffer, image, layers, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                     VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT,
-                     VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT |
-                         VK_PIPELINE_STAGE_TRANSFER_BIT,
-                     VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
-  }
-  return {};
+  return detail::record_image_finish(*context_, command_buffer, p.image.handle(), plan.width, plan.height,
+                                     layers, p.image.info().mip_levels);
 }
 
 VkImage SubspaceSynthesizer::image() const noexcept {
@@ -722,81 +428,8 @@ Status SubspaceSynthesizer::timing(SynthesisTiming& out) const noexcept {
   return {};
 }
 
-namespace {
-
-// Copies rows [row0, row0 + rows) of layers [0, layers) of an RGBA32F image (in GENERAL, last written by
-// compute shaders) into a host buffer, tightly packed layer by layer; the image is back in GENERAL
-// afterwards.
-void record_image_readback(const VulkanFunctions& vk, VkCommandBuffer command_buffer, VkImage image,
-                           std::uint32_t width, std::uint32_t row0, std::uint32_t rows, std::uint32_t layers,
-                           VkBuffer destination) {
-  transition_image(vk, command_buffer, image, layers, VK_IMAGE_LAYOUT_GENERAL,
-                   VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                   VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT);
-  VkBufferImageCopy copy{};
-  copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, layers};
-  copy.imageOffset = {0, static_cast<std::int32_t>(row0), 0};
-  copy.imageExtent = {width, rows, 1};
-  vk.vkCmdCopyImageToBuffer(command_buffer, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, destination, 1,
-                            &copy);
-  // A read needs no availability, only ordering before later writes.
-  transition_image(vk, command_buffer, image, layers, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
-                   VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
-                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                   VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
-  compute_barrier(vk, command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                  VK_PIPELINE_STAGE_HOST_BIT, VK_ACCESS_HOST_READ_BIT);
-}
-
-// Unpacks `pixels` RGBA texels into `out` from texel `first` on, keeping the first `channels`.
-void unpack_rgba(const float* rgba, std::size_t pixels, std::uint32_t channels, std::size_t first,
-                 std::vector<float>& out) {
-  for (std::size_t p = 0; p < pixels; ++p) {
-    for (std::uint32_t c = 0; c < channels; ++c) out[(first + p) * channels + c] = rgba[p * 4 + c];
-  }
-}
-
-// The host buffer a synthesis reads back through, a band of rows at a time: a whole 4096^2 x 20 result
-// would otherwise need a second copy of the image on the host.
-constexpr VkDeviceSize kDefaultReadbackBytes = VkDeviceSize{64} << 20;
-
-// Submits `work` followed by the readback of the first band of rows of layers [0, layers) of `image`,
-// then each further band on its own, each at most `band_bytes` (at least one row), through `readback`
-// (created, or replaced when smaller than a band); `unpack(rgba, row0, rows)` receives each band, layer
-// by layer.
-Status read_back_in_row_bands(Context& context, VkImage image, std::uint32_t width, std::uint32_t height,
-                              std::uint32_t layers, VkDeviceSize band_bytes, Buffer& readback,
-                              const std::function<Status(VkCommandBuffer)>& work,
-                              const std::function<void(const float*, std::uint32_t, std::uint32_t)>& unpack) {
-  const VkDeviceSize row_bytes = VkDeviceSize{width} * 4 * sizeof(float) * layers;
-  const auto band_rows =
-      static_cast<std::uint32_t>(std::clamp<VkDeviceSize>(band_bytes / row_bytes, 1, height));
-  if (readback.handle() == VK_NULL_HANDLE || readback.size() < row_bytes * band_rows) {
-    readback = {};  // released before the new one is allocated
-    CARBTF_TRY(Buffer::create(context,
-                              {row_bytes * band_rows, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                               MemoryUsage::host_readback, "carbtf readback"},
-                              readback));
-  }
-  for (std::uint32_t row0 = 0; row0 < height; row0 += band_rows) {
-    const std::uint32_t rows = std::min(band_rows, height - row0);
-    const auto record_band = [&](VkCommandBuffer command_buffer) -> Status {
-      if (row0 == 0) CARBTF_TRY(work(command_buffer));
-      record_image_readback(context.vk(), command_buffer, image, width, row0, rows, layers,
-                            readback.handle());
-      return {};
-    };
-    CARBTF_TRY(context.submit_and_wait(record_band));
-    CARBTF_TRY(readback.invalidate_for_host_read());
-    unpack(static_cast<const float*>(readback.mapped()), row0, rows);
-  }
-  return {};
-}
-
-}  // namespace
-
 VkDeviceSize SubspaceSynthesizer::readback_bytes() const noexcept {
-  return max_readback_bytes_ != 0 ? max_readback_bytes_ : kDefaultReadbackBytes;
+  return max_readback_bytes_ != 0 ? max_readback_bytes_ : detail::kDefaultReadbackBytes;
 }
 
 Status SubspaceSynthesizer::synthesize(const Material& material, const SynthesisRequest& request,
@@ -824,16 +457,16 @@ Status SubspaceSynthesizer::synthesize(const Material& material, const Synthesis
     const auto record_work = [&](VkCommandBuffer command_buffer) {
       return record(command_buffer, timing_out != nullptr);
     };
-    CARBTF_TRY(read_back_in_row_bands(*context_, prepared_->image.handle(), plan.width, plan.height, layers,
-                                      readback_bytes(), prepared_->readback, record_work,
-                                      [&](const float* rgba, std::uint32_t row0, std::uint32_t rows) {
-                                        const std::size_t pixels = std::size_t{plan.width} * rows;
-                                        for (std::size_t layer = 0; layer < layers; ++layer) {
-                                          const std::uint32_t s = plan.subspaces[layer];
-                                          unpack_rgba(rgba + layer * pixels * 4, pixels, plan.channels[layer],
-                                                      std::size_t{row0} * plan.width, out.images[s]);
-                                        }
-                                      }));
+    CARBTF_TRY(detail::read_back_in_row_bands(
+        *context_, prepared_->image.handle(), plan.width, plan.height, layers, readback_bytes(),
+        prepared_->readback, record_work, [&](const float* rgba, std::uint32_t row0, std::uint32_t rows) {
+          const std::size_t pixels = std::size_t{plan.width} * rows;
+          for (std::size_t layer = 0; layer < layers; ++layer) {
+            const std::uint32_t s = plan.subspaces[layer];
+            detail::unpack_rgba(rgba + layer * pixels * 4, pixels, plan.channels[layer],
+                                std::size_t{row0} * plan.width, out.images[s]);
+          }
+        }));
     if (timing_out) CARBTF_TRY(timing(*timing_out));
     return {};
   } catch (const std::bad_alloc&) {
@@ -874,15 +507,16 @@ Status SubspaceSynthesizer::interpolate(const Material& material, const PairWeig
     out.assign(std::size_t{plan.width} * plan.height * channels, 0.0f);
     const VulkanFunctions& vk = context_->vk();
     const auto record_work = [&](VkCommandBuffer command_buffer) -> Status {
-      transition_image(vk, command_buffer, target.handle(), 1, VK_IMAGE_LAYOUT_UNDEFINED,
-                       VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0,
-                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT);
+      detail::transition_colour(vk, command_buffer, target.handle(), {}, VK_IMAGE_LAYOUT_UNDEFINED,
+                                VK_IMAGE_LAYOUT_GENERAL, {VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0},
+                                {VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT});
       return record_interpolation(command_buffer, material, weights, target.view());
     };
-    CARBTF_TRY(read_back_in_row_bands(
+    CARBTF_TRY(detail::read_back_in_row_bands(
         *context_, target.handle(), plan.width, plan.height, 1, readback_bytes(), prepared_->readback,
         record_work, [&](const float* rgba, std::uint32_t row0, std::uint32_t rows) {
-          unpack_rgba(rgba, std::size_t{plan.width} * rows, channels, std::size_t{row0} * plan.width, out);
+          detail::unpack_rgba(rgba, std::size_t{plan.width} * rows, channels, std::size_t{row0} * plan.width,
+                              out);
         }));
     return {};
   } catch (const std::bad_alloc&) {

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "vulkan/descriptor_writes.hpp"
 #include "vulkan/vk_check.hpp"
 
 namespace carbtf::detail {
@@ -91,15 +92,10 @@ void ComputePipeline::bind(const Context& context, VkCommandBuffer command_buffe
   vk.vkCmdBindPipeline(command_buffer, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.get());
   std::array<VkWriteDescriptorSet, kMaxBindings> writes{};
   for (std::uint32_t i = 0; i < binding_count; ++i) {
-    writes[i] = vk_struct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
-    writes[i].dstBinding = i;
-    writes[i].descriptorCount = 1;
-    writes[i].descriptorType = descriptor_type(bindings[i]);
-    if (bindings[i] == BindingKind::storage_image) {
-      writes[i].pImageInfo = &resources[i].image;
-    } else {
-      writes[i].pBufferInfo = &resources[i].buffer;
-    }
+    const bool image = bindings[i] == BindingKind::storage_image;
+    writes[i] = descriptor_write(i, {.type = descriptor_type(bindings[i]),
+                                     .buffer = image ? nullptr : &resources[i].buffer,
+                                     .image = image ? &resources[i].image : nullptr});
   }
   vk.vkCmdPushDescriptorSetKHR(command_buffer, VK_PIPELINE_BIND_POINT_COMPUTE, layout.get(), 0, binding_count,
                                writes.data());

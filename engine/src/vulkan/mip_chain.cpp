@@ -3,7 +3,7 @@
 #include <new>
 #include <vector>
 
-#include "vulkan/image_barrier.hpp"
+#include "vulkan/barriers.hpp"
 #include "vulkan/vk_check.hpp"
 
 namespace carbtf {
@@ -55,9 +55,8 @@ Status record_mip_blits(const Context& context, VkCommandBuffer command_buffer, 
                                          VK_IMAGE_LAYOUT_UNDEFINED, written));
       }
     }
-    vk.vkCmdPipelineBarrier(command_buffer, shaders | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                            VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr, 0, nullptr,
-                            static_cast<std::uint32_t>(barriers.size()), barriers.data());
+    detail::image_barriers(vk, command_buffer, shaders | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                           VK_PIPELINE_STAGE_TRANSFER_BIT, barriers);
     VkImage from = source.image;
     std::uint32_t from_level = source.level, width = source.width, height = source.height;
     VkImageLayout from_layout = source.layout;
@@ -81,17 +80,15 @@ Status record_mip_blits(const Context& context, VkCommandBuffer command_buffer, 
         barriers.push_back(level_barrier(target, to_level, layer, VK_ACCESS_TRANSFER_WRITE_BIT,
                                          VK_ACCESS_TRANSFER_READ_BIT, written, read));
       }
-      vk.vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                              0, 0, nullptr, 0, nullptr, static_cast<std::uint32_t>(barriers.size()),
-                              barriers.data());
+      detail::image_barriers(vk, command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                             VK_PIPELINE_STAGE_TRANSFER_BIT, barriers);
       from = target;
       from_level = to_level;
       from_layout = read;
       width /= 2;
       height /= 2;
     }
-    vk.vkCmdPipelineBarrier(command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT, shaders, 0, 0, nullptr, 0,
-                            nullptr, static_cast<std::uint32_t>(last.size()), last.data());
+    detail::image_barriers(vk, command_buffer, VK_PIPELINE_STAGE_TRANSFER_BIT, shaders, last);
     return {};
   } catch (const std::bad_alloc&) {
     return {ErrorCode::out_of_host_memory, "out of host memory recording mip levels"};

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "carbtf/engine/vulkan/mip_chain.hpp"
+#include "vulkan/barriers.hpp"
 #include "vulkan/vk_check.hpp"
 
 namespace carbtf {
@@ -109,53 +110,40 @@ Status TextureArray::set_level(std::uint32_t layer, std::uint32_t level,
 
 Status TextureArray::record_upload(VkCommandBuffer cb) const noexcept {
   const VulkanFunctions& vk = context_->vk();
-  auto barrier = vk_struct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
-  barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  barrier.image = image_.handle();
-  barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers()};
-  barrier.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  // Earlier draws may still read the image: the stages order the upload after them.
-  barrier.newLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-  barrier.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-  barrier.subresourceRange.levelCount = host_levels_ ? mip_levels() : 1;
-  vk.vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0,
-                          nullptr, 0, nullptr, 1, &barrier);
+  const VkImage image = image_.handle();
   const std::uint32_t copied_levels = host_levels_ ? mip_levels() : 1;
+  const detail::ColourRange copied{0, copied_levels, 0, layers()};
+  const detail::StageAccess upload{VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT};
+  // Earlier draws may still read the image: the stages order the upload after them.
+  detail::transition_colour(vk, cb, image, copied, VK_IMAGE_LAYOUT_UNDEFINED,
+                            VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, {VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0},
+                            upload);
   for (std::uint32_t level = 0; level < copied_levels; ++level) {
     VkBufferImageCopy copy{};
     copy.bufferOffset = staging_offset(0, level);
     copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, layers()};
     copy.imageExtent = {width() >> level, height() >> level, 1};
-    vk.vkCmdCopyBufferToImage(cb, staging_.handle(), image_.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
-                              &copy);
+    vk.vkCmdCopyBufferToImage(cb, staging_.handle(), image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
   }
-  if (host_levels_) {
-    barrier.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-    barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-  } else if (mip_levels() > 1) {
+  VkImageLayout last_layout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+  detail::StageAccess last = upload;
+  if (!host_levels_ && mip_levels() > 1) {
     // Level 0 is the blits' source, then read by shaders like the rest.
-    barrier.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-    barrier.newLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-    barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-    barrier.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
-    vk.vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 0, nullptr,
-                            0, nullptr, 1, &barrier);
+    const detail::StageAccess blit_source{VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT};
+    detail::transition_colour(vk, cb, image, copied, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                              VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, upload, blit_source);
     std::vector<std::uint32_t> all(layers());
     for (std::uint32_t i = 0; i < layers(); ++i) all[i] = i;
-    CARBTF_TRY(record_mip_blits(
-        *context_, cb, {image_.handle(), 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, width(), height()},
-        image_.handle(), 1, mip_levels() - 1, all, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL));
-    barrier.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-    barrier.srcAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
-  } else {
-    barrier.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
-    barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    CARBTF_TRY(record_mip_blits(*context_, cb,
+                                {image, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, width(), height()}, image, 1,
+                                mip_levels() - 1, all, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL));
+    last_layout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    last = blit_source;
   }
-  barrier.newLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-  barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
-  vk.vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                          VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0,
-                          nullptr, 0, nullptr, 1, &barrier);
+  detail::transition_colour(vk, cb, image, copied, last_layout, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                            last,
+                            {VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                             VK_ACCESS_SHADER_READ_BIT});
   return {};
 }
 
