@@ -12,6 +12,7 @@
 #include "carbtf/engine/internal/direction_lookup.hpp"
 #include "carbtf/engine/material/range_tiles.hpp"
 #include "carbtf/engine/render/material_binding.hpp"
+#include "carbtf/engine/render/material_tables.hpp"
 #include "carbtf/engine/render/mesh_renderer.hpp"
 #include "carbtf/engine/render/resident_images.hpp"
 #include "carbtf/engine/render/scene_pruning.hpp"
@@ -51,8 +52,8 @@ std::unique_ptr<SubspaceSynthesizer> synthesized(Context& context, const Materia
   return synthesizer;
 }
 
-// The reference's tone input (ReferenceRenderInput::tone_map) for the binding's block: each colour
-// channel's plane of the enlarged tone, interleaved, before its chroma.
+// Each colour channel's plane of the enlarged tone for the binding's block, interleaved, before its chroma:
+// what relief_maps() applies the chroma to.
 std::vector<float> tone_planes(const Material& m, const RangeBlock& block) {
   const std::size_t texels = std::size_t{block.width} * block.height;
   if (m.range.tile_size == 0) return {};
@@ -163,9 +164,9 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
   input.material = &m;
   input.images = &images;
   input.range_map = binding->range_map();
-  const std::vector<float> tone = tone_planes(m, {binding_info.seed, 0, 0, 96, 80, periodic ? 12u : 0u});
   {
-    // The binding uploads each channel's tone with its chroma applied.
+    // The binding uploads each channel's tone with its chroma applied, and the reference reads the same.
+    const std::vector<float> tone = tone_planes(m, {binding_info.seed, 0, 0, 96, 80, periodic ? 12u : 0u});
     const std::vector<float>& uploaded = binding->tone_map();
     REQUIRE(uploaded.size() == tone.size());
     float worst = 0.0f;
@@ -174,7 +175,7 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
     }
     CHECK(worst < 1e-6f);
   }
-  input.tone_map = tone;
+  input.tone_map = binding->tone_map();
   input.parallax_scale = binding_info.parallax_scale;
   input.wrap = periodic;
   input.mip_levels = binding->mip_levels();
@@ -397,6 +398,9 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
   grey.range.tone_chroma = {1.0f, 1.0f, 1.0f};
   reference::ReferenceRenderInput grey_input = input;
   grey_input.material = &grey;
+  const std::vector<float> grey_tone =
+      relief_maps(grey, {binding_info.seed, 0, 0, 96, 80, periodic ? 12u : 0u}).tone;  // as a binding of it
+  grey_input.tone_map = grey_tone;
   CHECK(reference::render_plane(grey_input, scene, target.width, target.height, target.clear) != cpu);
   // The shadows change the picture, by at least a percent of the peak RMS, so the comparison above
   // covers them; and they take light away: the picture's mean falls (a pixel may not, where a noisy
@@ -734,8 +738,7 @@ TEST_CASE(
   input.material = &m;
   input.images = &images;
   input.range_map = mipped->range_map();
-  const std::vector<float> tone = tone_planes(m, {info.seed, 0, 0, kTexels, kTexels, 0});
-  input.tone_map = tone;
+  input.tone_map = mipped->tone_map();
   auto box_reference = [&](const RenderScene& scene) {
     const std::uint32_t fine = kPixels * kSuper;
     const std::vector<float> big = reference::render_plane(input, scene, fine, fine, target.clear);

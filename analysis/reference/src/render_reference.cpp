@@ -9,6 +9,7 @@
 
 #include "carbtf/engine/material/material_directions.hpp"
 #include "carbtf/engine/material/mip_levels.hpp"
+#include "carbtf/engine/render/material_tables.hpp"
 #include "carbtf/engine/render/relief_horizons.hpp"
 #include "carbtf/engine/render/relief_normals.hpp"
 #include "carbtf/engine/render/rendered_values.hpp"
@@ -32,16 +33,6 @@ struct MipChain {
   }
 };
 
-// The range texture's layer 0: the height and the tone of each colour channel (1 without one).
-std::vector<float> height_texels(std::span<const float> heights, std::span<const float> tone) {
-  std::vector<float> out(heights.size() * 4);
-  for (std::size_t i = 0; i < heights.size(); ++i) {
-    out[4 * i] = heights[i];
-    for (std::size_t k = 0; k < 3; ++k) out[4 * i + 1 + k] = tone.empty() ? 1.0f : tone[3 * i + k];
-  }
-  return out;
-}
-
 // The range texture's layer 1 with its levels: the relief normal and, in w, its own length at every
 // level (the binding's set_range_layer()).
 MipChain relief_chain(std::span<const float> level0, std::uint32_t width, std::uint32_t height,
@@ -49,18 +40,6 @@ MipChain relief_chain(std::span<const float> level0, std::uint32_t width, std::u
   MipChain chain(level0, width, height, 4, count);
   for (std::vector<float>& level : chain.levels) store_normal_lengths(level);
   return chain;
-}
-
-// The range texture's layer 1: the relief normal, 4 floats per texel.
-std::vector<float> relief_texels(std::span<const float> heights, std::uint32_t width, std::uint32_t height,
-                                 bool wrap) {
-  std::vector<float> normals;
-  relief_normals(heights, width, height, wrap, normals);
-  std::vector<float> out(heights.size() * 4, 0.0f);
-  for (std::size_t i = 0; i < heights.size(); ++i) {
-    for (std::size_t k = 0; k < 3; ++k) out[4 * i + k] = normals[3 * i + k];
-  }
-  return out;
 }
 
 // The range texture's layers 2 and 3 (relief_horizons.hpp's horizon_layer()).
@@ -182,8 +161,8 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
                   tw,
                   th,
                   static_cast<float>(sum / static_cast<double>(input.range_map.size())),
-                  MipChain(height_texels(input.range_map, input.tone_map), tw, th, 4, levels),
-                  relief_chain(relief_texels(input.range_map, tw, th, input.wrap), tw, th, levels),
+                  MipChain(height_tone_texels(input.range_map, input.tone_map), tw, th, 4, levels),
+                  relief_chain(normal_texels(input.range_map, tw, th, input.wrap), tw, th, levels),
                   MipChain(horizon_texels(horizons, input.range_map.size(), 0), tw, th, 4, levels),
                   MipChain(horizon_texels(horizons, input.range_map.size(), 1), tw, th, 4, levels),
                   {}};
@@ -268,9 +247,7 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
                         b = sampler.filtered(sampler.horizons_b, shifted, lod);
         horizon_at = {a.x, a.y, a.z, a.w, b.x, b.y, b.z, b.w};
       }
-      const glm::vec3 chroma(material.range.tone_chroma[0], material.range.tone_chroma[1],
-                             material.range.tone_chroma[2]);
-      const glm::vec3 tone_offset = chroma * (sampler.tone_at(shifted, lod) - 1.0f);
+      const glm::vec3 tone_offset = sampler.tone_at(shifted, lod) - 1.0f;
 
       glm::vec3 colour(0.0f);
       for (std::size_t i = 0; i < scene.lights.size(); ++i) {  // at most kMaxRenderLights: checked on entry

@@ -15,6 +15,7 @@
 #include "carbtf/engine/internal/direction_lookup.hpp"
 #include "carbtf/engine/material/material_directions.hpp"
 #include "carbtf/engine/material/range_tiles.hpp"
+#include "carbtf/engine/render/material_tables.hpp"
 #include "carbtf/engine/render/relief_horizons.hpp"
 #include "carbtf/engine/render/relief_normals.hpp"
 #include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
@@ -33,88 +34,6 @@ static_assert(cost_probe::lookups == gpu::CARBTF_COST_PROBE_LOOKUPS &&
                   cost_probe::relief == gpu::CARBTF_COST_PROBE_RELIEF &&
                   cost_probe::parallax == gpu::CARBTF_COST_PROBE_PARALLAX,
               "the engine's cost probe bits are the shader's");
-
-constexpr std::uint32_t kHeaderWords = sizeof(gpu::MaterialTablesHeader) / 4;
-static_assert(kHeaderWords % 4 == 0, "the tables after the header start on a quad");
-
-std::uint32_t float_bits(float value) {
-  std::uint32_t bits;
-  std::memcpy(&bits, &value, sizeof bits);
-  return bits;
-}
-
-// The quad (16 bytes, one texel of the tables' RGBA32UI view) at which `data` ends, padded to one.
-std::uint32_t next_quad(std::vector<std::uint32_t>& data) {
-  while (data.size() % 4 != 0) data.push_back(0u);
-  return static_cast<std::uint32_t>(data.size() / 4);
-}
-
-// Appends one direction set's lookup (DirectionLookupGpu): each cell's entry range, then each entry
-// inline with its directions' projections.
-void append_lookup(const DirectionTriangulation& triangulation, const DirectionLookupGrid& grid,
-                   std::vector<std::uint32_t>& data, gpu::DirectionLookupGpu& out) {
-  out.count = static_cast<std::uint32_t>(triangulation.points.size());
-  out.grid_size = grid.grid_size;
-  out.cells = next_quad(data);
-  for (std::size_t c = 0; c + 1 < grid.cell_starts.size(); ++c) {
-    data.push_back(grid.cell_starts[c]);
-    data.push_back(grid.cell_starts[c + 1]);
-  }
-  out.entries = next_quad(data);
-  for (const std::uint32_t entry : grid.entries) {
-    std::array<std::uint32_t, 3> index;
-    if ((entry & gpu::CARBTF_LOOKUP_EDGE_BIT) == 0) {
-      index = triangulation.triangles[entry];
-    } else {
-      const auto& edge = triangulation.boundary[entry & ~gpu::CARBTF_LOOKUP_EDGE_BIT];
-      index = {edge[0], edge[1], edge[1]};
-    }
-    const std::size_t start = data.size();
-    data.resize(start + 4 * gpu::CARBTF_LOOKUP_ENTRY_QUADS, 0u);
-    data[start] = index[0] | (entry & gpu::CARBTF_LOOKUP_EDGE_BIT);
-    data[start + 1] = index[1];
-    data[start + 2] = index[2];
-    for (std::size_t k = 0; k < 3; ++k) {
-      data[start + 4 + 2 * k] = float_bits(static_cast<float>(triangulation.points[index[k]][0]));
-      data[start + 5 + 2 * k] = float_bits(static_cast<float>(triangulation.points[index[k]][1]));
-    }
-  }
-}
-
-// The pair table (MaterialTablesHeader::pair_table), two words per (light, view) pair at
-// [2 * (light * views + view)]: its layer in the low 16 bits and its subspace's tone weight as a half
-// float in the high 16, then its gains (write_pair_gains()).
-void write_pair_table(const Material& material, const MaterialTextures& textures,
-                      std::span<std::uint32_t> out) {
-  for (std::size_t l = 0; l < material.lights.size(); ++l) {
-    for (std::size_t v = 0; v < material.views.size(); ++v) {
-      const std::uint32_t s =
-          subspace_of(material, static_cast<std::uint32_t>(l), static_cast<std::uint32_t>(v));
-      const std::uint32_t layer = textures.pair_layers.empty()
-                                      ? textures.layers[s]
-                                      : textures.pair_layers[l * material.views.size() + v];
-      const std::uint32_t field =
-          layer == std::numeric_limits<std::uint32_t>::max() ? gpu::CARBTF_PAIR_NO_LAYER : layer;
-      out[2 * (l * material.views.size() + v)] =
-          field | std::uint32_t{glm::packHalf1x16(material.subspaces[s].tone_weight)} << 16;
-    }
-  }
-}
-
-// The pair table's second words: the pair's gains on R, G and B in 10-bit fixed point (1 each for a
-// material without gains, which multiplies by exactly 1).
-void write_pair_gains(const Material& material, std::span<std::uint32_t> out) {
-  for (std::uint32_t l = 0; l < material.lights.size(); ++l) {
-    for (std::uint32_t v = 0; v < material.views.size(); ++v) {
-      std::uint32_t word = 0;
-      for (std::uint32_t c = 0; c < 3; ++c) {
-        const float gain = material.pair_gains.empty() ? 1.0f : pair_gain(material, l, v, c);
-        word |= pair_gain_units(gain) << (10 * c);
-      }
-      out[2 * (std::size_t{l} * material.views.size() + v) + 1] = word;
-    }
-  }
-}
 
 std::span<const std::uint8_t> as_bytes(const std::vector<float>& values) {
   return {reinterpret_cast<const std::uint8_t*>(values.data()), values.size() * sizeof(float)};
@@ -136,11 +55,6 @@ Status set_range_layer(TextureArray& image, std::uint32_t layer, std::vector<flo
     CARBTF_TRY(image.set_level(layer, l, as_bytes(level)));
   }
   return {};
-}
-
-// A layer the pair table can hold: below CARBTF_PAIR_NO_LAYER, or none.
-bool fits_pair_table(std::uint32_t layer) {
-  return layer < gpu::CARBTF_PAIR_NO_LAYER || layer == std::numeric_limits<std::uint32_t>::max();
 }
 
 }  // namespace
@@ -222,61 +136,24 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     r.cost_probe = info.cost_probe;
     r.pair_coupling = info.pair_coupling;
 
-    // Host side: the tables and the range map.
-    r.tables.assign(kHeaderWords, 0u);
-    gpu::MaterialTablesHeader header{};
-    MaterialDirections directions;
-    CARBTF_TRY(MaterialDirections::build(material, directions, info.lookup_grid_size));
-    append_lookup(directions.light_triangulation(), directions.light_grid(), r.tables, header.lights);
-    append_lookup(directions.view_triangulation(), directions.view_grid(), r.tables, header.views);
-    header.pair_table = next_quad(r.tables);
-    r.pair_table = r.tables.size();
-    r.tables.resize(r.tables.size() + 2 * material.lights.size() * material.views.size());
-    write_pair_table(material, textures, std::span(r.tables).subspan(r.pair_table));
-    write_pair_gains(material, std::span(r.tables).subspan(r.pair_table));
-    next_quad(r.tables);
-    r.pair_layers = !textures.pair_layers.empty();
-    header.pair_gains = material.pair_gains.empty() ? 0u : 1u;
-    header.width = textures.width;
-    header.height = textures.height;
-    header.parallax_scale = info.parallax_scale;
-    header.light_z_floor = relight_floor(material);
+    // Host side (material_tables.hpp): the tables and the relief.
     // The range map gets as many levels as the subspace images have (fewer where the device cannot blit
     // RGBA32F with a linear filter); the render pass reads the levels both have.
     r.mip_levels = textures.mip_levels;
     if (info.max_mip_levels > 0) r.mip_levels = std::min(r.mip_levels, info.max_mip_levels);
     if (!can_blit_mips(context, VK_FORMAT_R32G32B32A32_SFLOAT)) r.mip_levels = 1;
-    header.mip_levels = r.mip_levels;
-    r.range_map.assign(std::size_t{textures.width} * textures.height, 0.0f);
-    r.tone_map.assign(3 * r.range_map.size(), 1.0f);
-    header.wrap = textures.periodic_overlap > 0 ? 1u : 0u;
-    header.shadows = material.range.shadow_scale > 0.0f ? 1u : 0u;
-    header.specular_strength = material.range.specular_strength;
-    header.specular_gloss = material.range.specular_gloss;
-    r.shadows = header.shadows != 0u;
-    if (material.range.tile_size > 0) {
-      const RangeBlock block{info.seed,      info.row0,       info.col0,
-                             textures.width, textures.height, textures.periodic_overlap};
-      enlarge_range_map(material.range, block, r.range_map);
-      if (!material.range.tone.empty()) {
-        // Each channel's tone with its chroma applied (material.hpp), so the fragment stage reads one
-        // factor per channel whether the tone has one plane or three.
-        std::vector<float> plane(r.range_map.size());
-        for (std::size_t k = 0; k < 3; ++k) {
-          if (k == 0 || tone_planes(material.range) == 3)
-            enlarge_range_map(material.range, block, plane, tone_channel(k));
-          const float chroma = material.range.tone_chroma[k];
-          for (std::size_t i = 0; i < plane.size(); ++i)
-            r.tone_map[3 * i + k] = 1.0f + chroma * (plane[i] - 1.0f);
-        }
-      }
-    }
-    double sum = 0.0;
-    for (float h : r.range_map) sum += h;
-    header.range_mean = static_cast<float>(sum / static_cast<double>(r.range_map.size()));
-    std::memcpy(r.tables.data(), &header, sizeof header);
+    const RangeBlock block{info.seed,      info.row0,       info.col0,
+                           textures.width, textures.height, textures.periodic_overlap};
+    ReliefMaps relief = relief_maps(material, block);
+    const MaterialLayers layers{textures.layers, textures.pair_layers};
+    CARBTF_TRY(build_material_tables(material, layers,
+                                     {textures.width, textures.height, relief.wrap, r.mip_levels,
+                                      info.parallax_scale, info.lookup_grid_size},
+                                     relief, r.tables, r.pair_table));
+    r.pair_layers = !textures.pair_layers.empty();
+    r.shadows = material.range.shadow_scale > 0.0f;
 
-    // GPU side.
+    // GPU side: the tables as they are, the range texture's layers with their levels.
     CARBTF_TRY(Buffer::create(
         context,
         {r.tables.size() * 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT,
@@ -284,32 +161,21 @@ Status MaterialBinding::create(Context& context, const Material& material, const
         r.table_buffer));
     std::memcpy(r.table_buffer.mapped(), r.tables.data(), r.tables.size() * 4);
     // The levels come from here, not from blits: the normal layer's w holds each texel's own length.
-    CARBTF_TRY(TextureArray::create(context, textures.width, textures.height, 4,
+    CARBTF_TRY(TextureArray::create(context, textures.width, textures.height, kRangeTextureLayers,
                                     VK_FORMAT_R32G32B32A32_SFLOAT, r.range_image, r.mip_levels, true));
     if (r.range_image->mip_levels() != r.mip_levels)
       return {ErrorCode::vulkan_error, "the range map did not get the subspace images' mip levels"};
-    // Layer 0: the heights (parallax) and the tone; layer 1: the normal (shading).
-    std::vector<float> normals;
-    relief_normals(r.range_map, textures.width, textures.height, header.wrap != 0u, normals);
-    std::vector<float> texels(4 * r.range_map.size(), 0.0f);
-    for (std::size_t i = 0; i < r.range_map.size(); ++i) {
-      texels[4 * i] = r.range_map[i];
-      for (std::size_t k = 0; k < 3; ++k) texels[4 * i + 1 + k] = r.tone_map[3 * i + k];
-    }
-    CARBTF_TRY(set_range_layer(*r.range_image, 0, texels, false));
-    for (std::size_t i = 0; i < r.range_map.size(); ++i) {
-      for (std::size_t k = 0; k < 3; ++k) texels[4 * i + k] = normals[3 * i + k];
-    }
-    CARBTF_TRY(set_range_layer(*r.range_image, 1, texels, true));
-    // Layers 2 and 3: the horizons of azimuths 0-3 and 4-7 (relief_horizons.hpp), 0 without shadows.
-    std::vector<float> horizons;
-    if (header.shadows)
-      relief_horizons(r.range_map, textures.width, textures.height, header.wrap != 0u,
-                      material.range.shadow_scale, horizons);
+    CARBTF_TRY(set_range_layer(*r.range_image, 0, height_tone_texels(relief.heights, relief.tone), false));
+    CARBTF_TRY(set_range_layer(
+        *r.range_image, 1, normal_texels(relief.heights, relief.width, relief.height, relief.wrap), true));
+    const std::vector<float> horizons = relief_horizon_map(relief, material.range.shadow_scale);
+    std::vector<float> texels;
     for (std::uint32_t half = 0; half < 2; ++half) {
-      horizon_layer(horizons, r.range_map.size(), half, texels);
+      horizon_layer(horizons, relief.heights.size(), half, texels);
       CARBTF_TRY(set_range_layer(*r.range_image, 2 + half, texels, false));
     }
+    r.range_map = std::move(relief.heights);
+    r.tone_map = std::move(relief.tone);
 
     const VulkanFunctions& vk = context.vk();
     const VkDevice device = context.device();
@@ -328,7 +194,8 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     sampler_info.mipmapMode =
         r.hardware_filtering ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST;
     sampler_info.addressModeU = sampler_info.addressModeV = sampler_info.addressModeW =
-        header.wrap != 0u ? VK_SAMPLER_ADDRESS_MODE_REPEAT : VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+        textures.periodic_overlap > 0 ? VK_SAMPLER_ADDRESS_MODE_REPEAT
+                                      : VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     sampler_info.minLod = 0.0f;
     sampler_info.maxLod = static_cast<float>(r.mip_levels - 1);
     VkSampler sampler = VK_NULL_HANDLE;
@@ -478,10 +345,10 @@ Status MaterialBinding::set_layers(const Material& material, std::span<const std
   if (!std::all_of(layers.begin(), layers.end(), fits_pair_table)) {
     return {ErrorCode::invalid_argument, "set_layers() got a layer of 65535 or more"};
   }
-  MaterialTextures textures;
-  textures.layers.assign(layers.begin(), layers.end());
+  MaterialLayers subspace_layers;
+  subspace_layers.subspace_layers.assign(layers.begin(), layers.end());
   const std::span<std::uint32_t> table = std::span(r.tables).subspan(r.pair_table, 2 * pairs);
-  write_pair_table(material, textures, table);
+  write_pair_table(material, subspace_layers, table);
   std::memcpy(static_cast<std::uint32_t*>(r.table_buffer.mapped()) + r.pair_table, table.data(),
               table.size_bytes());
   return {};

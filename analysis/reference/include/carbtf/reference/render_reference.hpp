@@ -19,9 +19,10 @@ namespace carbtf::reference {
 struct ReferenceRenderInput {
   const Material* material = nullptr;
   const SynthesizedImages* images = nullptr;  // the subspace images (host copies); unsynthesized ones empty
-  std::span<const float> range_map;           // images->width * images->height heights in texels
-  // The relief tone, 3 per texel: each colour channel's plane (RangeChannel::tone to tone_blue) before its
-  // chroma, which the reference applies from the material; or empty (1 everywhere).
+  // The relief as MaterialBinding uploads it (relief_maps(), material_tables.hpp): images->width *
+  // images->height heights in texels, and 3 tone factors per texel, each colour channel's with its chroma
+  // applied (or empty: 1 everywhere).
+  std::span<const float> range_map;
   std::span<const float> tone_map;
   float parallax_scale = 1.0f;
   // Mip levels to filter with, level 0 included (MaterialBinding::mip_levels()): the reference builds
