@@ -71,7 +71,7 @@ void write_analysis_report(const fs::path& folder, const BtfDataset& dataset, co
                     {*low, std::max(*high, *low + 1e-6f)});
   const std::uint32_t enlarged_size = 512;
   std::vector<float> enlarged(std::size_t{enlarged_size} * enlarged_size);
-  enlarge_range_map(result.material.range, 1, 0, 0, enlarged_size, enlarged_size, enlarged);
+  enlarge_range_map(result.material.range, {1, 0, 0, enlarged_size, enlarged_size}, enlarged);
   write_field_image(folder / "range_enlarged.png", enlarged, enlarged_size, enlarged_size,
                     {*low, std::max(*high, *low + 1e-6f)});
   {

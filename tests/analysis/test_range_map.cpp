@@ -148,7 +148,7 @@ TEST_CASE("Wang range tiles lay out seamlessly and block by block", "[range]") {
 
   const std::uint32_t size = 512;
   std::vector<float> map(std::size_t{size} * size);
-  enlarge_range_map(tiles, 11, 0, 0, size, size, map);
+  enlarge_range_map(tiles, {11, 0, 0, size, size}, map);
   // Seams: the mean absolute step across tile edges is like the step anywhere else.
   double across = 0.0, inside = 0.0;
   std::size_t across_count = 0, inside_count = 0;
@@ -182,8 +182,8 @@ TEST_CASE("Wang range tiles lay out seamlessly and block by block", "[range]") {
 
   // Any block equals the same region of a larger map, also at negative coordinates.
   std::vector<float> block(70 * 90), whole(200 * 200);
-  enlarge_range_map(tiles, 11, -37, 50, 90, 70, block);
-  enlarge_range_map(tiles, 11, -100, 0, 200, 200, whole);
+  enlarge_range_map(tiles, {11, -37, 50, 90, 70}, block);
+  enlarge_range_map(tiles, {11, -100, 0, 200, 200}, whole);
   for (int r = 0; r < 70; ++r)
     for (int c = 0; c < 90; ++c) REQUIRE(block[r * 90 + c] == whole[(r + 63) * 200 + c + 50]);
 
@@ -210,8 +210,8 @@ TEST_CASE("the relief tone is tiled under the heights' layout, texel for texel",
 
   const std::uint32_t size = 200;
   std::vector<float> map(std::size_t{size} * size), toned(map.size());
-  enlarge_range_map(tiles, 5, -13, 7, size, size, map);
-  enlarge_range_map(tiles, 5, -13, 7, size, size, toned, RangeChannel::tone);
+  enlarge_range_map(tiles, {5, -13, 7, size, size}, map);
+  enlarge_range_map(tiles, {5, -13, 7, size, size}, toned, RangeChannel::tone);
   const double tone_step = tiles.tone_scale;
   double worst = 0.0;
   for (std::size_t i = 0; i < map.size(); ++i) worst = std::max(worst, std::abs(toned[i] - tone_of(map[i])));
@@ -229,9 +229,9 @@ TEST_CASE("the relief tone is tiled under the heights' layout, texel for texel",
   for (const auto& f : channel_of) planes.push_back(heights.unaryExpr(f));
   const RangeTiles coloured = build_range_tiles(heights, options, planes);
   REQUIRE(tone_planes(coloured) == 3);
-  enlarge_range_map(coloured, 5, -13, 7, size, size, map);
+  enlarge_range_map(coloured, {5, -13, 7, size, size}, map);
   for (std::size_t k = 0; k < 3; ++k) {
-    enlarge_range_map(coloured, 5, -13, 7, size, size, toned, tone_channel(k));
+    enlarge_range_map(coloured, {5, -13, 7, size, size}, toned, tone_channel(k));
     double channel_worst = 0.0;
     for (std::size_t i = 0; i < map.size(); ++i)
       channel_worst = std::max(channel_worst, std::abs(toned[i] - channel_of[k](map[i])));
@@ -245,7 +245,7 @@ TEST_CASE("the relief tone is tiled under the heights' layout, texel for texel",
 
   // A material without a tone enlarges to 1 everywhere; a tone of the wrong size is refused.
   RangeTiles plain = build_range_tiles(heights, options);
-  enlarge_range_map(plain, 5, 0, 0, size, size, toned, RangeChannel::tone);
+  enlarge_range_map(plain, {5, 0, 0, size, size}, toned, RangeChannel::tone);
   CHECK(std::all_of(toned.begin(), toned.end(), [](float t) { return t == 1.0f; }));
   const Plane small = Plane::Ones(64, 64);
   CHECK_THROWS_AS(build_range_tiles(heights, options, std::span<const Plane>(&small, 1)),
@@ -278,7 +278,7 @@ TEST_CASE("a tone of three colour planes is rounded to keep its colour", "[range
   std::array<std::vector<float>, 3> shown;
   for (std::size_t k = 0; k < 3; ++k) {
     shown[k].resize(std::size_t{size} * size);
-    enlarge_range_map(tiles, 5, 0, 0, size, size, shown[k], tone_channel(k));
+    enlarge_range_map(tiles, {5, 0, 0, size, size}, shown[k], tone_channel(k));
   }
   double stored = 0.0;
   for (std::size_t i = 0; i < shown[0].size(); ++i)
@@ -303,7 +303,7 @@ TEST_CASE("a tone of three colour planes is rounded to keep its colour", "[range
 double worst_period_break(const RangeTiles& tiles, std::uint32_t period) {
   const std::uint32_t size = 4 * tiles.tile_size + period;
   std::vector<float> map(std::size_t{size} * size);
-  enlarge_range_map(tiles, 3, -5, 9, size, size, map);
+  enlarge_range_map(tiles, {3, -5, 9, size, size}, map);
   double worst = 0.0;
   for (std::uint32_t r = 0; r + period < size; ++r) {
     for (std::uint32_t c = 0; c + period < size; ++c) {

@@ -366,6 +366,19 @@ TEST_CASE("requests the GPU path cannot serve fail with a message naming the cau
   CHECK_THAT(status.message(), Catch::Contains("at most 16"));
 
   const Material plain = synthetic_material(1, 2);
+  // A window beyond the 32-bit texture coordinates, or whose burn-in reaches beyond them, is refused
+  // (texture_window.hpp); the CPU reference refuses the same windows.
+  for (const std::int64_t row0 :
+       {std::int64_t{1} << 40, std::int64_t{-2147483647} - 1, std::int64_t{2147483647} - 8}) {
+    SynthesisRequest far = request;
+    far.row0 = row0;
+    status = synthesizer->synthesize(plain, far, images);
+    CHECK(status.code() == ErrorCode::invalid_argument);
+    CHECK_THAT(status.message(), Catch::Contains("32-bit texture coordinates"));
+    std::vector<float> out(std::size_t{far.width} * far.height * plain.subspaces[0].channels);
+    CHECK_THROWS_WITH(reference::synthesize_subspace(plain, 0, far, out),
+                      Catch::Contains("32-bit texture coordinates"));
+  }
   const std::vector<float> too_few(10, 0.0f);
   request.initial_values = too_few;
   status = synthesizer->synthesize(plain, request, images);

@@ -190,7 +190,7 @@ TEST_CASE("a periodic range map repeats its tile grid or folds and has no seam a
   REQUIRE(tiles.tile_size == 16);
   for (const std::uint32_t width : {64u, 60u}) {
     INFO("width " << width << (width % 16 == 0 ? ": whole tiles, the grid repeats" : ": folded"));
-    RangeBlock block{3, -5, 9, width, 48, 8};
+    TextureWindow block{3, -5, 9, width, 48, 8};
     std::vector<float> periodic(std::size_t{width} * 48), plain(periodic.size());
     enlarge_range_map(tiles, block, periodic);
     block.periodic_overlap = 0;
@@ -207,7 +207,7 @@ TEST_CASE("a periodic range map repeats its tile grid or folds and has no seam a
     if (width % 16 == 0) {
       // The same block one period further right and down is the same map.
       std::vector<float> shifted(periodic.size());
-      enlarge_range_map(tiles, RangeBlock{3, -5 + 48, 9 + 64, width, 48, 8}, shifted);
+      enlarge_range_map(tiles, TextureWindow{3, -5 + 48, 9 + 64, width, 48, 8}, shifted);
       CHECK(shifted == periodic);
     }
   }

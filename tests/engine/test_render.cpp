@@ -54,7 +54,7 @@ std::unique_ptr<SubspaceSynthesizer> synthesized(Context& context, const Materia
 
 // Each colour channel's plane of the enlarged tone for the binding's block, interleaved, before its chroma:
 // what relief_maps() applies the chroma to.
-std::vector<float> tone_planes(const Material& m, const RangeBlock& block) {
+std::vector<float> tone_planes(const Material& m, const TextureWindow& block) {
   const std::size_t texels = std::size_t{block.width} * block.height;
   if (m.range.tile_size == 0) return {};
   std::vector<float> plane(texels), out(3 * texels);

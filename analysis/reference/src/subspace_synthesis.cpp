@@ -87,6 +87,8 @@ void synthesize(const Material& material, std::uint32_t subspace, const Subspace
   const std::size_t pixels = std::size_t{block.width} * block.height;
   if (out.size() < pixels * model.channels)
     throw std::invalid_argument("subspace synthesis: output span too small");
+  if (!within_texture_coordinates(block))
+    throw std::invalid_argument("subspace synthesis: the block lies beyond the 32-bit texture coordinates");
   const std::vector<TextureRegion> regions = level_regions(synthesized_region(block), model.levels);
 
   if (stages) {
@@ -100,8 +102,8 @@ void synthesize(const Material& material, std::uint32_t subspace, const Subspace
       CarFieldBlock field;
       field.seed = block.seed;
       field.field_id = field_id_of(subspace, level, channel);
-      field.row0 = static_cast<std::int32_t>(region.row0);
-      field.col0 = static_cast<std::int32_t>(region.col0);
+      field.row0 = region.row0;
+      field.col0 = region.col0;
       field.width = static_cast<std::uint32_t>(region.cols);
       field.height = static_cast<std::uint32_t>(region.rows);
       field.margin = band_burn_in(model.bands[std::size_t{level} * model.channels + channel], block.margin);
@@ -247,8 +249,8 @@ std::vector<std::vector<float>> block_initial_values(const Material& material,
     CarFieldBlock field;
     field.seed = whole.seed;
     field.field_id = field_id_of(band.subspace, band.level, band.channel);
-    field.row0 = static_cast<std::int32_t>(level.row0);
-    field.col0 = static_cast<std::int32_t>(level.col0);
+    field.row0 = level.row0;
+    field.col0 = level.col0;
     field.width = static_cast<std::uint32_t>(level.cols);
     field.height = static_cast<std::uint32_t>(level.rows);
     const CarBandModel& band_model = model.bands[std::size_t{band.level} * model.channels + band.channel];

@@ -34,9 +34,9 @@ SubspaceFidelity subspace_fidelity(const Material& material, const SynthesizedIm
   std::vector<float> heights(std::size_t{w} * h, 0.0f);
   std::vector<std::vector<float>> tones(3, std::vector<float>(heights.size(), 1.0f));
   if (material.range.tile_size > 0) {
-    enlarge_range_map(material.range, 1, 0, 0, w, h, heights);
+    enlarge_range_map(material.range, {1, 0, 0, w, h}, heights);
     for (std::size_t k = 0; k < 3; ++k)
-      enlarge_range_map(material.range, 1, 0, 0, w, h, tones[k], tone_channel(k));
+      enlarge_range_map(material.range, {1, 0, 0, w, h}, tones[k], tone_channel(k));
   }
   Plane height_plane(h, w);
   std::vector<Plane> tone(3, Plane(h, w));

@@ -36,7 +36,7 @@ std::uint32_t tile_at(const RangeTiles& tiles, std::uint64_t seed, std::int64_t 
 }
 
 // The block of the enlarged map, the tile grid repeating every rows x cols tiles where those are > 0.
-void compose_block(const RangeTiles& tiles, const RangeBlock& block, std::int64_t rows, std::int64_t cols,
+void compose_block(const RangeTiles& tiles, const TextureWindow& block, std::int64_t rows, std::int64_t cols,
                    std::span<float> out, RangeChannel channel) {
   const std::uint32_t size = tiles.tile_size;
   const std::size_t texels = std::size_t{size} * size;
@@ -300,13 +300,7 @@ std::uint32_t range_tile_at(const RangeTiles& tiles, std::uint64_t seed, std::in
   return tile_at(tiles, seed, tile_row, tile_col, 0, 0);
 }
 
-void enlarge_range_map(const RangeTiles& tiles, std::uint64_t seed, std::int64_t row0, std::int64_t col0,
-                       std::uint32_t width, std::uint32_t height, std::span<float> out,
-                       RangeChannel channel) {
-  compose_block(tiles, {seed, row0, col0, width, height}, 0, 0, out, channel);
-}
-
-void enlarge_range_map(const RangeTiles& tiles, const RangeBlock& block, std::span<float> out,
+void enlarge_range_map(const RangeTiles& tiles, const TextureWindow& block, std::span<float> out,
                        RangeChannel channel) {
   const std::uint32_t size = tiles.tile_size, overlap = block.periodic_overlap;
   if (overlap == 0) {
@@ -317,7 +311,7 @@ void enlarge_range_map(const RangeTiles& tiles, const RangeBlock& block, std::sp
                   static_cast<std::int64_t>(block.width / size), out, channel);
   } else {
     // Otherwise the map folds as the subspace images do (carbtf_periodic.h), around its mean.
-    RangeBlock grown = block;
+    TextureWindow grown = block;
     grown.width += overlap;
     grown.height += overlap;
     std::vector<float> whole(std::size_t{grown.width} * grown.height);

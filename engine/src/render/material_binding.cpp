@@ -142,8 +142,8 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     r.mip_levels = textures.mip_levels;
     if (info.max_mip_levels > 0) r.mip_levels = std::min(r.mip_levels, info.max_mip_levels);
     if (!can_blit_mips(context, VK_FORMAT_R32G32B32A32_SFLOAT)) r.mip_levels = 1;
-    const RangeBlock block{info.seed,      info.row0,       info.col0,
-                           textures.width, textures.height, textures.periodic_overlap};
+    const TextureWindow block{info.seed,      info.row0,       info.col0,
+                              textures.width, textures.height, textures.periodic_overlap};
     ReliefMaps relief = relief_maps(material, block);
     const MaterialLayers layers{textures.layers, textures.pair_layers};
     CARBTF_TRY(build_material_tables(material, layers,

@@ -131,7 +131,7 @@ Status build_material_tables(const Material& material, const MaterialLayers& lay
   return {};
 }
 
-ReliefMaps relief_maps(const Material& material, const RangeBlock& block) {
+ReliefMaps relief_maps(const Material& material, const TextureWindow& block) {
   ReliefMaps relief;
   relief.width = block.width;
   relief.height = block.height;

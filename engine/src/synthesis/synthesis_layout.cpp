@@ -48,6 +48,13 @@ TextureRegion synthesized_region(const SynthesisBlock& block) {
           std::int64_t{block.width} + block.periodic_overlap};
 }
 
+bool within_texture_coordinates(const SynthesisBlock& block) {
+  const TextureRegion region = synthesized_region(block);
+  const std::int64_t margin = block.margin;
+  return within_field_coordinates(region.row0 - margin, region.rows + margin) &&
+         within_field_coordinates(region.col0 - margin, region.cols + 2 * margin);
+}
+
 float collapsed_band_mean(const SubspaceModel& model, std::uint32_t channel) {
   float sum = 0.0f;
   for (std::uint32_t level = model.levels; level-- > 0;)

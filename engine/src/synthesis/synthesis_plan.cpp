@@ -9,8 +9,6 @@
 namespace carbtf::detail {
 namespace {
 
-constexpr std::int64_t kMaxCoordinate = std::numeric_limits<std::int32_t>::max();
-
 // The fields of one (subspace, channel): all its levels, laid out later.
 struct Stack {
   std::uint32_t subspace = 0;
@@ -211,9 +209,7 @@ Status plan_synthesis(const Material& material, const SynthesisRequest& request,
                                              std::to_string(request.height) + " image on the GPU (" +
                                              "default_periodic_overlap() gives at most 64)"};
   }
-  const TextureRegion region = synthesized_region(request);
-  if (region.row0 + region.rows > kMaxCoordinate || region.col0 + region.cols > kMaxCoordinate ||
-      request.margin > 65536) {
+  if (request.margin > 65536 || !within_texture_coordinates(request)) {
     return {ErrorCode::invalid_argument, "synthesis block or margin beyond the 32-bit texture coordinates"};
   }
   if (request.subspaces.empty()) {

@@ -22,6 +22,7 @@
 #include <span>
 
 #include "carbtf/engine/material/material.hpp"
+#include "carbtf/engine/material/texture_window.hpp"
 
 namespace carbtf {
 
@@ -103,12 +104,6 @@ void fill_unseen_patch_texels(RangeTiles& tiles, std::span<const PatchWindow> wi
 std::uint32_t range_tile_at(const RangeTiles& tiles, std::uint64_t seed, std::int32_t tile_row,
                             std::int32_t tile_col);
 
-// Writes the block [row0, row0 + height) x [col0, col0 + width) of the enlarged map for `seed` into
-// `out` (width * height heights, row-major). Requires tile_size > 0.
-void enlarge_range_map(const RangeTiles& tiles, std::uint64_t seed, std::int64_t row0, std::int64_t col0,
-                       std::uint32_t width, std::uint32_t height, std::span<float> out,
-                       RangeChannel channel = RangeChannel::height);
-
 // How much a tile join steps: the mean absolute height difference between neighbouring texels of the
 // composed tiles, over the pairs a cut separates and over the rest. A join shows as a line at grazing
 // light when `across` is well above `elsewhere` (RangeTiles::feather ramps it). Requires tile_size > 0.
@@ -118,19 +113,12 @@ struct JoinSteps {
 };
 JoinSteps measure_join_steps(const RangeTiles& tiles);
 
-// A block of the enlarged map for `seed`. With periodic_overlap > 0 it tiles with period width x
+// Writes a window of the enlarged map (texture_window.hpp) into `out` (width * height values of `channel`,
+// row-major). Requires tile_size > 0. With periodic_overlap > 0 it tiles with period width x
 // height, as a periodic synthesis of the subspace images does (docs/design.md 4.4): when the tile size
 // divides both, the tile grid repeats (tile coordinates and edge colours wrap), so every relief cell
 // stays whole; otherwise the map of (width + overlap) x (height + overlap) folds around its mean.
-struct RangeBlock {
-  std::uint64_t seed = 0;
-  std::int64_t row0 = 0;
-  std::int64_t col0 = 0;
-  std::uint32_t width = 0;
-  std::uint32_t height = 0;
-  std::uint32_t periodic_overlap = 0;
-};
-void enlarge_range_map(const RangeTiles& tiles, const RangeBlock& block, std::span<float> out,
+void enlarge_range_map(const RangeTiles& tiles, const TextureWindow& window, std::span<float> out,
                        RangeChannel channel = RangeChannel::height);
 
 }  // namespace carbtf

@@ -49,7 +49,7 @@ struct ReliefMaps {
   std::vector<float> tone;
 };
 
-ReliefMaps relief_maps(const Material& material, const RangeBlock& block);
+ReliefMaps relief_maps(const Material& material, const TextureWindow& block);
 
 // The tables as RGBA32UI quads (MaterialTablesHeader first); `pair_table` receives the word offset of
 // the pair table, which write_pair_table() rewrites when the layers change. The header's range mean is

@@ -7,12 +7,15 @@
 
 namespace carbtf {
 
-// A rectangular block of one field. Rows and columns may be negative (burn-in margins).
+// A rectangular block of one field. Rows and columns may be negative (burn-in margins). The fields are
+// addressed in 32 bits: a field is periodic with period 2^32 in rows and columns, and a block's
+// coordinates are taken modulo 2^32 (two's complement), on the GPU and the CPU alike. They are 64-bit,
+// like every window's in carbtf (texture_window.hpp), so that no caller narrows one on the way.
 struct NoiseBlock {
   std::uint64_t seed = 0;
   std::uint32_t field_id = 0;
-  std::int32_t row0 = 0;
-  std::int32_t col0 = 0;
+  std::int64_t row0 = 0;
+  std::int64_t col0 = 0;
   std::uint32_t width = 0;
   std::uint32_t height = 0;
 };

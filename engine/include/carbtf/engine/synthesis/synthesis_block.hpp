@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "carbtf/engine/material/material.hpp"
+#include "carbtf/engine/material/texture_window.hpp"
 
 namespace carbtf {
 
@@ -22,25 +23,21 @@ struct TextureRegion {
   bool operator==(const TextureRegion&) const = default;
 };
 
-// What a synthesis computes, on the CPU and the GPU alike: rows [row0, row0 + height) and columns
-// [col0, col0 + width) of the unbounded texture of `seed`, each band's CAR recursion started from zeros
-// some rows above and columns each side of its level region (burn-in): as many as the band's stability
-// needs for its zero start to fade below a thousandth of a standard deviation, at most `margin`
-// (docs/design.md 4.4).
+// What a synthesis computes, on the CPU and the GPU alike: the window of the unbounded texture of `seed`
+// (texture_window.hpp), rows [row0, row0 + height) and columns [col0, col0 + width), each band's CAR
+// recursion started from zeros some rows above and columns each side of its level region (burn-in): as
+// many as the band's stability needs for its zero start to fade below a thousandth of a standard
+// deviation, at most `margin` (docs/design.md 4.4). The window with its burn-in must lie within the
+// random fields' 32-bit coordinates; a synthesis refuses one that does not.
 //
 // With periodic_overlap p > 0 the output is periodic instead (docs/design.md 4.4): the synthesis covers
 // (width + p) x (height + p) texels from (row0, col0), and the colour step folds the last p columns and
 // rows onto the first p with variance-keeping weights, so that the width x height output tiles without
 // a seam (closed meshes: sphere, cylinder, torus). Texels at least p from the top and left edges equal
 // the non-periodic synthesis of the larger block.
-struct SynthesisBlock {
-  std::uint64_t seed = 0;
-  std::int32_t row0 = 0;
-  std::int32_t col0 = 0;
-  std::uint32_t width = 512;
-  std::uint32_t height = 512;
+struct SynthesisBlock : TextureWindow {
   std::uint32_t margin = 64;  // the most burn-in any band gets
-  std::uint32_t periodic_overlap = 0;
+  SynthesisBlock() : TextureWindow{.width = 512, .height = 512} {}
 };
 
 // The overlap a periodic synthesis of a width x height image uses by default: an eighth of the shorter
@@ -50,6 +47,11 @@ std::uint32_t default_periodic_overlap(std::uint32_t width, std::uint32_t height
 
 // The level-0 region a block's synthesis computes: the block, grown by its periodic overlap.
 TextureRegion synthesized_region(const SynthesisBlock& block);
+
+// Whether the block, grown by its periodic overlap and by `margin` above and on both sides (the most
+// burn-in a band takes), lies within the synthesis's 32-bit texture coordinates (texture_window.hpp). The
+// GPU synthesis and the CPU reference refuse a block that does not.
+bool within_texture_coordinates(const SynthesisBlock& block);
 
 // Block initialization values (the paper's "block initialization values"): to synthesize a block on its
 // own yet equal to the same region of a larger synthesis, each band's recursion starts from that
