@@ -29,19 +29,7 @@ int main(int argc, char** argv) {
       "carbtf: extreme BTF compression (Haindl & Filip) with Vulkan synthesis.\n"
       "Environment: CARBTF_DEVICE picks the Vulkan device (index or part of its name)."};
   app.name("carbtf");
-  carbtf::cli::register_devices_command(app);
-  carbtf::cli::register_noise_command(app);
-  carbtf::cli::register_demo_command(app);
-  carbtf::cli::register_sample_command(app);
-  carbtf::cli::register_info_command(app);
-  carbtf::cli::register_analyze_command(app);
-  carbtf::cli::register_normals_command(app);
-  carbtf::cli::register_synth_command(app);
-  carbtf::cli::register_conform_command(app);
-  carbtf::cli::register_render_command(app);
-  carbtf::cli::register_fidelity_command(app);
-  carbtf::cli::register_bench_command(app);
-  carbtf::cli::check_every_option(app);
+  carbtf::cli::register_all_commands(app);
   try {
     app.parse(argc, argv);
     if (app.get_subcommands().empty()) {

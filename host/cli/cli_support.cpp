@@ -54,11 +54,9 @@ void add_direction_taps_option(CLI::App& command, PairCoupling& coupling) {
                                                                             : PairCoupling::product;
           },
           "(Light, view) pairs the render pass reads per light: 9, every light weight times every view "
-          "weight "
-          "(the paper's), or 5, a staircase of the same weights, exact at the measured pairs, whose render "
-          "pass is about a fifth faster on lavapipe and whose picture between the measured directions "
-          "differs "
-          "(docs/design.md 4.5)")
+          "weight (the paper's), or 5, a staircase of the same weights, exact at the measured pairs, "
+          "whose render pass reads fewer images and whose picture between the measured directions differs "
+          "(docs/design.md 4.5; `carbtf bench frame --parts` measures the difference)")
       ->check(CLI::IsMember(
           {direction_taps_name(PairCoupling::product), direction_taps_name(PairCoupling::staircase)}))
       ->default_str(direction_taps_name(coupling));

@@ -119,12 +119,8 @@ void register_analyze_command(CLI::App& app) {
   command->add_flag_callback(
       "--specular", [&a] { a.relief_specular = AutoChoice::always; },
       "Opt-in: keep the relief's specular lobe wherever it is fitted (highlights where the range map's "
-      "facets turn "
-      "to the half vector of light and view). By default it is kept only where the subspace models look "
-      "nearer "
-      "the measurement with it: fabric's glossy threads, not coast_sand_rocks' moss, whose mean s at 256^2 "
-      "it would "
-      "raise from 0.69 to 0.83");
+      "facets turn to the half vector of light and view). By default it is kept only where the subspace "
+      "models look nearer the measurement with it (docs/figures.md gives the measured difference)");
   command->add_flag(
       "!--no-pair-gains", a.pair_gains,
       "For comparison: leave out the pair gains, per measured light and view the colour gains that give the "

@@ -117,11 +117,30 @@ void run_fidelity_bench(const FidelityBenchOptions& options) {
     legend.push_back(r.variant->name);
   }
   write_output_file(csv_path, csv.str());
+  // The same table as Markdown, for docs/figures.md (scripts/figures.sh): the one place measured
+  // figures live, so that no help text or document carries a copy that goes stale.
+  std::ostringstream md;
+  md << "### " << fs::path(options.dataset).parent_path().filename().string() << "/"
+     << fs::path(options.dataset).filename().string() << " (" << dataset.width() << "x" << dataset.height()
+     << "), seed " << options.seed << ", " << context->device_info().name << "\n\n"
+     << "| variant | KiB | mean s | worst s | mean rel | beats the Gaussian | analysis s |\n"
+     << "|---|---:|---:|---:|---:|---:|---:|\n";
+  for (const VariantResult& r : results) {
+    char row[256];
+    std::snprintf(row, sizeof row, "| %s | %.1f | %.3f | %.3f | %.3f | %zu of %zu | %.0f |\n",
+                  r.variant->name, static_cast<double>(r.bytes) / 1024.0, r.summary.mean_structure,
+                  r.summary.worst_structure, r.summary.mean_rel, r.summary.beats_gaussian, r.summary.pairs,
+                  r.analysis_seconds);
+    md << row;
+  }
+  write_output_file(out.claim("fidelity_size.md"), md.str());
   const Figure plot =
       scatter_figure(points, "MATERIAL SIZE (KIB)", "MEAN S (0 = MEASUREMENT, 1 = GAUSSIAN FIELD)", legend);
   write_rgb_image(out.claim("fidelity_size.png"), plot.rgb, plot.width, plot.height, false);
   std::printf(
-      "wrote %s: one .cbtf per variant, fidelity_size.csv and fidelity_size.png (mean s against size)\n",
+      "wrote %s: one .cbtf per variant, fidelity_size.csv, fidelity_size.md and fidelity_size.png (mean s "
+      "against "
+      "size)\n",
       options.out.c_str());
 }
 
@@ -143,9 +162,10 @@ void register_bench_fidelity_command(CLI::App& bench) {
   command->add_option("--variants", options->variants, "Model variants to compare (default: all):" + names)
       ->delimiter(',');
   command
-      ->add_option("--out", options->out,
-                   "Folder for the materials, CSV and plot (created if missing; existing files there are "
-                   "refused, not overwritten)")
+      ->add_option(
+          "--out", options->out,
+          "Folder for the materials, CSV, Markdown table and plot (created if missing; existing files "
+          "there are refused, not overwritten)")
       ->capture_default_str();
   command->add_option("--seed", options->seed, "Seed of the analysis, the synthesis and the reference noise")
       ->capture_default_str();

@@ -5,6 +5,10 @@
 
 namespace carbtf::cli {
 
+// Every command below, in the order `carbtf --help` lists them, then check_every_option() over them: the
+// whole command line as main() builds it.
+void register_all_commands(CLI::App& app);
+
 void register_devices_command(CLI::App& app);
 void register_noise_command(CLI::App& app);
 void register_demo_command(CLI::App& app);

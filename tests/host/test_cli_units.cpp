@@ -7,7 +7,9 @@
 #include <CLI/CLI.hpp>
 
 #include <cmath>
+#include <functional>
 #include <numbers>
+#include <regex>
 #include <set>
 #include <string>
 #include <utility>
@@ -141,6 +143,35 @@ TEST_CASE("the fidelity run's pairs: the default five and the spread", "[cli_uni
   const std::vector<FidelityPair> again = spread_fidelity_pairs(material, dataset, 16);
   for (std::size_t i = 0; i < spread.size(); ++i)
     CHECK((again[i].light == spread[i].light && again[i].view == spread[i].view));
+}
+
+// A measured figure in a help text goes stale with the next change of the model or the machine; the figures
+// live in docs/figures.md (scripts/figures.sh) and the help says what an option does.
+TEST_CASE("help texts say what an option does, not measured figures", "[cli_units]") {
+  CLI::App app{"carbtf"};
+  register_all_commands(app);
+  const std::regex figure(
+      R"((\d\.\d{2,})|(\d+(\.\d+)? ?(ms|%))|((fifth|quarter|third|half|twice|times) (faster|slower)))");
+  std::vector<std::string> found;
+  std::size_t texts = 0;
+  const std::function<void(const CLI::App&, const std::string&)> walk = [&](const CLI::App& command,
+                                                                            const std::string& path) {
+    const auto check = [&](const std::string& where, const std::string& text) {
+      ++texts;
+      if (std::regex_search(text, figure)) found.push_back(where + ": " + text);
+    };
+    check(path, command.get_description());
+    for (const CLI::Option* option : command.get_options())
+      check(path + " " + option->get_name(), option->get_description());
+    for (const CLI::App* sub : command.get_subcommands({})) walk(*sub, path + " " + sub->get_name());
+  };
+  walk(app, "carbtf");
+  CHECK(texts > 150);  // every command, bench's subcommands and their options were reached
+  for (const std::string& text : found) FAIL_CHECK(text);
+  // The check itself sees a figure where one is.
+  CHECK(std::regex_search(std::string("raise from 0.69 to 0.83"), figure));
+  CHECK(std::regex_search(std::string("about 12 ms per frame"), figure));
+  CHECK_FALSE(std::regex_search(std::string("format 1.5, docs/design.md 4.5"), figure));
 }
 
 TEST_CASE("every command's numbers are checked before it runs", "[cli_units]") {
