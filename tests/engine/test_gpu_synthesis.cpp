@@ -10,34 +10,17 @@
 #include "carbtf/reference/conformance_procedure.hpp"
 #include "carbtf/reference/subspace_synthesis.hpp"
 #include "carbtf/reference/synthetic_material.hpp"
+#include "gpu_reference_harness.hpp"
 #include "test_support.hpp"
 
 using namespace carbtf;
 
 namespace {
 
-std::vector<float> cpu_subspace(const Material& m, std::uint32_t s, const SynthesisRequest& r) {
-  std::vector<float> out(std::size_t{r.width} * r.height * m.subspaces[s].channels);
-  reference::synthesize_subspace(m, s, r, out);  // a request is a SynthesisBlock
-  return out;
-}
-
-std::unique_ptr<SubspaceSynthesizer> make_synthesizer(Context& context) {
-  std::unique_ptr<SubspaceSynthesizer> synthesizer;
-  const Status status = SubspaceSynthesizer::create(context, synthesizer);
-  INFO(status.message());
-  REQUIRE(status.ok());
-  return synthesizer;
-}
-
-SynthesizedImages gpu_synthesize(SubspaceSynthesizer& synthesizer, const Material& m,
-                                 const SynthesisRequest& r) {
-  SynthesizedImages images;
-  const Status status = synthesizer.synthesize(m, r, images);
-  INFO(status.message());
-  REQUIRE(status.ok());
-  return images;
-}
+using test::gpu_synthesize;
+using test::make_synthesizer;
+using test::reference_subspace;
+using test::require_gpu_matches_reference;
 
 // The GPU interpolation of the prepared images at `query` (light theta, phi, view theta, phi) against
 // the CPU blend of `images`, bit for bit; returns the query's weights.
@@ -72,19 +55,7 @@ TEST_CASE("GPU subspace images equal the CPU float32 reference bit for bit, in b
   request.height = 512;
   request.margin = 32;
   request.poison = true;
-  std::vector<std::vector<float>> expected;
-  for (std::uint32_t s = 0; s < 5; ++s) expected.push_back(cpu_subspace(m, s, request));
-  for (CarScheme scheme : {CarScheme::serial, CarScheme::wavefront}) {
-    SECTION(car_scheme_name(scheme)) {
-      request.scheme = scheme;
-      const SynthesizedImages images = gpu_synthesize(*synthesizer, m, request);
-      REQUIRE(synthesizer->scheme() == scheme);
-      for (std::uint32_t s = 0; s < 5; ++s) {
-        INFO("subspace " << s);
-        test::require_bitwise_equal(images.images[s], expected[s], std::size_t{request.width} * 3);
-      }
-    }
-  }
+  require_gpu_matches_reference(*synthesizer, m, request);
   context.require_clean();
 }
 
@@ -112,16 +83,8 @@ TEST_CASE("each unrolled tap count of the CAR kernels (4, 8, 12 and 16 taps) equ
         band = spread_band(neighbourhood, 0.6f, band.sigma, band.mean);
     }
     REQUIRE(validate_material(m).ok());
-    for (CarScheme scheme : {CarScheme::serial, CarScheme::wavefront}) {
-      INFO(neighbourhood.size() << " neighbours, " << car_scheme_name(scheme));
-      request.scheme = scheme;
-      const SynthesizedImages images = gpu_synthesize(*synthesizer, m, request);
-      for (std::uint32_t s = 0; s < 2; ++s) {
-        INFO("subspace " << s);
-        test::require_bitwise_equal(images.images[s], cpu_subspace(m, s, request),
-                                    std::size_t{request.width} * 3);
-      }
-    }
+    INFO(neighbourhood.size() << " neighbours");
+    require_gpu_matches_reference(*synthesizer, m, request);
   }
   context.require_clean();
 }
@@ -175,29 +138,18 @@ TEST_CASE("blocks at negative and odd offsets, split dispatches and small batche
   request.margin = 20;
   request.subspaces = {2, 0};
   request.poison = true;
-  const std::vector<float> expected2 = cpu_subspace(m, 2, request), expected0 = cpu_subspace(m, 0, request);
-  for (CarScheme scheme : {CarScheme::serial, CarScheme::wavefront}) {
-    request.scheme = scheme;
-    synthesizer->set_max_loop_iterations(0);
-    synthesizer->set_max_batch_bytes(0);
-    SynthesizedImages whole = gpu_synthesize(*synthesizer, m, request);
-    REQUIRE(synthesizer->batch_count() == 1);
-    test::require_bitwise_equal(whole.images[2], expected2);
-    test::require_bitwise_equal(whole.images[0], expected0);
-    CHECK(whole.images[1].empty());
-    CHECK(synthesizer->layer_of(2) == 0);
-    CHECK(synthesizer->layer_of(0) == 1);
-    CHECK(synthesizer->layer_of(1) == std::numeric_limits<std::uint32_t>::max());
-
-    // About 40 dispatches per recursion, and one band stack per batch: the colour sums of an image
-    // continue across batches.
-    synthesizer->set_max_loop_iterations(97);
-    synthesizer->set_max_batch_bytes(40 * 1024);
-    SynthesizedImages split = gpu_synthesize(*synthesizer, m, request);
-    CHECK(synthesizer->batch_count() == 6);
-    test::require_bitwise_equal(split.images[2], expected2);
-    test::require_bitwise_equal(split.images[0], expected0);
+  // About 40 dispatches per recursion at a loop cap of 97, and one band stack per batch at 40 KiB: the
+  // colour sums of an image continue across batches.
+  test::SynthesisMatrix matrix;
+  matrix.batch_caps = {0, 40 * 1024};
+  matrix.loop_caps = {0, 97};
+  for (const test::MatrixRun& run : require_gpu_matches_reference(*synthesizer, m, request, matrix)) {
+    CHECK(run.batches == (run.batch_cap == 0 ? 1u : 6u));
+    CHECK(run.images.images[1].empty());
   }
+  CHECK(synthesizer->layer_of(2) == 0);
+  CHECK(synthesizer->layer_of(0) == 1);
+  CHECK(synthesizer->layer_of(1) == std::numeric_limits<std::uint32_t>::max());
   context.require_clean();
 }
 
@@ -211,11 +163,12 @@ TEST_CASE("a 4096x4096 subspace image leaves no texel unwritten and matches the 
   request.width = 4096;
   request.height = 4096;
   request.poison = true;  // output and work memory start as NaN
-  const SynthesizedImages images = gpu_synthesize(*synthesizer, m, request);
+  test::SynthesisMatrix automatic;
+  automatic.schemes = {CarScheme::automatic};
+  const auto runs = require_gpu_matches_reference(*synthesizer, m, request, automatic);
   std::size_t nan = 0;
-  for (float v : images.images[0]) nan += std::isnan(v) ? 1 : 0;
+  for (float v : runs.front().images.images[0]) nan += std::isnan(v) ? 1 : 0;
   CHECK(nan == 0);
-  test::require_bitwise_equal(images.images[0], cpu_subspace(m, 0, request), std::size_t{request.width} * 3);
   context.require_clean();
 }
 
@@ -234,12 +187,10 @@ TEST_CASE("results larger than one readback band come back whole and release() f
   request.height = 150;
   request.margin = 8;
   request.poison = true;
-  const SynthesizedImages images = gpu_synthesize(*synthesizer, m, request);
-  for (std::uint32_t s = 0; s < 3; ++s) {
-    INFO("subspace " << s);
-    test::require_bitwise_equal(images.images[s], cpu_subspace(m, s, request),
-                                std::size_t{request.width} * 3);
-  }
+  test::SynthesisMatrix automatic;
+  automatic.schemes = {CarScheme::automatic};
+  const SynthesizedImages images =
+      require_gpu_matches_reference(*synthesizer, m, request, automatic).front().images;
   const PairWeights weights = require_gpu_interpolation_equal(*synthesizer, m, images, {0.3, 0.4, 0.9, 2.0});
 
   synthesizer->release();
@@ -248,7 +199,7 @@ TEST_CASE("results larger than one readback band come back whole and release() f
   CHECK_FALSE(synthesizer->interpolate(m, weights, gpu).ok());
   request.height = 64;  // a later synthesis prepares afresh
   const SynthesizedImages again = gpu_synthesize(*synthesizer, m, request);
-  test::require_bitwise_equal(again.images[1], cpu_subspace(m, 1, request));
+  test::require_bitwise_equal(again.images[1], reference_subspace(m, 1, request));
   context.require_clean();
 }
 
@@ -301,9 +252,10 @@ TEST_CASE("a near-unit-root band stays bounded and equal to the CPU", "[gpu_synt
   request.height = 512;
   request.margin = 256;
   request.poison = true;
-  const SynthesizedImages images = gpu_synthesize(*synthesizer, m, request);
-  const std::vector<float> expected = cpu_subspace(m, 0, request);
-  test::require_bitwise_equal(images.images[0], expected);
+  test::SynthesisMatrix automatic;
+  automatic.schemes = {CarScheme::automatic};
+  const SynthesizedImages images =
+      require_gpu_matches_reference(*synthesizer, m, request, automatic).front().images;
   float largest = 0.0f;
   for (float v : images.images[0]) largest = std::max(largest, std::abs(v));
   CHECK(std::isfinite(largest));

@@ -9,18 +9,13 @@
 #include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
 #include "carbtf/reference/subspace_synthesis.hpp"
 #include "carbtf/reference/synthetic_material.hpp"
+#include "gpu_reference_harness.hpp"
 #include "test_range_tiles.hpp"
 #include "test_support.hpp"
 
 using namespace carbtf;
 
 namespace {
-
-std::vector<float> cpu_subspace(const Material& m, std::uint32_t s, const SynthesisBlock& block) {
-  std::vector<float> out(std::size_t{block.width} * block.height * m.subspaces[s].channels);
-  reference::synthesize_subspace(m, s, block, out);
-  return out;
-}
 
 // Mean squared difference of channel values `lag` texels apart along rows (horizontal) or columns, over
 // the pairs inside the image, and over the pairs that straddle the wrap (the last `lag` texels of a row
@@ -75,8 +70,7 @@ std::pair<double, double> fold_and_rest_variance(const std::vector<float>& image
 TEST_CASE("periodic GPU subspace images equal the CPU reference bit for bit across schemes and batches",
           "[gpu_synthesis][gpu][periodic]") {
   test::ValidatedContext context;
-  std::unique_ptr<SubspaceSynthesizer> synthesizer;
-  REQUIRE(SubspaceSynthesizer::create(*context, synthesizer).ok());
+  auto synthesizer = test::make_synthesizer(*context);
   const Material m = synthetic_material(3, 3);
   SynthesisRequest request;
   request.seed = 91;
@@ -88,22 +82,12 @@ TEST_CASE("periodic GPU subspace images equal the CPU reference bit for bit acro
   request.periodic_overlap = 9;
   request.subspaces = {2, 0};
   request.poison = true;
-  const std::vector<float> expected2 = cpu_subspace(m, 2, request), expected0 = cpu_subspace(m, 0, request);
-  for (CarScheme scheme : {CarScheme::serial, CarScheme::wavefront}) {
-    INFO(car_scheme_name(scheme));
-    request.scheme = scheme;
-    // One batch, then one band stack per batch: the colour sums of a folded image continue across batches.
-    for (std::uint64_t batch_bytes : {std::uint64_t{0}, std::uint64_t{64 * 1024}}) {
-      synthesizer->set_max_batch_bytes(batch_bytes);
-      SynthesizedImages images;
-      const Status status = synthesizer->synthesize(m, request, images);
-      INFO(status.message());
-      REQUIRE(status.ok());
-      REQUIRE(images.width == 75);
-      REQUIRE(images.height == 33);
-      test::require_bitwise_equal(images.images[2], expected2);
-      test::require_bitwise_equal(images.images[0], expected0);
-    }
+  // One batch, then one band stack per batch: the colour sums of a folded image continue across batches.
+  test::SynthesisMatrix matrix;
+  matrix.batch_caps = {0, 64 * 1024};
+  for (const test::MatrixRun& run : test::require_gpu_matches_reference(*synthesizer, m, request, matrix)) {
+    CHECK(run.images.width == 75);
+    CHECK(run.images.height == 33);
   }
   request.periodic_overlap = 34;  // more than the 33 rows
   SynthesizedImages images;
@@ -125,7 +109,8 @@ TEST_CASE("a periodic image keeps the plain synthesis of the larger block beyond
   plain.periodic_overlap = 0;
   plain.width += 8;
   plain.height += 8;
-  const std::vector<float> folded = cpu_subspace(m, 1, periodic), whole = cpu_subspace(m, 1, plain);
+  const std::vector<float> folded = test::reference_subspace(m, 1, periodic),
+                           whole = test::reference_subspace(m, 1, plain);
   const std::uint32_t channels = m.subspaces[1].channels;
   std::size_t same = 0, folded_differs = 0;
   for (std::uint32_t y = 0; y < periodic.height; ++y) {
@@ -160,8 +145,8 @@ TEST_CASE("across the wrap a periodic image has the statistics it has inside and
   plain.periodic_overlap = 0;
   for (std::uint32_t s = 0; s < 3; ++s) {
     const std::uint32_t channels = m.subspaces[s].channels;
-    const std::vector<float> periodic_image = cpu_subspace(m, s, block),
-                             plain_image = cpu_subspace(m, s, plain);
+    const std::vector<float> periodic_image = test::reference_subspace(m, s, block),
+                             plain_image = test::reference_subspace(m, s, plain);
     for (bool horizontal : {true, false}) {
       for (std::uint32_t lag : {1u, 2u}) {
         INFO("subspace " << s << (horizontal ? ", along rows" : ", along columns") << ", lag " << lag);
