@@ -9,8 +9,10 @@
 #include <numbers>
 #include <random>
 
+#include "carbtf/engine/internal/direction_lookup.hpp"
 #include "carbtf/engine/material/direction_interpolation.hpp"
 #include "carbtf/engine/material/material_directions.hpp"
+#include "carbtf/reference/synthetic_material.hpp"
 #include "test_materials.hpp"
 
 namespace carbtf {
@@ -32,6 +34,15 @@ double l1(const std::vector<double>& a, const std::vector<double>& b) {
 // The direction whose projection is (x, y).
 std::pair<double, double> unproject(double x, double y) {
   return {std::hypot(x, y) * 0.5 * std::numbers::pi, std::atan2(y, x)};
+}
+
+// The weights of one query as a map from direction to weight, to compare two searches.
+std::map<std::uint32_t, double> as_map(const DirectionWeights& w) {
+  std::map<std::uint32_t, double> m;
+  for (int k = 0; k < 3; ++k) {
+    if (w.weight[k] != 0.0f) m[w.index[k]] += w.weight[k];
+  }
+  return m;
 }
 
 }  // namespace
@@ -295,6 +306,38 @@ TEST_CASE("MaterialDirections builds both sets once and answers weights and the 
     const Status s = MaterialDirections::build(m, directions);
     CHECK(s.code() == ErrorCode::invalid_argument);
     CHECK_THAT(s.message(), Catch::Contains("view directions: directions 0 and 1 are the same"));
+  }
+}
+
+TEST_CASE("lookup grids give the triangulation's weights, inside and beyond the measured directions",
+          "[interpolation][lookup]") {
+  for (const auto& directions : {test::ubo2003_material_directions(), synthetic_material(1, 1).lights}) {
+    DirectionTriangulation triangulation;
+    REQUIRE(build_direction_triangulation(directions, triangulation).ok());
+    for (std::uint32_t grid_size : {1u, 7u, 32u, 64u}) {
+      const DirectionLookupGrid grid = build_direction_lookup(triangulation, grid_size);
+      REQUIRE(grid.cell_starts.size() == std::size_t{grid_size} * grid_size + 1);
+      std::mt19937 random(5);
+      std::uniform_real_distribution<double> theta(0.0, 1.5707), phi(0.0, 6.2831);
+      double worst = 0.0;
+      for (int i = 0; i < 4000; ++i) {
+        const double t = theta(random), p = phi(random);
+        const auto q = project_direction(t, p);
+        const auto expected = as_map(direction_weights(triangulation, t, p));
+        const auto actual = as_map(lookup_direction_weights(grid, triangulation, static_cast<float>(q[0]),
+                                                            static_cast<float>(q[1])));
+        for (const auto& [index, weight] : expected) {
+          const double got = actual.count(index) ? actual.at(index) : 0.0;
+          worst = std::max(worst, std::abs(got - weight));
+        }
+        for (const auto& [index, weight] : actual) {
+          if (!expected.count(index)) worst = std::max(worst, weight);
+        }
+      }
+      INFO(directions.size() << " directions, grid " << grid_size);
+      // Float rounding of the barycentrics; a wrong triangle or edge would differ by O(0.1).
+      CHECK(worst < 2e-4);
+    }
   }
 }
 
