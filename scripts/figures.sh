@@ -23,7 +23,7 @@ trap 'rm -rf "$work"' EXIT
   echo "per model variant the material's size, the calibrated structure score s over the five default"
   echo "pairs (0: as near as the measurement to itself, 1: no nearer than a Gaussian field of the same"
   echo "spectrum; docs/design.md 5), rel (1: white noise), how many pairs beat the Gaussian reference,"
-  echo "and the analysis time on the machine named."
+  echo "and the analysis time on the machine named (wall time: it varies with what else the machine runs)."
   echo
 } > "$work/figures.md"
 for sample in leather fabric coast_sand_rocks; do
