@@ -153,6 +153,35 @@ TEST_CASE("blocks at negative and odd offsets, split dispatches and small batche
   context.require_clean();
 }
 
+TEST_CASE("the timing's parts cover the synthesis from its first timestamp to its last, batch by batch",
+          "[gpu_synthesis][gpu]") {
+  test::ValidatedContext context;
+  auto synthesizer = make_synthesizer(*context);
+  const Material m = synthetic_material(3, 2);
+  SynthesisRequest request;
+  request.seed = 5;
+  request.width = 64;
+  request.height = 48;
+  request.margin = 8;
+  synthesizer->set_max_batch_bytes(40 * 1024);  // several batches: the parts add up across them
+  SynthesizedImages images;
+  SynthesisTiming timing;
+  const Status status = synthesizer->synthesize(m, request, images, &timing);
+  INFO(status.message());
+  REQUIRE(status.ok());
+  CHECK(timing.batches == synthesizer->batch_count());
+  CHECK(timing.batches > 1);
+  CHECK(timing.dispatches > 0);
+  if (context->device_info().timestamp_valid_bits > 0) {
+    const double parts = timing.prepare_ms + timing.car_ms + timing.collapse_ms + timing.colour_ms;
+    for (double part : {timing.prepare_ms, timing.car_ms, timing.collapse_ms, timing.colour_ms})
+      CHECK(part >= 0.0);
+    CHECK(timing.car_ms > 0.0);
+    CHECK(parts == Approx(timing.total_ms).epsilon(1e-9).margin(1e-9));
+  }
+  context.require_clean();
+}
+
 TEST_CASE("a 4096x4096 subspace image leaves no texel unwritten and matches the CPU",
           "[gpu_synthesis][gpu][large][slow]") {
   test::ValidatedContext context;

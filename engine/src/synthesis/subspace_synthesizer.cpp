@@ -326,9 +326,10 @@ Status SubspaceSynthesizer::record(VkCommandBuffer command_buffer, bool timed) c
         .dispatches = p.dispatches};
     for (const detail::BatchPass& pass : detail::kBatchPasses) {
       pass.record(recording);
-      if (pass.timestamp_after && timed)
-        p.timer.record_timestamp(command_buffer, stamp, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
-      stamp += pass.timestamp_after ? 1 : 0;
+      if (pass.timed_into != nullptr) {
+        if (timed) p.timer.record_timestamp(command_buffer, stamp, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT);
+        ++stamp;
+      }
       if (pass.completes != SynthesisStage::none && pass.completes == p.capture_stage) {
         detail::record_capture(vk, command_buffer, p.arena.handle(), p.capture.handle(), p.capture_offsets[b],
                                recording.window_bytes);
@@ -410,19 +411,16 @@ Status SubspaceSynthesizer::timing(SynthesisTiming& out) const noexcept {
   out.dispatches = prepared_->dispatches;
   if (!prepared_->timer_ready) return {};
   const GpuTimer& timer = prepared_->timer;
-  std::uint32_t previous = 0;
+  // The stamps record() wrote: 0 at the start, then one after each timed pass of each batch.
+  std::uint32_t previous = 0, stamp = 1;
   for (std::uint32_t b = 0; b < out.batches; ++b) {
-    const std::uint32_t stamp = 1 + kTimestampsPerBatch * b;
-    double ms[4] = {};
-    CARBTF_TRY(timer.elapsed_ms(previous, stamp, ms[0]));
-    CARBTF_TRY(timer.elapsed_ms(stamp, stamp + 1, ms[1]));
-    CARBTF_TRY(timer.elapsed_ms(stamp + 1, stamp + 2, ms[2]));
-    CARBTF_TRY(timer.elapsed_ms(stamp + 2, stamp + 3, ms[3]));
-    out.prepare_ms += ms[0];
-    out.car_ms += ms[1];
-    out.collapse_ms += ms[2];
-    out.colour_ms += ms[3];
-    previous = stamp + 3;
+    for (const detail::BatchPass& pass : detail::kBatchPasses) {
+      if (pass.timed_into == nullptr) continue;
+      double ms = 0.0;
+      CARBTF_TRY(timer.elapsed_ms(previous, stamp, ms));
+      out.*pass.timed_into += ms;
+      previous = stamp++;
+    }
   }
   CARBTF_TRY(timer.elapsed_ms(0, previous, out.total_ms));
   return {};

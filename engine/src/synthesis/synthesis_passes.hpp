@@ -60,7 +60,9 @@ struct BatchPass {
   const char* name;
   BatchPassRecorder record;
   SynthesisStage completes;  // a capture of this stage is taken after the pass (none: no capture)
-  bool timestamp_after;      // SynthesisTiming's split points
+  // A timestamp follows the pass where set: the time since the previous one adds to this field of
+  // SynthesisTiming (the split points of timing()).
+  double SynthesisTiming::*timed_into;
 };
 
 // The work buffer reused from the previous batch (and poisoned, if asked).
@@ -79,19 +81,19 @@ void record_colour(const BatchRecording& r);
 void record_fold(const BatchRecording& r);
 
 inline constexpr std::array<BatchPass, 7> kBatchPasses{{
-    {"reset", record_arena_reset, SynthesisStage::none, false},
-    {"frames", record_frames, SynthesisStage::none, false},
-    {"noise", record_noise, SynthesisStage::noise, true},
-    {"car", record_car, SynthesisStage::car, true},
-    {"collapse", record_collapse, SynthesisStage::collapse, true},
-    {"colour", record_colour, SynthesisStage::none, false},
-    {"fold", record_fold, SynthesisStage::none, true},
+    {"reset", record_arena_reset, SynthesisStage::none, nullptr},
+    {"frames", record_frames, SynthesisStage::none, nullptr},
+    {"noise", record_noise, SynthesisStage::noise, &SynthesisTiming::prepare_ms},
+    {"car", record_car, SynthesisStage::car, &SynthesisTiming::car_ms},
+    {"collapse", record_collapse, SynthesisStage::collapse, &SynthesisTiming::collapse_ms},
+    {"colour", record_colour, SynthesisStage::none, nullptr},
+    {"fold", record_fold, SynthesisStage::none, &SynthesisTiming::colour_ms},
 }};
 
-// Timestamps per batch, one after each pass that asks for it.
+// Timestamps per batch, one after each pass that is timed.
 inline constexpr std::uint32_t kTimestampsPerBatch = [] {
   std::uint32_t count = 0;
-  for (const BatchPass& pass : kBatchPasses) count += pass.timestamp_after ? 1 : 0;
+  for (const BatchPass& pass : kBatchPasses) count += pass.timed_into != nullptr ? 1 : 0;
   return count;
 }();
 
