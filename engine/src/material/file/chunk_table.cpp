@@ -5,7 +5,7 @@
 
 namespace carbtf::detail {
 
-// Each defined in chunks/, with its layout.
+// The chunks' codecs, each defined in chunks/ with its layout.
 extern const ChunkCodec kSettingsChunk, kDirectionsChunk, kIndexChunk, kSubspacesChunk, kRangeChunk,
     kToneChunk, kToneWeightsChunk, kToneChromaChunk, kFeatherChunk, kShadowsChunk, kPairGainsChunk,
     kSpecularChunk;
@@ -14,9 +14,19 @@ namespace {
 
 // The writer's order. A reader takes the chunks in any order; a new chunk is one more row here.
 constexpr std::array<const ChunkCodec*, 12> kMaterialChunks{
-    &kSettingsChunk, &kDirectionsChunk, &kIndexChunk,       &kSubspacesChunk,
-    &kRangeChunk,    &kToneChunk,       &kToneWeightsChunk, &kToneChromaChunk,
-    &kFeatherChunk,  &kShadowsChunk,    &kPairGainsChunk,   &kSpecularChunk};
+    &kSettingsChunk,     // SETT
+    &kDirectionsChunk,   // DIRS
+    &kIndexChunk,        // INDX
+    &kSubspacesChunk,    // SUBS
+    &kRangeChunk,        // RNGE
+    &kToneChunk,         // TONE (1.1)
+    &kToneWeightsChunk,  // TWGT (1.2)
+    &kToneChromaChunk,   // TCHR (1.4)
+    &kFeatherChunk,      // FTHR (1.6)
+    &kShadowsChunk,      // SHDW (1.8)
+    &kPairGainsChunk,    // PGAN (1.9)
+    &kSpecularChunk,     // SPEC (1.10)
+};
 
 }  // namespace
 
