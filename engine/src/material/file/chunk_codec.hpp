@@ -39,7 +39,11 @@ struct ChunkCodec {
   std::string (*finish)(MaterialDecoding&) = nullptr;
 };
 
-// The u32 lights, u32 views that DIRS, INDX and PGAN begin with, bounded.
+// The u32 lights, u32 views that DIRS, INDX and PGAN begin with; read back bounded.
+inline void encode_direction_counts(const Material& m, ByteWriter& w) {
+  w.u32(static_cast<std::uint32_t>(m.lights.size()));
+  w.u32(static_cast<std::uint32_t>(m.views.size()));
+}
 inline bool decode_direction_counts(ByteReader& r, std::uint32_t& lights, std::uint32_t& views) {
   lights = r.u32();
   views = r.u32();

@@ -10,8 +10,7 @@ extern const ChunkCodec kDirectionsChunk{
     .required = true,
     .encode =
         [](const Material& m, ByteWriter& w) {
-          w.u32(static_cast<std::uint32_t>(m.lights.size()));
-          w.u32(static_cast<std::uint32_t>(m.views.size()));
+          encode_direction_counts(m, w);
           for (const auto* set : {&m.lights, &m.views}) {
             for (const MaterialDirection& d : *set) {
               w.f32(d.theta);

@@ -10,8 +10,7 @@ extern const ChunkCodec kIndexChunk{
     .required = true,
     .encode =
         [](const Material& m, ByteWriter& w) {
-          w.u32(static_cast<std::uint32_t>(m.lights.size()));
-          w.u32(static_cast<std::uint32_t>(m.views.size()));
+          encode_direction_counts(m, w);
           w.bytes(m.subspace_index);
         },
     .decode =

@@ -13,8 +13,7 @@ extern const ChunkCodec kPairGainsChunk{
     .present = [](const Material& m) { return !m.pair_gains.empty(); },
     .encode =
         [](const Material& m, ByteWriter& w) {
-          w.u32(static_cast<std::uint32_t>(m.lights.size()));
-          w.u32(static_cast<std::uint32_t>(m.views.size()));
+          encode_direction_counts(m, w);
           w.bytes(m.pair_gains);
         },
     .decode =
