@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <set>
 #include <sstream>
 #include <string>
@@ -174,6 +175,11 @@ TEST_CASE("carbtf bench fidelity sets each model option's size beside its fideli
   REQUIRE(r.status == 0);
   CHECK_THAT(r.output, Catch::Contains("paper") && Catch::Contains("tone64") && Catch::Contains("KiB"));
   CHECK(fs::exists(out / "fidelity_size.png"));
+  // The Markdown table scripts/figures.sh assembles docs/figures.md from: a row per variant.
+  std::ifstream markdown(out / "fidelity_size.md");
+  const std::string table((std::istreambuf_iterator<char>(markdown)), std::istreambuf_iterator<char>());
+  CHECK_THAT(table, Catch::Contains("| variant | KiB | mean s |") && Catch::Contains("| paper | ") &&
+                        Catch::Contains("| tone64 | "));
   std::ifstream csv(out / "fidelity_size.csv");
   std::string line;
   std::getline(csv, line);
