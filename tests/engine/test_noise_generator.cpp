@@ -12,7 +12,9 @@ namespace {
 
 std::vector<float> cpu_block(const NoiseBlock& b) {
   std::vector<float> values(std::size_t{b.width} * b.height);
-  reference::fill_noise_block(b.seed, b.field_id, b.row0, b.col0, b.width, b.height, values);
+  // The field's coordinates are taken modulo 2^32 (noise_block.hpp), as the GPU takes them.
+  reference::fill_noise_block(b.seed, b.field_id, static_cast<std::int32_t>(b.row0),
+                              static_cast<std::int32_t>(b.col0), b.width, b.height, values);
   return values;
 }
 

@@ -86,10 +86,6 @@ Status SubspaceSynthesizer::create(Context& context, std::unique_ptr<SubspaceSyn
   }
 }
 
-Status SubspaceSynthesizer::build_car_pipeline(CarScheme scheme, std::uint32_t variant) noexcept {
-  return pipelines_->build_car(*context_, scheme, variant);
-}
-
 void SubspaceSynthesizer::release() noexcept {
   prepared_.reset();
 }
@@ -159,7 +155,7 @@ Status SubspaceSynthesizer::prepare(const Material& material, const SynthesisReq
     }
     for (const detail::PlannedBatch& batch : plan.batches) {
       for (const detail::CarRun& run : batch.car_runs)
-        CARBTF_TRY(build_car_pipeline(prepared->scheme, run.tap_variant));
+        CARBTF_TRY(pipelines_->build_car(*context_, prepared->scheme, run.tap_variant));
     }
 
     // Tables: per batch the fields, each level's collapse items and the colour items, each aligned.

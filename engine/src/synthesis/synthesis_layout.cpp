@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 
 #include "carbtf/engine/material/car_stability.hpp"
 
@@ -49,10 +50,15 @@ TextureRegion synthesized_region(const SynthesisBlock& block) {
 }
 
 bool within_texture_coordinates(const SynthesisBlock& block) {
+  // [first, first + count) within the two's complement 32-bit rows or columns.
+  const auto within = [](std::int64_t first, std::int64_t count) {
+    return first >= std::numeric_limits<std::int32_t>::min() &&
+           first <= std::int64_t{std::numeric_limits<std::int32_t>::max()} - count + 1;  // no overflow
+  };
   const TextureRegion region = synthesized_region(block);
   const std::int64_t margin = block.margin;
-  return within_field_coordinates(region.row0 - margin, region.rows + margin) &&
-         within_field_coordinates(region.col0 - margin, region.cols + 2 * margin);
+  return within(region.row0 - margin, region.rows + margin) &&
+         within(region.col0 - margin, region.cols + 2 * margin);
 }
 
 float collapsed_band_mean(const SubspaceModel& model, std::uint32_t channel) {

@@ -3,11 +3,11 @@
 // synthesis_block.hpp) and the material binding (MaterialBindingInfo) all name their window with it, so
 // a host moves one window between them. Coordinates are 64-bit everywhere. The synthesis's pyramid works in
 // 32-bit texture coordinates (its random fields repeat every 2^32, noise_block.hpp): a synthesis refuses a
-// window whose rows or columns, with their burn-in, lie beyond them; the range map has no such limit.
+// window whose rows or columns, with their burn-in, lie beyond them (within_texture_coordinates(),
+// synthesis_block.hpp); the range map has no such limit.
 #pragma once
 
 #include <cstdint>
-#include <limits>
 
 namespace carbtf {
 
@@ -22,14 +22,5 @@ struct TextureWindow {
   // onto the first; the range map's tile grid repeats, or its larger map folds around its mean.
   std::uint32_t periodic_overlap = 0;
 };
-
-// The synthesis's coordinates: two's complement 32-bit rows and columns.
-inline constexpr std::int64_t kMinFieldCoordinate = std::numeric_limits<std::int32_t>::min();
-inline constexpr std::int64_t kMaxFieldCoordinate = std::numeric_limits<std::int32_t>::max();
-
-// Whether [first, first + count) lies within them.
-constexpr bool within_field_coordinates(std::int64_t first, std::int64_t count) {
-  return first >= kMinFieldCoordinate && count >= 0 && first <= kMaxFieldCoordinate - count + 1;
-}
 
 }  // namespace carbtf

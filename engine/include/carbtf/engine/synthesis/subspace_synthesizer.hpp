@@ -109,8 +109,6 @@ class SubspaceSynthesizer {
   SubspaceSynthesizer() = default;
   struct Pipelines;
   struct Prepared;
-  // The CAR kernel of `variant`'s tap count for `scheme`, built on first need.
-  Status build_car_pipeline(CarScheme scheme, std::uint32_t variant) noexcept;
 
   Context* context_ = nullptr;
   std::unique_ptr<Pipelines> pipelines_;
