@@ -1,6 +1,7 @@
 #include "carbtf/analysis/analyze.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -110,6 +111,26 @@ SubspaceModel fit_channels(const std::vector<Plane>& channels, LightView pair, s
   round_to_stored_precision(model);
   return model;
 }
+
+// The groups of bands whose sigma gains the analysis chooses, in this order. After the gain on every band
+// and on the chroma bands alone (where the tone already gives the threads their colours, the CAR's
+// chroma is blotches), the gains per scale: the fitted noise spreads its variance over the pyramid's levels
+// unlike the measurement. The finest level's (periods of 2 to 4 texels) is too strong, chroma most: the
+// CAR's residual there is white, where a measured image's colour is band-limited (the camera's and the
+// JPEG's 4:2:0 chroma); the coarser levels' is too weak, by 5 to 10 dB in coast_sand_rocks' a* at periods
+// of 16 to 64 texels (its moss and sand patches), so they may also be raised (docs/design.md 5.3).
+enum class Scales { every, finest, coarser };
+struct GainGroup {
+  bool chroma_only;
+  Scales scales;
+  bool raises;  // candidates from AnalysisOptions::noise_raises, else noise_gains
+};
+constexpr std::array<GainGroup, 6> kGainGroups{{{false, Scales::every, false},
+                                                {true, Scales::every, false},
+                                                {false, Scales::finest, false},
+                                                {true, Scales::finest, false},
+                                                {false, Scales::coarser, true},
+                                                {true, Scales::coarser, true}}};
 
 // The model of one subspace image; notes name the band they concern.
 SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plane& range_map,
@@ -224,35 +245,48 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
       }
     }
   }
-  // The gains, first on every band, then on the chroma bands alone (the colour PCA's second and third):
-  // where the tone already gives the threads their colours, the CAR's chroma is blotches.
-  double best_gain = 1.0, best_chroma_gain = 1.0;
+  // The gains on the bands' sigma, group after group, each on top of the ones chosen before it.
+  std::array<double, kGainGroups.size()> chosen_gains;
+  chosen_gains.fill(1.0);
   std::size_t gain_candidates = 0;
-  for (const bool chroma_only : {false, true}) {
+  for (std::size_t group = 0; group < kGainGroups.size(); ++group) {
+    const GainGroup& g = kGainGroups[group];
+    if (!options.gains_per_scale && g.scales != Scales::every) continue;
     const SubspaceModel chosen = *best;
-    for (const double gain : options.noise_gains) {
+    const auto selected = [&](std::size_t band) {
+      const std::size_t level = band / chosen.channels, channel = band % chosen.channels;
+      return (!g.chroma_only || channel != 0) &&
+             (g.scales == Scales::every || (level == 0) == (g.scales == Scales::finest));
+    };
+    bool any = false;
+    for (std::size_t b = 0; b < chosen.bands.size(); ++b) any = any || selected(b);
+    if (!any) continue;  // a one-level model has no coarser levels
+    for (const double gain : g.raises ? options.noise_raises : options.noise_gains) {
       if (gain == 1.0) continue;
       ++gain_candidates;
-      SubspaceModel quieter = chosen;
-      for (std::size_t b = 0; b < quieter.bands.size(); ++b) {
-        if (chroma_only && b % quieter.channels == 0) continue;
-        quieter.bands[b].sigma = to_stored_precision(static_cast<float>(quieter.bands[b].sigma * gain));
+      SubspaceModel candidate = chosen;
+      for (std::size_t b = 0; b < candidate.bands.size(); ++b) {
+        if (selected(b))
+          candidate.bands[b].sigma = to_stored_precision(static_cast<float>(candidate.bands[b].sigma * gain));
       }
-      const double distance = distance_of(quieter, best_share);
+      const double distance = distance_of(candidate, best_share);
       if (distance < best_distance) {
-        best = std::move(quieter);
+        best = std::move(candidate);
         best_distance = distance;
-        (chroma_only ? best_chroma_gain : best_gain) = gain;
+        chosen_gains[group] = gain;
       }
     }
   }
   notes = std::move(best_notes);
-  char line[240];
-  std::snprintf(line, sizeof line,
-                "tone weight %.2g, remainder clamp %.2g, %u pyramid levels, noise gain %.2g, chroma gain "
-                "%.2g chosen of %zu candidates (texture distance %.3f, mean of %u draws)",
-                static_cast<double>(best->tone_weight), best_clamp, best->levels, best_gain, best_chroma_gain,
-                candidates + gain_candidates, best_distance, draws);
+  char line[320];
+  std::snprintf(
+      line, sizeof line,
+      "tone weight %.2g, remainder clamp %.2g, %u pyramid levels, noise gain %.2g, chroma gain %.2g, "
+      "finest level %.2g (chroma %.2g), coarser levels %.2g (chroma %.2g) chosen of %zu candidates "
+      "(texture distance %.3f, mean of %u draws)",
+      static_cast<double>(best->tone_weight), best_clamp, best->levels, chosen_gains[0], chosen_gains[1],
+      chosen_gains[2], chosen_gains[3], chosen_gains[4], chosen_gains[5], candidates + gain_candidates,
+      best_distance, draws);
   notes.emplace_back(line);
   chosen_distance = best_distance;
   return *best;

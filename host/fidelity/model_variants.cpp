@@ -28,7 +28,7 @@ const std::vector<ModelVariant>& model_variants() {
       {"default",
        "relief tone (R, G, B planes where its colour is not grey), 128-texel tiles with feathered cuts, "
        "6-bit heights, "
-       "4-bit tone; clamp, levels and noise gains chosen per subspace",
+       "4-bit tone; clamp, levels and noise gains per scale chosen per subspace",
        [](AnalysisOptions&) {}},
       {"specular", "the default with the relief's specular lobe wherever it is fitted (--specular)",
        [](AnalysisOptions& o) { o.relief_specular = AutoChoice::always; }},
@@ -39,7 +39,12 @@ const std::vector<ModelVariant>& model_variants() {
       {"no_pair_gains", "the default without the per-pair colour gains",
        [](AnalysisOptions& o) { o.pair_gains = false; }},
       {"no_noise_gains", "the default with every subspace's fitted sigma",
-       [](AnalysisOptions& o) { o.noise_gains = {1.0}; }},
+       [](AnalysisOptions& o) {
+         o.noise_gains = {1.0};
+         o.noise_raises = {1.0};
+       }},
+      {"uniform_noise_gains", "the default with its noise gains on every pyramid level alike",
+       [](AnalysisOptions& o) { o.gains_per_scale = false; }},
       {"grey_tone", "the default with a grey relief tone everywhere",
        [](AnalysisOptions& o) { o.tone_planes = TonePlanes::never; }},
       {"hard_cuts", "the default with hard range-tile cuts", [](AnalysisOptions& o) { o.tiles.feather = 0; }},
