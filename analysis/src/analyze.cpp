@@ -112,25 +112,29 @@ SubspaceModel fit_channels(const std::vector<Plane>& channels, LightView pair, s
   return model;
 }
 
-// The groups of bands whose sigma gains the analysis chooses, in this order. After the gain on every band
-// and on the chroma bands alone (where the tone already gives the threads their colours, the CAR's
-// chroma is blotches), the gains per scale: the fitted noise spreads its variance over the pyramid's levels
-// unlike the measurement. The finest level's (periods of 2 to 4 texels) is too strong, chroma most: the
-// CAR's residual there is white, where a measured image's colour is band-limited (the camera's and the
-// JPEG's 4:2:0 chroma); the coarser levels' is too weak, by 5 to 10 dB in coast_sand_rocks' a* at periods
-// of 16 to 64 texels (its moss and sand patches), so they may also be raised (docs/design.md 5.3).
+// The groups of bands whose sigma gains the analysis chooses, in this order, each gain on top of the ones
+// before. The fitted noise spreads its variance over the pyramid's levels unlike the measurement: the
+// finest level's (periods of 2 to 4 texels) is too strong, chroma most, since the CAR's residual there is
+// white where a measured image's colour is band-limited (the camera's and the JPEG's 4:2:0 chroma); the
+// coarser levels' is too weak, by 5 to 10 dB in coast_sand_rocks' a* at periods of 16 to 64 texels (its
+// moss and sand patches). So the finest level's gains come first, then the coarser levels', which may
+// also raise them, each on all bands and then on the chroma alone; last the gains on every band and on
+// the chroma bands, which scale the whole model (where the tone already gives the threads their
+// colours, the CAR's chroma is blotches). With the whole-model gains first, a subspace at grazing light
+// took 0 and lost its colour for good, whatever the later groups offered (docs/design.md 5.3).
 enum class Scales { every, finest, coarser };
+enum class Gains { lower, lower_or_raise };  // AnalysisOptions::noise_gains, and noise_raises
 struct GainGroup {
   bool chroma_only;
   Scales scales;
-  bool raises;  // candidates from AnalysisOptions::noise_raises, else noise_gains
+  Gains gains;
 };
-constexpr std::array<GainGroup, 6> kGainGroups{{{false, Scales::every, false},
-                                                {true, Scales::every, false},
-                                                {false, Scales::finest, false},
-                                                {true, Scales::finest, false},
-                                                {false, Scales::coarser, true},
-                                                {true, Scales::coarser, true}}};
+constexpr std::array<GainGroup, 6> kGainGroups{{{false, Scales::finest, Gains::lower},
+                                                {true, Scales::finest, Gains::lower},
+                                                {false, Scales::coarser, Gains::lower_or_raise},
+                                                {true, Scales::coarser, Gains::lower_or_raise},
+                                                {false, Scales::every, Gains::lower},
+                                                {true, Scales::every, Gains::lower}}};
 
 // The model of one subspace image; notes name the band they concern.
 SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plane& range_map,
@@ -261,7 +265,10 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
     bool any = false;
     for (std::size_t b = 0; b < chosen.bands.size(); ++b) any = any || selected(b);
     if (!any) continue;  // a one-level model has no coarser levels
-    for (const double gain : g.raises ? options.noise_raises : options.noise_gains) {
+    std::vector<double> gains = options.noise_gains;
+    if (g.gains == Gains::lower_or_raise)
+      gains.insert(gains.end(), options.noise_raises.begin(), options.noise_raises.end());
+    for (const double gain : gains) {
       if (gain == 1.0) continue;
       ++gain_candidates;
       SubspaceModel candidate = chosen;
@@ -281,8 +288,8 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
   char line[320];
   std::snprintf(
       line, sizeof line,
-      "tone weight %.2g, remainder clamp %.2g, %u pyramid levels, noise gain %.2g, chroma gain %.2g, "
-      "finest level %.2g (chroma %.2g), coarser levels %.2g (chroma %.2g) chosen of %zu candidates "
+      "tone weight %.2g, remainder clamp %.2g, %u pyramid levels, noise gains: finest level %.2g (chroma "
+      "%.2g), coarser levels %.2g (chroma %.2g), noise gain %.2g, chroma gain %.2g chosen of %zu candidates "
       "(texture distance %.3f, mean of %u draws)",
       static_cast<double>(best->tone_weight), best_clamp, best->levels, chosen_gains[0], chosen_gains[1],
       chosen_gains[2], chosen_gains[3], chosen_gains[4], chosen_gains[5], candidates + gain_candidates,

@@ -86,19 +86,18 @@ struct AnalysisOptions {
   // coast_sand_rocks 0.208 -> 0.201; leather keeps 3 everywhere, the same model. Empty: fixed.
   std::vector<std::uint32_t> other_level_counts = {2};
   // With the relief tone and a clamp list: after the clamp, tone weight and level count, the candidate
-  // gains on every band's sigma (the smooth texture's contrast around its mean), chosen per subspace by
-  // the same measure. Where the tone and the relit range map already draw what the image holds, the
-  // CAR's remainder is mostly the relief's misregistration, and at full strength it puts speckle on
+  // gains on the bands' sigma (the smooth texture's contrast around its mean), chosen per subspace by the
+  // same measure, group after group (analyze.cpp, kGainGroups): the finest pyramid level's bands, its
+  // chroma, the coarser levels' bands, their chroma (these two may also take noise_raises), then every
+  // band and the chroma bands. Where the tone and the relit range map already draw what the image holds,
+  // the CAR's remainder is mostly the relief's misregistration, and at full strength it puts speckle on
   // leather's flat cells. Empty or {1}: the fitted sigma.
-  // With gains_per_scale, the same gains are then tried on the finest pyramid level's bands and on its
-  // chroma alone.
   std::vector<double> noise_gains = {1.0, 0.7, 0.5, 0.35, 0.25, 0.125, 0.0};
-  // Last, the candidate gains on the coarser levels' bands, then on their chroma alone, which may raise
-  // them (analyze.cpp, kGainGroups): at 256^2 coast_sand_rocks' mean s over the five pairs, seed 1, went
-  // from 0.694 to 0.478 with the finest level's gains and to 0.332 with these (docs/design.md 5.3).
-  // Empty or {1}: none.
+  // The coarser levels' raises: at 256^2 coast_sand_rocks' mean s over the five pairs, seed 1, went from
+  // 0.694 (one gain for every level) to 0.276 with the gains per scale (docs/design.md 5.3). Empty or {1}:
+  // none.
   std::vector<double> noise_raises = {1.0, 1.4, 2.0, 2.8};
-  // False: the noise gains on every level alike, the model before the gains per scale.
+  // False: only the gains on every band and on the chroma bands, the model before the gains per scale.
   bool gains_per_scale = true;
   // Per measured pair, colour gains that give its render its measurement's mean Lab colour
   // (model/pair_gains.hpp, Material::pair_gains).
