@@ -5,6 +5,7 @@
 // coefficient of every band sign-flipped, must look further from the measurement. Tested on the two
 // samples whose fitted models keep their noise (coast_sand_rocks' moss, fabric's fibres); leather's
 // cells are flat, and its fitted gains (0 to 0.35) leave a CAR whose coefficients the render hardly shows.
+// And the gains per scale must beat one gain for every level on a draw the analysis did not choose on.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -89,6 +90,31 @@ TEST_CASE(
   CHECK(halved > fitted_rel);
   CHECK(doubled > fitted_rel);
   CHECK(flipped_rel > fitted_rel);
+}
+
+}  // namespace carbtf
+
+namespace carbtf {
+
+// The gains per scale (analyze.cpp, kGainGroups) are chosen on the analysis' own draw; on another draw
+// the model must still look nearer its measurement than the one chosen with a gain for every level alike.
+TEST_CASE("noise gains per scale look nearer the measurement than one gain for every level",
+          "[analysis][quality][noise][slow]") {
+  const std::string name = GENERATE(std::string("coast_sand_rocks"), std::string("fabric"));
+  const BtfDataset dataset =
+      test::rendered_dataset(make_sample_surface(name, kSize, 4), ubo2003_directions());
+  AnalysisOptions options;
+  options.progress = false;
+  options.segmentation.clusters = 6;
+  options.tiles.tile_size = 32;
+  const Material per_scale = analyze_btf(dataset, options).material;
+  options.gains_per_scale = false;
+  const Material uniform = analyze_btf(dataset, options).material;
+  const std::vector<RgbField> measured = representative_images(dataset, per_scale);
+  const double per_scale_rel = mean_rel(per_scale, measured);
+  const double uniform_rel = mean_rel(uniform, measured);
+  INFO(name << ": gains per scale rel " << per_scale_rel << ", one gain for every level " << uniform_rel);
+  CHECK(per_scale_rel < uniform_rel);
 }
 
 }  // namespace carbtf
