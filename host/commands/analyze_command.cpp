@@ -109,7 +109,11 @@ void register_analyze_command(CLI::App& app) {
                    "Range-map height quantization in bits (fewer: a smaller file, coarser slopes)")
       ->check(CLI::Range(1, 16))
       ->capture_default_str();
-  command->add_option("--tone-bits", a.tiles.tone_bits, "Relief-tone quantization in bits")
+  command
+      ->add_option(
+          "--tone-bits", a.tiles.tone_bits,
+          "Relief-tone quantization in bits, of a grey tone (a tone of R, G and B planes takes 6 bits, "
+          "which keep its rounding out of the colour)")
       ->check(CLI::Range(1, 8))
       ->capture_default_str();
   command->add_flag(

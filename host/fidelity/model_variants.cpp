@@ -19,16 +19,18 @@ const std::vector<ModelVariant>& model_variants() {
        [](AnalysisOptions& o) {
          o.tiles.height_bits = 8;
          o.tiles.tone_bits = 7;
+         o.tiles.colour_tone_bits = 7;
        }},
-      {"compact", "the default with 5-bit heights and a 3-bit tone",
+      {"compact", "the default with 5-bit heights and a 3-bit tone (colour planes 4-bit)",
        [](AnalysisOptions& o) {
          o.tiles.height_bits = 5;
          o.tiles.tone_bits = 3;
+         o.tiles.colour_tone_bits = 4;
        }},
       {"default",
        "relief tone (R, G, B planes where its colour is not grey), 128-texel tiles with feathered cuts, "
        "6-bit heights, "
-       "4-bit tone; clamp, levels and noise gains per scale chosen per subspace",
+       "4-bit grey tone or 6-bit colour planes; clamp, levels and noise gains per scale chosen per subspace",
        [](AnalysisOptions&) {}},
       {"specular", "the default with the relief's specular lobe wherever it is fitted (--specular)",
        [](AnalysisOptions& o) { o.relief_specular = AutoChoice::always; }},
@@ -43,6 +45,8 @@ const std::vector<ModelVariant>& model_variants() {
          o.noise_gains = {1.0};
          o.noise_raises = {1.0};
        }},
+      {"four_bit_colour_tone", "the default with its colour tone planes at 4 bits, as the grey tone",
+       [](AnalysisOptions& o) { o.tiles.colour_tone_bits = 4; }},
       {"uniform_noise_gains", "the default with its noise gains on every pyramid level alike",
        [](AnalysisOptions& o) { o.gains_per_scale = false; }},
       {"grey_tone", "the default with a grey relief tone everywhere",

@@ -264,7 +264,7 @@ TEST_CASE("a tone of three colour planes is rounded to keep its colour", "[range
   const std::vector<Plane> planes{1.25 * green, green, 0.7 * green};
   RangeTileOptions options;
   options.tile_size = 32;
-  options.tone_bits = 4;
+  options.colour_tone_bits = 4;
   const RangeTiles tiles = build_range_tiles(heights, options, planes);
   REQUIRE(tone_planes(tiles) == 3);
   const double step = tiles.tone_scale, offset = tiles.tone_offset, top = 15.0;
@@ -365,3 +365,26 @@ TEST_CASE("a periodic relief gets patches in step with its period and a stochast
 }
 
 }  // namespace carbtf
+
+TEST_CASE("a grey tone takes tone_bits and a tone of three colour planes colour_tone_bits", "[range][tone]") {
+  const Surface surface = make_sample_surface("leather", 64, 3);
+  Plane heights(64, 64);
+  for (int i = 0; i < 64 * 64; ++i) heights(i / 64, i % 64) = surface.height[static_cast<std::size_t>(i)];
+  const double low = heights.minCoeff(), high = heights.maxCoeff();
+  const Plane grey = heights.unaryExpr([&](double h) { return 0.4 + 1.2 * (h - low) / (high - low); });
+  const std::vector<Plane> planes{1.25 * grey, grey, 0.7 * grey};
+  RangeTileOptions options;
+  options.tile_size = 32;
+  options.tone_bits = 4;
+  options.colour_tone_bits = 6;
+  // The tone's step is its range over the top level; the planes' range is their common one.
+  const RangeTiles grey_tiles = build_range_tiles(heights, options, std::span<const Plane>(&grey, 1));
+  CHECK(grey_tiles.tone_scale == Approx((grey.maxCoeff() - grey.minCoeff()) / 15.0).epsilon(1e-6));
+  const RangeTiles colour_tiles = build_range_tiles(heights, options, planes);
+  REQUIRE(tone_planes(colour_tiles) == 3);
+  CHECK(colour_tiles.tone_scale ==
+        Approx((planes[0].maxCoeff() - planes[2].minCoeff()) / 63.0).epsilon(1e-6));
+  CHECK(*std::max_element(colour_tiles.tone.begin(), colour_tiles.tone.end()) > 15);
+  options.colour_tone_bits = 9;
+  CHECK_THROWS_AS(build_range_tiles(heights, options, planes), std::invalid_argument);
+}
