@@ -4,13 +4,14 @@
 # samples, one analysis per variant, each scored by the calibrated fidelity measure (docs/design.md 5).
 #
 #   scripts/figures.sh [SIZE [VARIANTS]]     defaults: 256 and default,specular,no_specular
+#   CARBTF_BIN=path/to/carbtf scripts/figures.sh ...   the figures of another build of carbtf
 #
 # It takes about 10 minutes per sample and variant at 256^2 on a 2-core machine with lavapipe.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 size="${1:-256}"
 variants="${2:-default,specular,no_specular}"
-carbtf=build/host/carbtf
+carbtf="${CARBTF_BIN:-build/host/carbtf}"
 [[ -x "$carbtf" ]] || { echo "figures.sh: build carbtf first (scripts/setup.sh)" >&2; exit 1; }
 work="$(mktemp -d "${TMPDIR:-/tmp}/carbtf-figures.XXXXXX")"
 trap 'rm -rf "$work"' EXIT

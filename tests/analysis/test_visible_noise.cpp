@@ -63,6 +63,19 @@ Material sign_flipped(Material m, int& flips) {
   return m;
 }
 
+// A built-in sample at kSize, rendered under the UBO2003 directions, and the analysis options the cases
+// fit it with (few subspaces and small tiles, for the size).
+BtfDataset small_sample(const std::string& name) {
+  return test::rendered_dataset(make_sample_surface(name, kSize, 4), ubo2003_directions());
+}
+AnalysisOptions small_sample_options() {
+  AnalysisOptions options;
+  options.progress = false;
+  options.segmentation.clusters = 6;
+  options.tiles.tile_size = 32;
+  return options;
+}
+
 }  // namespace
 
 TEST_CASE(
@@ -70,12 +83,8 @@ TEST_CASE(
     "CAR coefficient's sign flipped look further from the measurement",
     "[analysis][quality][noise][slow]") {
   const std::string name = GENERATE(std::string("coast_sand_rocks"), std::string("fabric"));
-  const BtfDataset dataset =
-      test::rendered_dataset(make_sample_surface(name, kSize, 4), ubo2003_directions());
-  AnalysisOptions options;
-  options.progress = false;
-  options.segmentation.clusters = 6;
-  options.tiles.tile_size = 32;
+  const BtfDataset dataset = small_sample(name);
+  AnalysisOptions options = small_sample_options();
   const Material fitted = analyze_btf(dataset, options).material;
   const std::vector<RgbField> measured = representative_images(dataset, fitted);
   int flips = 0;
@@ -92,21 +101,13 @@ TEST_CASE(
   CHECK(flipped_rel > fitted_rel);
 }
 
-}  // namespace carbtf
-
-namespace carbtf {
-
 // The gains per scale (analyze.cpp, kGainGroups) are chosen on the analysis' own draw; on another draw
 // the model must still look nearer its measurement than the one chosen with a gain for every level alike.
 TEST_CASE("noise gains per scale look nearer the measurement than one gain for every level",
           "[analysis][quality][noise][slow]") {
   const std::string name = GENERATE(std::string("coast_sand_rocks"), std::string("fabric"));
-  const BtfDataset dataset =
-      test::rendered_dataset(make_sample_surface(name, kSize, 4), ubo2003_directions());
-  AnalysisOptions options;
-  options.progress = false;
-  options.segmentation.clusters = 6;
-  options.tiles.tile_size = 32;
+  const BtfDataset dataset = small_sample(name);
+  AnalysisOptions options = small_sample_options();
   const Material per_scale = analyze_btf(dataset, options).material;
   options.gains_per_scale = false;
   const Material uniform = analyze_btf(dataset, options).material;
