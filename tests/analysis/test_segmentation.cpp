@@ -18,7 +18,7 @@ namespace carbtf {
 namespace {
 
 BtfDataset rendered_dataset(const std::string& name, std::uint32_t size) {
-  return test::rendered_dataset(make_sample_surface(name, size, 2), ubo2003_directions());
+  return test::rendered_sample(name, size, 2);
 }
 
 }  // namespace

@@ -19,7 +19,7 @@ namespace {
 
 // A sample material rendered as a UBO2003 BTF of size x size images, held in memory.
 BtfDataset rendered_sample(const std::string& name, std::uint32_t size) {
-  return test::rendered_dataset(make_sample_surface(name, size, 4), ubo2003_directions());
+  return test::rendered_sample(name, size, 4);
 }
 
 // The analysis of a small sample: 4 subspaces, 16-texel range tiles, quiet.

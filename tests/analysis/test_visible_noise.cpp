@@ -63,11 +63,7 @@ Material sign_flipped(Material m, int& flips) {
   return m;
 }
 
-// A built-in sample at kSize, rendered under the UBO2003 directions, and the analysis options the cases
-// fit it with (few subspaces and small tiles, for the size).
-BtfDataset small_sample(const std::string& name) {
-  return test::rendered_dataset(make_sample_surface(name, kSize, 4), ubo2003_directions());
-}
+// The analysis options the cases fit a sample of kSize with (few subspaces and small tiles, for the size).
 AnalysisOptions small_sample_options() {
   AnalysisOptions options;
   options.progress = false;
@@ -83,7 +79,7 @@ TEST_CASE(
     "CAR coefficient's sign flipped look further from the measurement",
     "[analysis][quality][noise][slow]") {
   const std::string name = GENERATE(std::string("coast_sand_rocks"), std::string("fabric"));
-  const BtfDataset dataset = small_sample(name);
+  const BtfDataset dataset = test::rendered_sample(name, kSize, 4);
   AnalysisOptions options = small_sample_options();
   const Material fitted = analyze_btf(dataset, options).material;
   const std::vector<RgbField> measured = representative_images(dataset, fitted);
@@ -106,7 +102,7 @@ TEST_CASE(
 TEST_CASE("noise gains per scale look nearer the measurement than one gain for every level",
           "[analysis][quality][noise][slow]") {
   const std::string name = GENERATE(std::string("coast_sand_rocks"), std::string("fabric"));
-  const BtfDataset dataset = small_sample(name);
+  const BtfDataset dataset = test::rendered_sample(name, kSize, 4);
   AnalysisOptions options = small_sample_options();
   const Material per_scale = analyze_btf(dataset, options).material;
   options.gains_per_scale = false;

@@ -3,12 +3,14 @@
 #pragma once
 
 #include <span>
+#include <string>
 #include <vector>
 
 #include "carbtf/analysis/btf/btf_dataset.hpp"
 #include "carbtf/analysis/btf/directions.hpp"
 #include "carbtf/analysis/model/plane.hpp"
 #include "carbtf/analysis/sample/height_field_renderer.hpp"
+#include "carbtf/analysis/sample/sample_materials.hpp"
 
 namespace carbtf::test {
 
@@ -22,6 +24,11 @@ inline BtfDataset rendered_dataset(const Surface& surface, const std::vector<Dir
                dataset.set_linear({l, v}, image);
              });
   return dataset;
+}
+
+// The built-in sample `name` (its surface of `seed`) under every UBO2003 light and view, held in memory.
+inline BtfDataset rendered_sample(const std::string& name, std::uint32_t size, std::uint64_t seed) {
+  return rendered_dataset(make_sample_surface(name, size, seed), ubo2003_directions());
 }
 
 // The top view of `surface` under every UBO2003 light.
