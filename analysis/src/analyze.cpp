@@ -8,6 +8,7 @@
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
 #include "carbtf/analysis/model/collapse_calibration.hpp"
 #include "carbtf/analysis/model/colour_pca.hpp"
@@ -125,16 +126,18 @@ SubspaceModel fit_channels(const std::vector<Plane>& channels, LightView pair, s
 enum class Scales { every, finest, coarser };
 enum class Gains { lower, lower_or_raise };  // AnalysisOptions::noise_gains, and noise_raises
 struct GainGroup {
+  const char* name;  // in the analysis log
   bool chroma_only;
   Scales scales;
   Gains gains;
 };
-constexpr std::array<GainGroup, 6> kGainGroups{{{false, Scales::finest, Gains::lower},
-                                                {true, Scales::finest, Gains::lower},
-                                                {false, Scales::coarser, Gains::lower_or_raise},
-                                                {true, Scales::coarser, Gains::lower_or_raise},
-                                                {false, Scales::every, Gains::lower},
-                                                {true, Scales::every, Gains::lower}}};
+constexpr std::array<GainGroup, 6> kGainGroups{
+    {{"finest level", false, Scales::finest, Gains::lower},
+     {"its chroma", true, Scales::finest, Gains::lower},
+     {"coarser levels", false, Scales::coarser, Gains::lower_or_raise},
+     {"their chroma", true, Scales::coarser, Gains::lower_or_raise},
+     {"every band", false, Scales::every, Gains::lower},
+     {"chroma bands", true, Scales::every, Gains::lower}}};
 
 // The model of one subspace image; notes name the band they concern.
 SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plane& range_map,
@@ -285,16 +288,18 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
     }
   }
   notes = std::move(best_notes);
-  char line[320];
-  std::snprintf(
-      line, sizeof line,
-      "tone weight %.2g, remainder clamp %.2g, %u pyramid levels, noise gains: finest level %.2g (chroma "
-      "%.2g), coarser levels %.2g (chroma %.2g), noise gain %.2g, chroma gain %.2g chosen of %zu candidates "
-      "(texture distance %.3f, mean of %u draws)",
-      static_cast<double>(best->tone_weight), best_clamp, best->levels, chosen_gains[0], chosen_gains[1],
-      chosen_gains[2], chosen_gains[3], chosen_gains[4], chosen_gains[5], candidates + gain_candidates,
-      best_distance, draws);
-  notes.emplace_back(line);
+  char part[160];
+  std::snprintf(part, sizeof part, "tone weight %.2g, remainder clamp %.2g, %u pyramid levels, noise gains:",
+                static_cast<double>(best->tone_weight), best_clamp, best->levels);
+  std::string line = part;
+  for (std::size_t group = 0; group < kGainGroups.size(); ++group) {
+    std::snprintf(part, sizeof part, "%s %s %.2g", group == 0 ? "" : ",", kGainGroups[group].name,
+                  chosen_gains[group]);
+    line += part;
+  }
+  std::snprintf(part, sizeof part, " chosen of %zu candidates (texture distance %.3f, mean of %u draws)",
+                candidates + gain_candidates, best_distance, draws);
+  notes.push_back(line + part);
   chosen_distance = best_distance;
   return *best;
 }

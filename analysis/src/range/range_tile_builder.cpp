@@ -224,8 +224,10 @@ RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& optio
   // One quantization over every plane of the tone.
   double tone_low = 0.0;
   const std::uint32_t tone_bits = tone.size() == 3 ? options.colour_tone_bits : options.tone_bits;
+  if (!tone.empty() && (tone_bits < 1 || tone_bits > 8))
+    throw std::invalid_argument("tone bits must be within 1..8");
+  const double top_tone_level = static_cast<double>((1u << std::min(tone_bits, 8u)) - 1u);
   if (!tone.empty()) {
-    if (tone_bits < 1 || tone_bits > 8) throw std::invalid_argument("tone bits must be within 1..8");
     tone_low = tone[0].minCoeff();
     double tone_high = tone[0].maxCoeff();
     for (const Plane& plane : tone) {
@@ -233,8 +235,7 @@ RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& optio
       tone_high = std::max(tone_high, plane.maxCoeff());
     }
     tiles.tone_offset = static_cast<float>(tone_low);
-    tiles.tone_scale =
-        static_cast<float>((tone_high - tone_low) / static_cast<double>((1u << tone_bits) - 1u));
+    tiles.tone_scale = static_cast<float>((tone_high - tone_low) / top_tone_level);
     tiles.tone.resize(tiles.patches.size() * tone.size());
   }
   const std::vector<PatchOrigin> origins = choose_patch_origins(heights, size, tiles.edge_colours, rng);
@@ -248,8 +249,8 @@ RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& optio
         tiles.patches[texel] = static_cast<std::uint16_t>(std::clamp(q, 0.0, top_level));
         std::array<double, 3> values{};
         for (std::size_t k = 0; k < tone.size(); ++k) values[k] = tone[k](row0 + r, col0 + c);
-        const std::array<std::uint8_t, 3> levels = tone_levels(
-            values, tone.size(), tone_low, tiles.tone_scale, static_cast<double>((1u << tone_bits) - 1u));
+        const std::array<std::uint8_t, 3> levels =
+            tone_levels(values, tone.size(), tone_low, tiles.tone_scale, top_tone_level);
         for (std::size_t k = 0; k < tone.size(); ++k)
           tiles.tone[k * tiles.patches.size() + texel] = levels[k];
       }
