@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "carbtf/analysis/report/figures.hpp"
+#include "carbtf/engine/material/mip_levels.hpp"
 #include "carbtf/engine/render/material_binding.hpp"
 #include "carbtf/engine/render/mesh.hpp"
 #include "carbtf/engine/render/mesh_renderer.hpp"
@@ -91,10 +92,37 @@ std::vector<float> rgba_floats(const RenderedImage& frame) {
   return values;
 }
 
+// A photograph's pixel integrates the light over its footprint on the sample: 1 / cos(view theta) texels
+// along the tilt, 2 at 60 degrees. The render pass samples the model's factors at one point per pixel,
+// which at such a view skips every other texel of the full-resolution relief and smooth texture and
+// folds their finest octave into grain the rectified measurement does not have (its pixels were
+// integrated by the camera). So the frames of an oblique pair are rendered at this many samples per pixel
+// side and averaged, model and measurement alike; the top view and views up to 37 degrees, whose
+// footprint is under 1.25 texels, keep one sample (more would only blur both by a fraction of a texel).
+// A power of two: the average is mip-level halving (next_mip_level()).
+constexpr double kSupersampledFootprint = 1.25;
+constexpr std::uint32_t kMaxSamplesPerSide = 4;
+
+// `frame` (RGBA floats, `factor` * width x `factor` * height) averaged over factor x factor blocks.
+std::vector<float> pixel_averages(std::vector<float> frame, std::uint32_t width, std::uint32_t height,
+                                  std::uint32_t factor) {
+  for (std::uint32_t f = factor; f > 1; f /= 2) frame = next_mip_level(frame, width * f, height * f, 4);
+  return frame;
+}
+
 // The smallest side of the plane's image the measure scores (distribution_statistics() wants 16 x 16).
 constexpr std::uint32_t kMinCoveredSide = 16;
 
 }  // namespace
+
+std::uint32_t camera_samples_per_side(double view_theta) {
+  const double footprint = 1.0 / std::max(std::cos(view_theta), 1e-6);
+  if (!(footprint >= kSupersampledFootprint)) return 1;
+  std::uint32_t samples = 2;
+  // A measured 60 degrees, stored as a float, is 2.0000001 texels: a twentieth of a texel is slack.
+  while (samples + 0.05 < footprint && samples < kMaxSamplesPerSide) samples *= 2;
+  return samples;
+}
 
 std::vector<FidelityPair> default_fidelity_pairs(const Material& material) {
   struct Wanted {
@@ -175,10 +203,21 @@ std::vector<PairFidelity> run_fidelity(Context& context, const Material& materia
   const Mesh plane = make_plane();
   const MaterialRender model = prepare_material_render(context, material, *synthesizer, options.seed,
                                                        options.parallax_scale, width, height, plane, false);
-  RenderTargetInfo target;  // the measurement's render, alike
-  target.width = width;
-  target.height = height;
-  target.colour_format = VK_FORMAT_R32G32B32A32_SFLOAT;
+  // The model's renderer per samples per pixel side (camera_samples_per_side()), on the one binding.
+  std::vector<std::unique_ptr<MeshRenderer>> supersampled(kMaxSamplesPerSide + 1);
+  const auto model_renderer = [&](std::uint32_t samples) -> MeshRenderer& {
+    if (samples == 1) return *model.renderer;
+    if (!supersampled[samples]) {
+      RenderTargetInfo target;
+      target.width = samples * width;
+      target.height = samples * height;
+      target.colour_format = VK_FORMAT_R32G32B32A32_SFLOAT;
+      check(MeshRenderer::create(context, *model.binding, target, supersampled[samples]),
+            "cannot build the supersampled render pass");
+      check(supersampled[samples]->set_mesh(plane), "cannot upload the mesh");
+    }
+    return *supersampled[samples];
+  };
 
   std::vector<PairFidelity> results;
   for (const FidelityPair& p : pairs) {
@@ -191,12 +230,18 @@ std::vector<PairFidelity> run_fidelity(Context& context, const Material& materia
     scene.camera.fov_y_degrees = 0.0f;
     scene.camera.ortho_height = 2.0f;  // the plane's height: one texel per pixel from the top
     scene.lights = {{false, unit_vector_degrees(light.theta * kDegrees, light.phi * kDegrees), {1, 1, 1}}};
+    const std::uint32_t samples = camera_samples_per_side(view.theta);
     RenderedImage model_frame;
-    check(model.renderer->render(scene, model_frame), "rendering the model failed");
+    check(model_renderer(samples).render(scene, model_frame), "rendering the model failed");
+    RenderTargetInfo target;  // the measurement's render, alike
+    target.width = samples * width;
+    target.height = samples * height;
+    target.colour_format = VK_FORMAT_R32G32B32A32_SFLOAT;
     const RenderedImage measured_frame =
         render_measured(context, material, dataset, {{p.light, p.view}}, plane, scene, target, 1);
-    const std::vector<float> model_rgba = rgba_floats(model_frame),
-                             measured_rgba = rgba_floats(measured_frame);
+    const std::vector<float> model_rgba = pixel_averages(rgba_floats(model_frame), width, height, samples),
+                             measured_rgba =
+                                 pixel_averages(rgba_floats(measured_frame), width, height, samples);
     const Rectangle rect = covered_rectangle(measured_rgba, width, height);
     if (std::min(rect.width, rect.height) < kMinCoveredSide ||
         std::max(rect.width, rect.height) < 2 * kMinCoveredSide)

@@ -1,6 +1,7 @@
 // Fidelity of a material against the measured BTF it models, as a person would judge it (docs/design.md 5,
 // issue 13): the model and the measured images are drawn through the same render pass (a plane,
-// orthographic, the measured view and light), and the calibrated texture measure
+// orthographic, the measured view and light; at oblique views several samples per pixel, averaged as a
+// camera pixel integrates its footprint), and the calibrated texture measure
 // (analysis/quality/texture_references.hpp, on texture_distributions.hpp) compares them, beside the best
 // stationary Gaussian texture. Serves `carbtf fidelity` and the demo.
 #pragma once
@@ -34,6 +35,11 @@ std::vector<FidelityPair> default_fidelity_pairs(const Material& material);
 // skipped; fewer where the dataset has fewer images, none where no view can be scored.
 std::vector<FidelityPair> spread_fidelity_pairs(const Material& material, const BtfDataset& dataset,
                                                 std::size_t count);
+
+// Render samples per pixel side that integrate a camera pixel's footprint at a view `view_theta` (radians)
+// from the normal: 1 where the footprint along the tilt, 1 / cos(theta) texels, is under 1.25 (views up
+// to 37 degrees), else the power of two that covers it, at most 4 (2 at 45 and 60 degrees).
+std::uint32_t camera_samples_per_side(double view_theta);
 
 struct PairFidelity {
   FidelityPair pair;

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <functional>
+#include <map>
 #include <numbers>
 #include <regex>
 #include <set>
@@ -143,6 +144,23 @@ TEST_CASE("the fidelity run's pairs: the default five and the spread", "[cli_uni
   const std::vector<FidelityPair> again = spread_fidelity_pairs(material, dataset, 16);
   for (std::size_t i = 0; i < spread.size(); ++i)
     CHECK((again[i].light == spread[i].light && again[i].view == spread[i].view));
+}
+
+TEST_CASE("fidelity integrates a camera pixel's footprint: more samples per pixel at oblique views",
+          "[cli_units]") {
+  using namespace cli_unit_tests;
+  // The measured directions as the material stores them (floats), where 60 degrees is 2.0000001 texels.
+  const std::vector<MaterialDirection> views = test::ubo2003_material_directions();
+  std::map<long, std::uint32_t> samples_at;  // view theta in degrees -> samples per side
+  for (const MaterialDirection& v : views) {
+    const long degrees = std::lround(v.theta * 180.0 / std::numbers::pi);
+    const std::uint32_t samples = camera_samples_per_side(v.theta);
+    const auto at = samples_at.emplace(degrees, samples).first;
+    CHECK(at->second == samples);  // every azimuth of a ring alike
+  }
+  CHECK(samples_at == std::map<long, std::uint32_t>{{0, 1}, {15, 1}, {30, 1}, {45, 2}, {60, 2}, {75, 4}});
+  CHECK(camera_samples_per_side(70.0 * std::numbers::pi / 180.0) == 4);  // 2.92 texels
+  CHECK(camera_samples_per_side(std::numbers::pi / 2) == 4);             // at most 4
 }
 
 // A measured figure in a help text goes stale with the next change of the model or the machine; the figures
