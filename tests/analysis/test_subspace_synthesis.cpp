@@ -24,11 +24,7 @@ BtfDataset rendered_sample(const std::string& name, std::uint32_t size) {
 
 // The analysis of a small sample: 4 subspaces, 16-texel range tiles, quiet.
 AnalysisOptions small_analysis() {
-  AnalysisOptions options;
-  options.progress = false;
-  options.segmentation.clusters = 4;
-  options.tiles.tile_size = 16;
-  return options;
+  return test::small_analysis_options(4, 16);
 }
 
 // A one-subspace material over a 2x2 direction set, 3 levels, bands given per level.

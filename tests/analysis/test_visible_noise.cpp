@@ -65,11 +65,7 @@ Material sign_flipped(Material m, int& flips) {
 
 // The analysis options the cases fit a sample of kSize with (few subspaces and small tiles, for the size).
 AnalysisOptions small_sample_options() {
-  AnalysisOptions options;
-  options.progress = false;
-  options.segmentation.clusters = 6;
-  options.tiles.tile_size = 32;
-  return options;
+  return test::small_analysis_options(6, 32);
 }
 
 }  // namespace

@@ -1,11 +1,12 @@
 // Rendered samples for the analysis tests: a BTF under every UBO2003 light from given views (all of
-// them, or the photometric-stereo view), and a surface's true heights.
+// them, or the photometric-stereo view), a surface's true heights, and the small analysis the cases fit.
 #pragma once
 
 #include <span>
 #include <string>
 #include <vector>
 
+#include "carbtf/analysis/analyze.hpp"
 #include "carbtf/analysis/btf/btf_dataset.hpp"
 #include "carbtf/analysis/btf/directions.hpp"
 #include "carbtf/analysis/model/plane.hpp"
@@ -29,6 +30,15 @@ inline BtfDataset rendered_dataset(const Surface& surface, const std::vector<Dir
 // The built-in sample `name` (its surface of `seed`) under every UBO2003 light and view, held in memory.
 inline BtfDataset rendered_sample(const std::string& name, std::uint32_t size, std::uint64_t seed) {
   return rendered_dataset(make_sample_surface(name, size, seed), ubo2003_directions());
+}
+
+// The analysis of a small rendered sample: `clusters` subspaces, range tiles of `tile_size` texels, quiet.
+inline AnalysisOptions small_analysis_options(std::uint32_t clusters, std::uint32_t tile_size) {
+  AnalysisOptions options;
+  options.progress = false;
+  options.segmentation.clusters = clusters;
+  options.tiles.tile_size = tile_size;
+  return options;
 }
 
 // The top view of `surface` under every UBO2003 light.

@@ -222,12 +222,11 @@ RangeTiles build_range_tiles(const Plane& heights, const RangeTileOptions& optio
   const std::uint32_t patch_count = 2 * tiles.edge_colours;
   tiles.patches.resize(std::size_t{patch_count} * size * size);
   // One quantization over every plane of the tone.
-  double tone_low = 0.0;
-  const std::uint32_t tone_bits = tone.size() == 3 ? options.colour_tone_bits : options.tone_bits;
-  if (!tone.empty() && (tone_bits < 1 || tone_bits > 8))
-    throw std::invalid_argument("tone bits must be within 1..8");
-  const double top_tone_level = static_cast<double>((1u << std::min(tone_bits, 8u)) - 1u);
+  double tone_low = 0.0, top_tone_level = 0.0;
   if (!tone.empty()) {
+    const std::uint32_t tone_bits = tone.size() == 3 ? options.colour_tone_bits : options.tone_bits;
+    if (tone_bits < 1 || tone_bits > 8) throw std::invalid_argument("tone bits must be within 1..8");
+    top_tone_level = static_cast<double>((1u << tone_bits) - 1u);
     tone_low = tone[0].minCoeff();
     double tone_high = tone[0].maxCoeff();
     for (const Plane& plane : tone) {
