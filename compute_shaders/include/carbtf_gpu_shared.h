@@ -290,7 +290,15 @@ CARBTF_CONST_UINT(CARBTF_COST_PROBE_LOOKUPS, 1u)         // the two direction lo
 CARBTF_CONST_UINT(CARBTF_COST_PROBE_PAIR_READS, 2u)      // the pair table: layers from the indices
 CARBTF_CONST_UINT(CARBTF_COST_PROBE_SUBSPACE_READS, 4u)  // the 9 subspace image reads: the layer's grey
 CARBTF_CONST_UINT(CARBTF_COST_PROBE_RELIEF, 8u)          // the normal, tone and horizons: flat, 1, none
-CARBTF_CONST_UINT(CARBTF_COST_PROBE_PARALLAX, 16u)       // the parallax height read: no shift
+CARBTF_CONST_UINT(CARBTF_COST_PROBE_PARALLAX, 16u)       // the parallax height reads: no shift
+// The parallax ray march (carbtf_parallax_uv, and its CPU twin): a step moves the ray at most this many
+// texels across or down (the sample renderer's, height_field_renderer.cpp), MaterialTablesHeader::
+// parallax_steps at most, longer ones where that many do not reach; then bisections between the last
+// point above the relief and the first below, and the chord between them. Views nearer grazing than this
+// cosine march as at it: the ray's reach stays finite.
+CARBTF_CONST_FLOAT(CARBTF_PARALLAX_STEP_TEXELS, 0.5f)
+CARBTF_CONST_UINT(CARBTF_PARALLAX_REFINEMENTS, 4u)
+CARBTF_CONST_FLOAT(CARBTF_PARALLAX_MIN_VIEW_Z, 0.05f)
 // The constant id of carbtf_material.glsl's specialization constant that picks how the light's and the
 // view's 3 weights combine into weights of (light, view) pairs (PairCoupling, direction_interpolation.hpp):
 // CARBTF_PAIR_COUPLING_PRODUCT, the default, reads 9 pairs; CARBTF_PAIR_COUPLING_STAIRCASE at most 5.
@@ -351,6 +359,13 @@ struct MaterialTablesHeader {
   float specular_strength;  // the relief's specular lobe (RangeTiles::specular_strength; 0: none)
   float specular_gloss;
   uint mip_levels;  // levels of the range map and the subspace images, level 0 included (mip_chain.hpp)
+  // The parallax ray march (carbtf_parallax_uv): the highest and lowest point of the relief, parallax_scale
+  // * (height - range_mean) in texels, and the most steps it takes down the ray (0: offset mapping, one
+  // height read).
+  float parallax_top;
+  float parallax_bottom;
+  uint parallax_steps;
+  uint reserved;
 };
 
 #ifdef __cplusplus
@@ -388,10 +403,11 @@ static_assert(sizeof(CollapseItemGpu) == 48, "CollapseItemGpu must match std430"
 static_assert(sizeof(ColourItemGpu) == 32 + 16 * CARBTF_SYNTH_MAX_CHANNELS +
                                            4 * CARBTF_SYNTH_MAX_CHANNELS * CARBTF_SYNTH_MAX_CHANNELS);
 static_assert(sizeof(SynthPassParams) == 36 && sizeof(InterpolateParams) == 112);
-static_assert(sizeof(DirectionLookupGpu) == 32 && sizeof(MaterialTablesHeader) == 112);
+static_assert(sizeof(DirectionLookupGpu) == 32 && sizeof(MaterialTablesHeader) == 128);
 static_assert(offsetof(MaterialTablesHeader, pair_table) == 64 &&
               offsetof(MaterialTablesHeader, parallax_scale) == 80);
-static_assert(offsetof(MaterialTablesHeader, mip_levels) == 108);
+static_assert(offsetof(MaterialTablesHeader, mip_levels) == 108 &&
+              offsetof(MaterialTablesHeader, parallax_steps) == 120);
 static_assert(sizeof(RenderFrameUniforms) == 160 + 32 * CARBTF_RENDER_MAX_LIGHTS,
               "RenderFrameUniforms must match std140");
 static_assert(offsetof(RenderFrameUniforms, camera) == 128 &&

@@ -9,7 +9,7 @@
 // cover the synthesized block once, v = 0 at row 0. Outside that the edge texels repeat, unless the
 // textures are periodic (MaterialTablesHeader::wrap, for closed meshes): then addresses wrap.
 //
-// Per fragment: parallax mapping with offset limiting (Welsh 2004) from the enlarged range map, the
+// Per fragment: parallax occlusion (a ray march through the enlarged range map), the
 // 9-weight (or 5-pair staircase) interpolation of the subspace images (docs/design.md 4.5) through precomputed lookup grids
 // (a fixed, short list of candidates per grid cell: no search over the direction set), times the range
 // map relit for the light, hidden where the relief casts a shadow (the material's shadow scale above
@@ -252,14 +252,61 @@ float carbtf_relief_visibility(CarbtfRelief relief, vec3 light) {
   return clamp(0.5 + (light.z / across - horizon) / CARBTF_RELIEF_SHADOW_SOFTNESS, 0.0, 1.0);
 }
 
-// Parallax mapping with offset limiting: the texture point seen along `view` (tangent frame, unit,
-// towards the eye) is shifted by height * view.xy texels, never divided by view.z, so grazing views
-// stay bounded.
+// The ray from the eye through the plane point uv, in the ray's parameter t (texels along the view
+// direction from the plane): how far it runs above the relief there, its height minus the relief's.
+float carbtf_ray_clearance(vec2 uv, vec2 uv_per_t, float view_z, float t, float lod) {
+  return t * view_z - carbtf_header.parallax_scale * carbtf_height(uv + t * uv_per_t, lod);
+}
+
+// Parallax occlusion: the texture point the ray from the eye through the plane point uv meets first
+// (view: tangent frame, unit, towards the eye). A point of height h seen at theta from the normal lies
+// h tan(theta) texels along the view from the plane point below it, and a ridge hides what lies behind it,
+// as the measurement's camera sees it: offset mapping (height x view.xy at the plane point, Welsh 2004)
+// left facets turned away from the view in sight (docs/design.md 4.6). The march steps down the ray from the
+// relief's top to its bottom (MaterialTablesHeader::parallax_top and parallax_bottom) at most
+// CARBTF_PARALLAX_STEP_TEXELS across or down per step, refines between the last point above and the first
+// below, and takes the chord's crossing between them. parallax_steps 0: offset mapping, one height read.
 vec2 carbtf_parallax_uv(vec2 uv, vec3 view, float lod) {
   if (carbtf_probed(CARBTF_COST_PROBE_PARALLAX)) return uv;
-  float shift = carbtf_header.parallax_scale * carbtf_height(uv, lod);
-  vec2 texels = shift * vec2(view.x, -view.y);  // texture up is -v
-  return uv + texels / vec2(float(carbtf_header.width), float(carbtf_header.height));
+  vec2 size = vec2(float(carbtf_header.width), float(carbtf_header.height));
+  vec2 uv_per_t = vec2(view.x, -view.y) / size;  // texture up is -v
+  if (carbtf_header.parallax_steps == 0u) return uv + carbtf_header.parallax_scale * carbtf_height(uv, lod) * uv_per_t;
+  float across = length(view.xy);
+  float view_z = max(view.z, CARBTF_PARALLAX_MIN_VIEW_Z);
+  float t_above = carbtf_header.parallax_top / view_z;
+  float t_below = carbtf_header.parallax_bottom / view_z;
+  float span = t_above - t_below;
+  if (!(span > 0.0) || across == 0.0) return uv;  // a flat relief, or a view straight down
+  uint steps = clamp(uint(ceil(span * max(across, view_z) / CARBTF_PARALLAX_STEP_TEXELS)), 1u,
+                     carbtf_header.parallax_steps);
+  float dt = span / float(steps);
+  float top = t_above;
+  float f_above = carbtf_ray_clearance(uv, uv_per_t, view_z, t_above, lod);
+  float f_below = 0.0;
+  for (uint i = 1u; i <= steps; ++i) {
+    float t = top - float(i) * dt;
+    float f = carbtf_ray_clearance(uv, uv_per_t, view_z, t, lod);
+    if (f <= 0.0 || i == steps) {
+      t_below = t;
+      f_below = f;
+      break;
+    }
+    t_above = t;
+    f_above = f;
+  }
+  for (uint i = 0u; i < CARBTF_PARALLAX_REFINEMENTS; ++i) {
+    float t = 0.5 * (t_above + t_below);
+    float f = carbtf_ray_clearance(uv, uv_per_t, view_z, t, lod);
+    if (f > 0.0) {
+      t_above = t;
+      f_above = f;
+    } else {
+      t_below = t;
+      f_below = f;
+    }
+  }
+  float t = f_above > f_below ? t_above - f_above * (t_above - t_below) / (f_above - f_below) : t_below;
+  return uv + t * uv_per_t;
 }
 vec2 carbtf_parallax_uv(vec2 uv, vec3 view) {
   return carbtf_parallax_uv(uv, view, 0.0);

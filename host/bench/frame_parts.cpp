@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,7 +18,8 @@ void run_frame_parts(const FramePartsSetup& setup, const MaterialBindingInfo& ba
       "bench frame: the render pass again with each part of the fragment stage replaced by a constant, "
       "and with the other --direction-taps\n");
   std::fflush(stdout);
-  // The last variant draws the material with the other --direction-taps: the full picture, another
+  // The last two variants draw the whole material otherwise: parallax by offset mapping, one height read
+  // instead of the ray march (MaterialBindingInfo::parallax_steps 0), and the other --direction-taps, another
   // interpolation between the measured directions.
   const PairCoupling other_coupling =
       base.pair_coupling == PairCoupling::staircase ? PairCoupling::product : PairCoupling::staircase;
@@ -27,15 +29,17 @@ void run_frame_parts(const FramePartsSetup& setup, const MaterialBindingInfo& ba
     std::string part;
     std::uint32_t cost_probe = 0;
     PairCoupling coupling = PairCoupling::product;
+    std::optional<std::uint32_t> parallax_steps;  // the base's where not given
   };
   const std::vector<Variant> probes = {
-      {"none (the full pass)", 0u, base.pair_coupling},
-      {"direction lookups", cost_probe::lookups, base.pair_coupling},
-      {"pair table reads", cost_probe::pair_reads, base.pair_coupling},
-      {"subspace image reads", cost_probe::subspace_reads, base.pair_coupling},
-      {"relief (normal, tone, horizons)", cost_probe::relief, base.pair_coupling},
-      {"parallax height read", cost_probe::parallax, base.pair_coupling},
-      {other_taps, 0u, other_coupling}};
+      {"none (the full pass)", 0u, base.pair_coupling, {}},
+      {"direction lookups", cost_probe::lookups, base.pair_coupling, {}},
+      {"pair table reads", cost_probe::pair_reads, base.pair_coupling, {}},
+      {"subspace image reads", cost_probe::subspace_reads, base.pair_coupling, {}},
+      {"relief (normal, tone, horizons)", cost_probe::relief, base.pair_coupling, {}},
+      {"parallax ray march", cost_probe::parallax, base.pair_coupling, {}},
+      {"offset mapping (1 height read) in the march's place", 0u, base.pair_coupling, 0u},
+      {other_taps, 0u, other_coupling, {}}};
   std::vector<FramePartTimes> parts;
   std::vector<std::unique_ptr<MaterialBinding>> bindings(probes.size());
   std::vector<std::unique_ptr<MeshRenderer>> renderers(probes.size());
@@ -43,6 +47,7 @@ void run_frame_parts(const FramePartsSetup& setup, const MaterialBindingInfo& ba
     MaterialBindingInfo info = base;
     info.cost_probe = probes[p].cost_probe;
     info.pair_coupling = probes[p].coupling;
+    info.parallax_steps = probes[p].parallax_steps.value_or(base.parallax_steps);
     check(MaterialBinding::create(setup.context, setup.material, setup.textures, info, bindings[p]),
           "cannot bind");
     check(bindings[p]->upload_and_wait(), "cannot upload the material");

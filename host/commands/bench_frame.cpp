@@ -184,8 +184,9 @@ void register_bench_frame_command(CLI::App& bench) {
   command->add_flag(
       "--parts", options->parts,
       "Also render the frames with each part of the fragment stage (direction lookups, pair table, "
-      "subspace image reads, relief, parallax) replaced by a constant, and with the other "
-      "--direction-taps, in turn with the full pass, and report what each part costs (timing only; "
+      "subspace image reads, relief, parallax ray march) replaced by a constant, with offset mapping (one "
+      "height read) in the march's place, and with the other --direction-taps, in turn with the full pass, "
+      "and report what each part costs (timing only; "
       "writes bench_frame_parts.md and .csv)");
   command->add_flag("--hand-filtering", options->hand_filtering,
                     "Filter the subspace images by hand, as the CPU reference does, instead of through the "

@@ -364,12 +364,13 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
     // --parts: the full pass and each part replaced, every one timed on the 4 frames.
     for (const char* part :
          {"none (the full pass)", "direction lookups", "pair table reads", "subspace image reads",
-          "relief (normal, tone, horizons)", "parallax height read", "9 direction taps (5 in their place)"}) {
+          "relief (normal, tone, horizons)", "parallax ray march",
+          "offset mapping (1 height read) in the march's place", "9 direction taps (5 in their place)"}) {
       CHECK_THAT(bench.output, Catch::Contains(std::string("| ") + part + " | 4 |"));
     }
     const auto parts_bytes = read_file_bytes(out / "bench_frame_parts.csv");
     const std::string parts_csv(reinterpret_cast<const char*>(parts_bytes.data()), parts_bytes.size());
-    CHECK(line_count(parts_csv) == 1 + 7 * 4);
+    CHECK(line_count(parts_csv) == 1 + 8 * 4);
     CHECK_THAT(parts_csv,
                Catch::Contains("\n\"relief (normal, tone, horizons)\",3,"));  // quoted: it holds commas
     CHECK(fs::exists(out / "bench_frame_parts.md"));

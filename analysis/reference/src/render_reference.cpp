@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <stdexcept>
 
 #include <glm/glm.hpp>
@@ -13,6 +12,7 @@
 #include "carbtf/engine/render/relief_horizons.hpp"
 #include "carbtf/engine/render/relief_normals.hpp"
 #include "carbtf/engine/render/rendered_values.hpp"
+#include "carbtf/reference/parallax_march.hpp"
 
 namespace carbtf::reference {
 
@@ -151,8 +151,8 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
     throw std::invalid_argument("render_plane: the material's directions: " + s.message());
   }
   const float light_z_floor = relight_floor(material);
-  // The mean in double, as the binding computes it.
-  const double sum = std::accumulate(input.range_map.begin(), input.range_map.end(), 0.0);
+  // The mean and the march's bounds as the binding computes them.
+  const ReliefExtent extent = relief_extent(input.range_map, input.parallax_scale);
   const std::uint32_t levels = std::clamp(input.mip_levels, 1u, mip_level_count(tw, th));
   const bool shadows = material.range.shadow_scale > 0.0f;
   std::vector<float> horizons;
@@ -160,7 +160,7 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
   Sampler sampler{input,
                   tw,
                   th,
-                  static_cast<float>(sum / static_cast<double>(input.range_map.size())),
+                  extent.mean,
                   MipChain(height_tone_texels(input.range_map, input.tone_map), tw, th, 4, levels),
                   relief_chain(normal_texels(input.range_map, tw, th, input.wrap), tw, th, levels),
                   MipChain(horizon_texels(horizons, input.range_map.size(), 0), tw, th, 4, levels),
@@ -228,9 +228,10 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
 
       // The plane's tangent frame is the world's: x along u, y towards row 0, z the normal.
       const glm::vec3 view = glm::normalize(perspective ? eye - world : eye - target);
-      const float shift = input.parallax_scale * sampler.height_at(uv, lod);
       const glm::vec2 shifted =
-          uv + shift * glm::vec2(view.x, -view.y) / glm::vec2(static_cast<float>(tw), static_cast<float>(th));
+          parallax_march([&](glm::vec2 at) { return sampler.height_at(at, lod); }, uv, view,
+                         glm::vec2(static_cast<float>(tw), static_cast<float>(th)), input.parallax_scale,
+                         extent, input.parallax_steps);
       const glm::vec4 relief = sampler.relief_at(shifted, lod);
       glm::vec3 normal(relief);
       if (input.normals_from_heights) {

@@ -1,5 +1,7 @@
 #include "carbtf/analysis/model/deshade.hpp"
 
+#include "carbtf/engine/render/material_tables.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -67,6 +69,7 @@ void undo_parallax(std::vector<Plane>& channels, const Plane& range_map, const s
                    double scale) {
   const Eigen::Index rows = range_map.rows(), cols = range_map.cols();
   const double mean = range_map.mean();
+  const double view_z = std::max(view[2], double{kParallaxMinViewZ});
   for (Plane& channel : channels) {
     if (channel.rows() != rows || channel.cols() != cols)
       throw std::invalid_argument("undo_parallax: sizes differ");
@@ -76,7 +79,9 @@ void undo_parallax(std::vector<Plane>& channels, const Plane& range_map, const s
     };
     for (Eigen::Index r = 0; r < rows; ++r) {
       for (Eigen::Index c = 0; c < cols; ++c) {
-        const double shift = scale * (range_map(r, c) - mean);
+        // The texel at height h is what the ray through the plane point h tan(theta) back along the view
+        // meets (the render pass's march, parallax_march.hpp), where no ridge hides it.
+        const double shift = scale * (range_map(r, c) - mean) / view_z;
         const double x = static_cast<double>(c) - shift * view[0];
         const double y = static_cast<double>(r) + shift * view[1];
         const double x0 = std::floor(x), y0 = std::floor(y);

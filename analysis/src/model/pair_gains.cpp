@@ -8,6 +8,7 @@
 #include "carbtf/analysis/model/deshade.hpp"
 #include "carbtf/analysis/model/relief_tone.hpp"
 #include "carbtf/analysis/segmentation/lab_histogram.hpp"
+#include "carbtf/reference/parallax_march.hpp"
 #include "carbtf/reference/parallel_for.hpp"
 #include "carbtf/reference/subspace_synthesis.hpp"
 
@@ -102,26 +103,47 @@ std::vector<std::uint8_t> fit_pair_gains(const BtfDataset& dataset, const Materi
         toned[s][3 * p + k] *= static_cast<float>(share[static_cast<std::size_t>(k)](r, c));
     }
   }
-  // Per view, where each grid pixel of the render reads the textures: shifted by the parallax of the
-  // render pass (carbtf_parallax_uv: the height at the pixel times the view's tangent components), so
-  // that facets turned towards the view cover more pixels, as they do in the render and the photograph.
+  // Per view, where each grid pixel of the render reads the textures: where the render pass's parallax
+  // march (carbtf_parallax_uv) finds the relief along the pixel's view ray, so that facets turned towards
+  // the view cover more pixels and those hidden behind a ridge none, as in the render and the photograph.
   struct Tap {
     std::size_t texel;        // top-left of the bilinear footprint
     std::size_t right, down;  // offsets of the next column and row, 0 at the clamped edge
     float fx, fy;
   };
-  const double mean_height = relief.range_map.mean();
+  // The render's heights (float, minus their mean) and the march over them, as the render pass marches.
+  std::vector<float> heights(static_cast<std::size_t>(relief.range_map.size()));
+  for (std::size_t i = 0; i < heights.size(); ++i)
+    heights[i] = static_cast<float>(
+        relief.range_map(static_cast<Eigen::Index>(i / width), static_cast<Eigen::Index>(i % width)));
+  const ReliefExtent extent = relief_extent(heights, static_cast<float>(kAnalysisParallaxScale));
+  const glm::vec2 size(static_cast<float>(width), static_cast<float>(height));
+  const auto height_at = [&](glm::vec2 uv) {
+    const glm::vec2 t = glm::clamp(uv * size - 0.5f, glm::vec2(0.0f), size - 1.0f);
+    const auto c0 = static_cast<std::size_t>(t.x), r0 = static_cast<std::size_t>(t.y);
+    const std::size_t c1 = std::min<std::size_t>(c0 + 1, width - 1),
+                      r1 = std::min<std::size_t>(r0 + 1, height - 1);
+    const float fx = t.x - static_cast<float>(c0), fy = t.y - static_cast<float>(r0);
+    const float top = heights[r0 * width + c0] + fx * (heights[r0 * width + c1] - heights[r0 * width + c0]);
+    const float bottom =
+        heights[r1 * width + c0] + fx * (heights[r1 * width + c1] - heights[r1 * width + c0]);
+    return top + fy * (bottom - top) - extent.mean;
+  };
   std::vector<std::vector<Tap>> taps(views, std::vector<Tap>(grid.size()));
   for (std::size_t v = 0; v < views; ++v) {
-    const std::array<double, 3> view = dataset.views()[v].vector();
+    const std::array<double, 3> direction = dataset.views()[v].vector();
+    const glm::vec3 view(static_cast<float>(direction[0]), static_cast<float>(direction[1]),
+                         static_cast<float>(direction[2]));
     for (std::size_t i = 0; i < grid.size(); ++i) {
-      const auto r = static_cast<Eigen::Index>(grid[i] / width),
-                 c = static_cast<Eigen::Index>(grid[i] % width);
-      const double shift = kAnalysisParallaxScale * (relief.range_map(r, c) - mean_height);
+      const glm::vec2 pixel(static_cast<float>(grid[i] % width) + 0.5f,
+                            static_cast<float>(grid[i] / width) + 0.5f);
+      const glm::vec2 uv = reference::parallax_march(height_at, pixel / size, view, size,
+                                                     static_cast<float>(kAnalysisParallaxScale), extent,
+                                                     kDefaultParallaxSteps);
       const double x =
-          std::clamp(static_cast<double>(c) + shift * view[0], 0.0, static_cast<double>(width - 1));
+          std::clamp(static_cast<double>(uv.x * size.x - 0.5f), 0.0, static_cast<double>(width - 1));
       const double y =
-          std::clamp(static_cast<double>(r) - shift * view[1], 0.0, static_cast<double>(height - 1));
+          std::clamp(static_cast<double>(uv.y * size.y - 0.5f), 0.0, static_cast<double>(height - 1));
       const auto c0 = static_cast<std::size_t>(x), r0 = static_cast<std::size_t>(y);
       taps[v][i] = {r0 * width + c0, c0 + 1 < width ? 1u : 0u, r0 + 1 < height ? std::size_t{width} : 0u,
                     static_cast<float>(x - static_cast<double>(c0)),

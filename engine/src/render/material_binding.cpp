@@ -127,6 +127,11 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     }
     if (!std::isfinite(info.parallax_scale))
       return {ErrorCode::invalid_argument, "the parallax scale is not finite"};
+    if (info.parallax_steps > kMaxParallaxSteps) {
+      return {ErrorCode::invalid_argument, "the parallax march takes at most " +
+                                               std::to_string(kMaxParallaxSteps) + " steps, not " +
+                                               std::to_string(info.parallax_steps)};
+    }
     std::unique_ptr<MaterialBinding> binding(new MaterialBinding());
     binding->context_ = &context;
     binding->resources_ = std::make_unique<Resources>();
@@ -148,7 +153,7 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     const MaterialLayers layers{textures.layers, textures.pair_layers};
     CARBTF_TRY(build_material_tables(material, layers,
                                      {textures.width, textures.height, relief.wrap, r.mip_levels,
-                                      info.parallax_scale, info.lookup_grid_size},
+                                      info.parallax_scale, info.lookup_grid_size, info.parallax_steps},
                                      relief, r.tables, r.pair_table));
     r.pair_layers = !textures.pair_layers.empty();
     r.shadows = material.range.shadow_scale > 0.0f;

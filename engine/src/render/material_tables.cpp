@@ -1,4 +1,5 @@
 #include "carbtf/engine/render/material_tables.hpp"
+#include <algorithm>
 
 #include <array>
 #include <cstring>
@@ -16,6 +17,10 @@ namespace carbtf {
 namespace {
 
 constexpr std::uint32_t kHeaderWords = sizeof(gpu::MaterialTablesHeader) / 4;
+static_assert(kParallaxStepTexels == gpu::CARBTF_PARALLAX_STEP_TEXELS &&
+                  kParallaxRefinements == gpu::CARBTF_PARALLAX_REFINEMENTS &&
+                  kParallaxMinViewZ == gpu::CARBTF_PARALLAX_MIN_VIEW_Z,
+              "the parallax march's CPU twin takes the shader's constants");
 static_assert(kHeaderWords % 4 == 0, "the tables after the header start on a quad");
 
 std::uint32_t float_bits(float value) {
@@ -124,11 +129,27 @@ Status build_material_tables(const Material& material, const MaterialLayers& lay
   header.shadows = material.range.shadow_scale > 0.0f ? 1u : 0u;
   header.specular_strength = material.range.specular_strength;
   header.specular_gloss = material.range.specular_gloss;
-  double sum = 0.0;
-  for (float h : relief.heights) sum += h;
-  header.range_mean = static_cast<float>(sum / static_cast<double>(relief.heights.size()));
+  const ReliefExtent extent = relief_extent(relief.heights, info.parallax_scale);
+  header.range_mean = extent.mean;
+  header.parallax_top = extent.top;
+  header.parallax_bottom = extent.bottom;
+  header.parallax_steps = info.parallax_steps;
   std::memcpy(tables.data(), &header, sizeof header);
   return {};
+}
+
+ReliefExtent relief_extent(std::span<const float> heights, float parallax_scale) {
+  ReliefExtent extent;
+  if (heights.empty()) return extent;
+  double sum = 0.0;
+  for (float h : heights) sum += h;
+  extent.mean = static_cast<float>(sum / static_cast<double>(heights.size()));
+  const auto [low, high] = std::minmax_element(heights.begin(), heights.end());
+  // The render pass's heights are these minus the mean, in float: the same subtraction bounds them.
+  const float a = parallax_scale * (*high - extent.mean), b = parallax_scale * (*low - extent.mean);
+  extent.top = std::max(a, b);  // a negative scale turns the relief over
+  extent.bottom = std::min(a, b);
+  return extent;
 }
 
 ReliefMaps relief_maps(const Material& material, const TextureWindow& block) {

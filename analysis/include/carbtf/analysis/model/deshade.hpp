@@ -44,11 +44,12 @@ void divide_shading(std::vector<Plane>& channels, const Plane& factor, double fl
 void divide_shading(std::vector<Plane>& channels, const std::vector<Plane>& factors, double floor);
 
 // Undoes the render pass's parallax for a measured image seen from unit direction `view` (tangent
-// frame): the render shows the material's texel u' = u + scale * h(u) * (view.x, -view.y) at u, so the
-// material field that reproduces the image is W(u') = M(u' - scale * h(u') * (view.x, -view.y)),
-// sampled bilinearly with edges clamped (h(u') for h(u): exact where the map is locally flat). The
-// relief tone and the relit factor are defined on u', so an oblique image is brought there before
-// either is divided out.
+// frame): the render's ray march (carbtf_parallax_uv) shows at plane point u the texel u' its view ray
+// meets first, u' = u + scale * h(u') * (view.x, -view.y) / view.z, so the material field that
+// reproduces the image is W(u') = M(u' - scale * h(u') * (view.x, -view.y) / view.z), sampled
+// bilinearly with edges clamped (view.z floored at kParallaxMinViewZ, as the march floors it): exact
+// wherever no ridge hides u' from the view. The relief tone and the relit factor are defined on u', so
+// an oblique image is brought there before either is divided out.
 // The render pass's default parallax scale (MaterialBindingInfo::parallax_scale), which the analysis
 // assumes when it undoes the parallax of a measured image.
 inline constexpr double kAnalysisParallaxScale = 1.0;

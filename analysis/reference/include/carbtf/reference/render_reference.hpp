@@ -11,6 +11,7 @@
 
 #include "carbtf/engine/material/direction_interpolation.hpp"
 #include "carbtf/engine/material/material.hpp"
+#include "carbtf/engine/render/material_tables.hpp"
 #include "carbtf/engine/render/render_scene.hpp"
 #include "carbtf/engine/synthesis/synthesis_request.hpp"
 
@@ -25,6 +26,8 @@ struct ReferenceRenderInput {
   std::span<const float> range_map;
   std::span<const float> tone_map;
   float parallax_scale = 1.0f;
+  std::uint32_t parallax_steps =
+      kDefaultParallaxSteps;  // MaterialBindingInfo::parallax_steps (0: offset mapping)
   // Mip levels to filter with, level 0 included (MaterialBinding::mip_levels()): the reference builds
   // them as the means of 2 x 2 texels (mip_chain.hpp) and picks each pixel's level of detail from the
   // uv of its 2 x 2 quad's neighbours, as the fragment stage's fine derivatives do. 1: level 0 only.

@@ -21,6 +21,7 @@
 
 #include "carbtf/engine/material/direction_interpolation.hpp"
 #include "carbtf/engine/material/material.hpp"
+#include "carbtf/engine/render/material_tables.hpp"  // the parallax march's default
 #include "carbtf/engine/render/rendered_values.hpp"  // the CPU twin of what the pass reads
 #include "carbtf/engine/vulkan/buffer.hpp"
 #include "carbtf/engine/vulkan/context.hpp"
@@ -60,8 +61,11 @@ constexpr std::uint32_t lookups = 1;         // the two direction lookups: fixed
 constexpr std::uint32_t pair_reads = 2;      // the pair table: layers from the indices, gains 1
 constexpr std::uint32_t subspace_reads = 4;  // the 9 subspace image reads: a grey per layer
 constexpr std::uint32_t relief = 8;          // the normal, tone and horizons: flat, 1, none
-constexpr std::uint32_t parallax = 16;       // the parallax height read: no shift
+constexpr std::uint32_t parallax = 16;       // the parallax ray march: no shift
 }  // namespace cost_probe
+
+// MaterialBindingInfo::parallax_steps' limit.
+inline constexpr std::uint32_t kMaxParallaxSteps = 256;
 
 struct MaterialBindingInfo {
   // The range map's block of its enlarged map: the synthesized block's seed and position, so that the
@@ -71,6 +75,11 @@ struct MaterialBindingInfo {
   std::int64_t col0 = 0;
   // Parallax offset per texel of height (1: the range map's own scale; 0: no parallax).
   float parallax_scale = 1.0f;
+  // The parallax ray march's most steps down the view ray (carbtf_parallax_uv), besides its 5 reads that
+  // refine the hit: a step moves at most half a texel across or down, so 32 reach a relief 8 texels
+  // deep at 60 degrees from the top. 0: offset mapping, one height read per fragment, which leaves
+  // facets turned away from the view in sight (docs/design.md 4.6). At most 256.
+  std::uint32_t parallax_steps = kDefaultParallaxSteps;
   // Cells per side of each direction lookup grid (MaterialDirections).
   std::uint32_t lookup_grid_size = 64;
   // At most this many mip levels, level 0 included (0: as many as the textures allow, mip_levels.hpp;

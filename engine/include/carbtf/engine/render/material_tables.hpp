@@ -21,13 +21,21 @@ struct MaterialLayers {
   std::vector<std::uint32_t> pair_layers;      // [light * views + view]; when set, it wins
 };
 
+// The march's constants (carbtf_gpu_shared.h's CARBTF_PARALLAX_*, checked equal where the tables are
+// built), for its CPU twin (reference/parallax_march.hpp).
+inline constexpr float kParallaxStepTexels = 0.5f;
+inline constexpr std::uint32_t kParallaxRefinements = 4;
+inline constexpr float kParallaxMinViewZ = 0.05f;
+inline constexpr std::uint32_t kDefaultParallaxSteps = 32;  // MaterialBindingInfo::parallax_steps' default
+
 struct MaterialTablesInfo {
   std::uint32_t width = 0;  // of the subspace images
   std::uint32_t height = 0;
   bool wrap = false;  // periodic textures
   std::uint32_t mip_levels = 1;
   float parallax_scale = 1.0f;
-  std::uint32_t lookup_grid_size = 0;  // 0: DirectionLookupGrid's default
+  std::uint32_t lookup_grid_size = 0;                    // 0: DirectionLookupGrid's default
+  std::uint32_t parallax_steps = kDefaultParallaxSteps;  // MaterialBindingInfo::parallax_steps
 };
 
 // The pair table's first words: per (light, view) pair its layer (low 16 bits) and its subspace's tone
@@ -50,6 +58,16 @@ struct ReliefMaps {
 };
 
 ReliefMaps relief_maps(const Material& material, const TextureWindow& block);
+
+// What the parallax ray march needs of the heights (carbtf_parallax_uv): their mean (in double, rounded to
+// float: the height the render pass reads is the height minus it), and the highest and lowest point,
+// parallax_scale * (height - mean), where the march starts and where it ends.
+struct ReliefExtent {
+  float mean = 0.0f;
+  float top = 0.0f;
+  float bottom = 0.0f;
+};
+ReliefExtent relief_extent(std::span<const float> heights, float parallax_scale);
 
 // The tables as RGBA32UI quads (MaterialTablesHeader first); `pair_table` receives the word offset of
 // the pair table, which write_pair_table() rewrites when the layers change. The header's range mean is
