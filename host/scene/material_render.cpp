@@ -9,13 +9,15 @@ namespace carbtf::cli {
 MaterialRender prepare_material_render(Context& context, const Material& material,
                                        const SubspaceSynthesizer& synthesizer, std::uint64_t seed,
                                        float parallax_scale, std::uint32_t width, std::uint32_t height,
-                                       const Mesh& mesh, bool hardware_filtering, PairCoupling coupling) {
+                                       const Mesh& mesh, bool hardware_filtering, PairCoupling coupling,
+                                       std::uint32_t parallax_steps) {
   MaterialRender out;
   MaterialBindingInfo info;
   info.seed = seed;
   info.parallax_scale = parallax_scale;
   info.hardware_filtering = hardware_filtering;
   info.pair_coupling = coupling;
+  info.parallax_steps = parallax_steps;
   check(
       MaterialBinding::create(context, material, material_textures(synthesizer, material), info, out.binding),
       "cannot bind the material");

@@ -21,13 +21,15 @@ struct MaterialRender {
 
 // After `synthesizer` has synthesized `material`'s subspace images. `hardware_filtering`:
 // MaterialBindingInfo::hardware_filtering (false where the picture is scored, so that figures do not
-// depend on the device's sampler precision); `coupling`: MaterialBindingInfo::pair_coupling. Throws
+// depend on the device's sampler precision); `coupling`: MaterialBindingInfo::pair_coupling;
+// `parallax_steps`: MaterialBindingInfo::parallax_steps. Throws
 // CommandError on failure.
 MaterialRender prepare_material_render(Context& context, const Material& material,
                                        const SubspaceSynthesizer& synthesizer, std::uint64_t seed,
                                        float parallax_scale, std::uint32_t width, std::uint32_t height,
                                        const Mesh& mesh, bool hardware_filtering,
-                                       PairCoupling coupling = PairCoupling::product);
+                                       PairCoupling coupling = PairCoupling::product,
+                                       std::uint32_t parallax_steps = kDefaultParallaxSteps);
 
 // The commands' scene pruner: the subspace images a frame's (light, view) pairs fall in, at the texel
 // density of most of its pixels, up to 1024 texels a side (beyond that only on request, with

@@ -52,6 +52,7 @@ TEST_CASE("bad arguments give one error line and a non-zero exit", "[cli]") {
        {Case{"noise --size 0", "--size"}, Case{"noise --size abc", "--size"},
         Case{"noise --seed -3", "--seed"}, Case{"frobnicate", "frobnicate"},
         Case{"render m.cbtf --direction-taps 7", "--direction-taps: 7 not in {9,5}"},
+        Case{"render m.cbtf --parallax-steps 257", "--parallax-steps: Value 257 not in range 0 to 256"},
         Case{"bench frame --lights 5", "--lights"},
         Case{"noise --out " + (folder / "n.xyz").string(), "unsupported image extension"},
         Case{"noise --size 16 --device no-such-gpu --out " + (folder / "n.png").string(), "no-such-gpu"},
@@ -299,6 +300,17 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
     const RgbImage five_image = decode_rgb_image(staircase.string(), read_file_bytes(staircase));
     REQUIRE(five_image.srgb8.size() == image.srgb8.size());
     CHECK(five_image.srgb8 != image.srgb8);
+    // --parallax-steps 0: offset mapping instead of the ray march, another picture of the same relief.
+    const fs::path offset_mapped = folder / "render" / "sphere_offset_mapping.png";
+    const Run offset = run("render " + material.string() +
+                           " --mesh sphere --size 96x64 --texture-size 32 --light 40,90 "
+                           "--point-light 1,1,2,2 --parallax-steps 0 --validation --out " +
+                           offset_mapped.string());
+    INFO(offset.output);
+    REQUIRE(offset.status == 0);
+    const RgbImage offset_image = decode_rgb_image(offset_mapped.string(), read_file_bytes(offset_mapped));
+    REQUIRE(offset_image.srgb8.size() == image.srgb8.size());
+    CHECK(offset_image.srgb8 != image.srgb8);
 
     // Beside the measurement: the measured BTF drawn the same way on the same plane, view and light.
     const fs::path compare = folder / "render" / "plane.png";
