@@ -3,6 +3,7 @@
 #include "carbtf/analysis/btf/btf_reader.hpp"
 #include "carbtf/analysis/image_io.hpp"
 #include "carbtf/engine/file_output.hpp"
+#include "carbtf/engine/render/material_binding.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -43,6 +44,21 @@ void add_car_scheme_option(CLI::App& command, CarScheme& scheme) {
 
 const char* direction_taps_name(PairCoupling coupling) {
   return coupling == PairCoupling::staircase ? "5" : "9";
+}
+
+void add_parallax_options(CLI::App& command, float& scale, std::uint32_t& steps) {
+  command.add_option("--parallax", scale, "Parallax scale (1: the range map's own heights; 0: none)")
+      ->check(CLI::Range(0.0f, 16.0f))
+      ->capture_default_str();
+  command
+      .add_option(
+          "--parallax-steps", steps,
+          "Most steps of the parallax ray march down each pixel's view ray, half a texel each, to the "
+          "first point of the relief, so that ridges hide what lies behind them (32 reach a relief 8 "
+          "texels deep at 60 degrees from the top); 0: offset mapping, one height read per pixel, "
+          "cheaper, with facets turned from the view left in sight")
+      ->check(CLI::Range(0u, kMaxParallaxSteps))
+      ->capture_default_str();
 }
 
 void add_direction_taps_option(CLI::App& command, PairCoupling& coupling) {

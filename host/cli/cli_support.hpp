@@ -31,6 +31,8 @@ void add_car_scheme_option(CLI::App& command, CarScheme& scheme);
 // --direction-taps 9|5: the (light, view) pairs the render pass reads per light
 // (MaterialBindingInfo::pair_coupling: 9 the paper's product, 5 the staircase).
 void add_direction_taps_option(CLI::App& command, PairCoupling& coupling);
+// --parallax (MaterialBindingInfo::parallax_scale) and --parallax-steps (::parallax_steps).
+void add_parallax_options(CLI::App& command, float& scale, std::uint32_t& steps);
 // "9" or "5": the --direction-taps value of a coupling.
 const char* direction_taps_name(PairCoupling coupling);
 

@@ -129,10 +129,10 @@ void run_render(const RenderOptions& options) {
 
 void register_render_command(CLI::App& app) {
   auto options = std::make_shared<RenderOptions>();
-  CLI::App* command = app.add_subcommand(
-      "render",
-      "Render a material on a mesh, headless: GPU synthesis, then parallax bump mapping with the 9-weight "
-      "interpolation of the subspace images, relit by the range map");
+  CLI::App* command = app.add_subcommand("render",
+                                         "Render a material on a mesh, headless: GPU synthesis, then "
+                                         "parallax occlusion mapping with the 9-weight "
+                                         "interpolation of the subspace images, relit by the range map");
   command->add_option("material", options->material, "Material file (.cbtf) from `carbtf analyze`")
       ->required();
   command
@@ -179,20 +179,7 @@ void register_render_command(CLI::App& app) {
   command->add_option("--seed", options->seed, "Synthesis and range-map layout seed")
       ->check(non_negative())
       ->capture_default_str();
-  command
-      ->add_option("--parallax", options->parallax,
-                   "Parallax scale (1: the range map's own heights; 0: none)")
-      ->check(CLI::Range(0.0f, 16.0f))
-      ->capture_default_str();
-  command
-      ->add_option(
-          "--parallax-steps", options->parallax_steps,
-          "Most steps of the parallax ray march down each pixel's view ray, half a texel each, to the "
-          "first point of the relief, so that ridges hide what lies behind them (32 reach a relief 8 "
-          "texels deep at 60 degrees from the top); 0: offset mapping, one height read per pixel, "
-          "cheaper, with facets turned from the view left in sight")
-      ->check(CLI::Range(0u, kMaxParallaxSteps))
-      ->capture_default_str();
+  add_parallax_options(*command, options->parallax, options->parallax_steps);
   command->add_flag("--hand-filtering", options->hand_filtering,
                     "Filter the subspace images by hand, as the CPU reference does, instead of through the "
                     "sampler's trilinear filtering (slower; the default where the device filters RGBA32F)");
