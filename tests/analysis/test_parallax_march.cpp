@@ -95,7 +95,7 @@ TEST_CASE("the parallax march finds the first point of the relief the view ray m
   const Relief relief;
   for (const auto& [theta, phi] : {std::pair{30.0, 20.0}, {45.0, 200.0}, {60.0, 54.0}, {75.0, 300.0}}) {
     const glm::vec3 view = direction(theta, phi);
-    const Agreement march = agreement(relief, view, 32);
+    const Agreement march = agreement(relief, view, carbtf::kDefaultParallaxSteps);
     const Agreement offset_mapping = agreement(relief, view, 0);
     INFO("view (" << theta << ", " << phi << "): the march within 0.05 texels at " << march.within
                   << " of the points, mean error " << march.mean_error << " texels; offset mapping at "

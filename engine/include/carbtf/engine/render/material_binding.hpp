@@ -76,9 +76,10 @@ struct MaterialBindingInfo {
   // Parallax offset per texel of height (1: the range map's own scale; 0: no parallax).
   float parallax_scale = 1.0f;
   // The parallax ray march's most steps down the view ray (carbtf_parallax_uv), besides its 5 reads that
-  // refine the hit: a step moves at most half a texel across or down, so 32 reach a relief 8 texels
-  // deep at 60 degrees from the top. 0: offset mapping, one height read per fragment, which leaves
-  // facets turned away from the view in sight (docs/design.md 4.6). At most 256.
+  // refine the hit: a step moves at most half a texel across or down, so 16 reach a relief 4.6 texels
+  // deep at 60 degrees from the top (deeper ones, or views nearer grazing, take longer steps). 0: offset
+  // mapping, one height read per fragment, which leaves facets turned away from the view in sight
+  // (docs/design.md 4.6). At most 256.
   std::uint32_t parallax_steps = kDefaultParallaxSteps;
   // Cells per side of each direction lookup grid (MaterialDirections).
   std::uint32_t lookup_grid_size = 64;

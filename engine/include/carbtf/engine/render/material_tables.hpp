@@ -26,7 +26,7 @@ struct MaterialLayers {
 inline constexpr float kParallaxStepTexels = 0.5f;
 inline constexpr std::uint32_t kParallaxRefinements = 4;
 inline constexpr float kParallaxMinViewZ = 0.05f;
-inline constexpr std::uint32_t kDefaultParallaxSteps = 32;  // MaterialBindingInfo::parallax_steps' default
+inline constexpr std::uint32_t kDefaultParallaxSteps = 16;  // MaterialBindingInfo::parallax_steps' default
 
 struct MaterialTablesInfo {
   std::uint32_t width = 0;  // of the subspace images
