@@ -56,8 +56,7 @@ void add_parallax_options(CLI::App& command, float& scale, std::uint32_t& steps)
           "Most steps of the parallax ray march down each pixel's view ray, half a texel each, to the "
           "first point of the relief, so that ridges hide what lies behind them (16 reach a relief 4.6 "
           "texels deep at 60 degrees from the top, longer steps beyond); 0: offset mapping, one height read "
-          "per pixel, "
-          "cheaper, with facets turned from the view left in sight")
+          "per pixel, cheaper, with facets turned from the view left in sight")
       ->check(CLI::Range(0u, kMaxParallaxSteps))
       ->capture_default_str();
 }

@@ -289,28 +289,23 @@ TEST_CASE("carbtf analyze writes a material and a report that carbtf info descri
     // The sphere covers the centre, the clear colour the corner, and the two differ.
     const std::size_t centre = (32u * 96u + 48u) * 3u;
     CHECK(image.srgb8[centre] != image.srgb8[0]);
+    // The same frame drawn otherwise: another picture of the same material.
+    const auto drawn_otherwise = [&](const std::string& option, const std::string& name) {
+      const fs::path other = folder / "render" / name;
+      const Run r_other = run("render " + material.string() +
+                              " --mesh sphere --size 96x64 --texture-size 32 --light 40,90 "
+                              "--point-light 1,1,2,2 " +
+                              option + " --validation --out " + other.string());
+      INFO(r_other.output);
+      REQUIRE(r_other.status == 0);
+      const RgbImage other_image = decode_rgb_image(other.string(), read_file_bytes(other));
+      REQUIRE(other_image.srgb8.size() == image.srgb8.size());
+      CHECK(other_image.srgb8 != image.srgb8);
+    };
     // --direction-taps 5: the staircase's pairs, another picture between the measured directions.
-    const fs::path staircase = folder / "render" / "sphere_5.png";
-    const Run five = run("render " + material.string() +
-                         " --mesh sphere --size 96x64 --texture-size 32 --light 40,90 "
-                         "--point-light 1,1,2,2 --direction-taps 5 --validation --out " +
-                         staircase.string());
-    INFO(five.output);
-    REQUIRE(five.status == 0);
-    const RgbImage five_image = decode_rgb_image(staircase.string(), read_file_bytes(staircase));
-    REQUIRE(five_image.srgb8.size() == image.srgb8.size());
-    CHECK(five_image.srgb8 != image.srgb8);
+    drawn_otherwise("--direction-taps 5", "sphere_5.png");
     // --parallax-steps 0: offset mapping instead of the ray march, another picture of the same relief.
-    const fs::path offset_mapped = folder / "render" / "sphere_offset_mapping.png";
-    const Run offset = run("render " + material.string() +
-                           " --mesh sphere --size 96x64 --texture-size 32 --light 40,90 "
-                           "--point-light 1,1,2,2 --parallax-steps 0 --validation --out " +
-                           offset_mapped.string());
-    INFO(offset.output);
-    REQUIRE(offset.status == 0);
-    const RgbImage offset_image = decode_rgb_image(offset_mapped.string(), read_file_bytes(offset_mapped));
-    REQUIRE(offset_image.srgb8.size() == image.srgb8.size());
-    CHECK(offset_image.srgb8 != image.srgb8);
+    drawn_otherwise("--parallax-steps 0", "sphere_offset_mapping.png");
 
     // Beside the measurement: the measured BTF drawn the same way on the same plane, view and light.
     const fs::path compare = folder / "render" / "plane.png";

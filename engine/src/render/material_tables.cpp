@@ -1,6 +1,6 @@
 #include "carbtf/engine/render/material_tables.hpp"
-#include <algorithm>
 
+#include <algorithm>
 #include <array>
 #include <cstring>
 #include <limits>
