@@ -111,23 +111,29 @@ std::vector<std::uint8_t> fit_pair_gains(const BtfDataset& dataset, const Materi
     std::size_t right, down;  // offsets of the next column and row, 0 at the clamped edge
     float fx, fy;
   };
+  const glm::vec2 size(static_cast<float>(width), static_cast<float>(height));
+  // The bilinear footprint of uv, edges clamped, as the render's sampler reads the textures.
+  const auto tap_at = [&](glm::vec2 uv) {
+    const glm::vec2 t = glm::clamp(uv * size - 0.5f, glm::vec2(0.0f), size - 1.0f);
+    const auto c0 = static_cast<std::size_t>(t.x), r0 = static_cast<std::size_t>(t.y);
+    return Tap{r0 * width + c0, c0 + 1 < width ? 1u : 0u, r0 + 1 < height ? std::size_t{width} : 0u,
+               t.x - static_cast<float>(c0), t.y - static_cast<float>(r0)};
+  };
+  const auto bilinear = [](const float* values, const Tap& t, std::size_t channels, std::size_t k) {
+    const auto at = [&](std::size_t texel) { return values[texel * channels + k]; };
+    const float top = at(t.texel) + t.fx * (at(t.texel + t.right) - at(t.texel));
+    const float bottom =
+        at(t.texel + t.down) + t.fx * (at(t.texel + t.down + t.right) - at(t.texel + t.down));
+    return top + t.fy * (bottom - top);
+  };
   // The render's heights (float, minus their mean) and the march over them, as the render pass marches.
   std::vector<float> heights(static_cast<std::size_t>(relief.range_map.size()));
   for (std::size_t i = 0; i < heights.size(); ++i)
     heights[i] = static_cast<float>(
         relief.range_map(static_cast<Eigen::Index>(i / width), static_cast<Eigen::Index>(i % width)));
   const ReliefExtent extent = relief_extent(heights, static_cast<float>(kAnalysisParallaxScale));
-  const glm::vec2 size(static_cast<float>(width), static_cast<float>(height));
   const auto height_at = [&](glm::vec2 uv) {
-    const glm::vec2 t = glm::clamp(uv * size - 0.5f, glm::vec2(0.0f), size - 1.0f);
-    const auto c0 = static_cast<std::size_t>(t.x), r0 = static_cast<std::size_t>(t.y);
-    const std::size_t c1 = std::min<std::size_t>(c0 + 1, width - 1),
-                      r1 = std::min<std::size_t>(r0 + 1, height - 1);
-    const float fx = t.x - static_cast<float>(c0), fy = t.y - static_cast<float>(r0);
-    const float top = heights[r0 * width + c0] + fx * (heights[r0 * width + c1] - heights[r0 * width + c0]);
-    const float bottom =
-        heights[r1 * width + c0] + fx * (heights[r1 * width + c1] - heights[r1 * width + c0]);
-    return top + fy * (bottom - top) - extent.mean;
+    return bilinear(heights.data(), tap_at(uv), 1, 0) - extent.mean;
   };
   std::vector<std::vector<Tap>> taps(views, std::vector<Tap>(grid.size()));
   for (std::size_t v = 0; v < views; ++v) {
@@ -137,26 +143,11 @@ std::vector<std::uint8_t> fit_pair_gains(const BtfDataset& dataset, const Materi
     for (std::size_t i = 0; i < grid.size(); ++i) {
       const glm::vec2 pixel(static_cast<float>(grid[i] % width) + 0.5f,
                             static_cast<float>(grid[i] / width) + 0.5f);
-      const glm::vec2 uv = reference::parallax_march(height_at, pixel / size, view, size,
-                                                     static_cast<float>(kAnalysisParallaxScale), extent,
-                                                     kDefaultParallaxSteps);
-      const double x =
-          std::clamp(static_cast<double>(uv.x * size.x - 0.5f), 0.0, static_cast<double>(width - 1));
-      const double y =
-          std::clamp(static_cast<double>(uv.y * size.y - 0.5f), 0.0, static_cast<double>(height - 1));
-      const auto c0 = static_cast<std::size_t>(x), r0 = static_cast<std::size_t>(y);
-      taps[v][i] = {r0 * width + c0, c0 + 1 < width ? 1u : 0u, r0 + 1 < height ? std::size_t{width} : 0u,
-                    static_cast<float>(x - static_cast<double>(c0)),
-                    static_cast<float>(y - static_cast<double>(r0))};
+      taps[v][i] = tap_at(reference::parallax_march(height_at, pixel / size, view, size,
+                                                    static_cast<float>(kAnalysisParallaxScale), extent,
+                                                    kDefaultParallaxSteps));
     }
   }
-  const auto bilinear = [](const float* values, const Tap& t, std::size_t channels, std::size_t k) {
-    const auto at = [&](std::size_t texel) { return values[texel * channels + k]; };
-    const float top = at(t.texel) + t.fx * (at(t.texel + t.right) - at(t.texel));
-    const float bottom =
-        at(t.texel + t.down) + t.fx * (at(t.texel + t.down + t.right) - at(t.texel + t.down));
-    return top + t.fy * (bottom - top);
-  };
 
   std::vector<std::uint8_t> codes(3 * pairs, static_cast<std::uint8_t>(kPairGainZero));
   const double z_floor = relight_floor(material);
