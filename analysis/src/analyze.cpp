@@ -20,6 +20,7 @@
 #include "carbtf/analysis/model/relief_tone.hpp"
 #include "carbtf/analysis/progress.hpp"
 #include "carbtf/analysis/quality/texture_distributions.hpp"
+#include "carbtf/analysis/range/relief_band_limit.hpp"
 #include "carbtf/analysis/range/surface_integration.hpp"
 #include "carbtf/analysis/resource_usage.hpp"
 #include "carbtf/reference/parallel_for.hpp"
@@ -411,7 +412,8 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
   double shadow_scale = 0.0;
   {
     StageClock clock(result, "range map and tiles");
-    result.range_map = integrate_normals(result.normals.normals, dataset.width(), dataset.height());
+    result.range_map =
+        band_limit_relief(integrate_normals(result.normals.normals, dataset.width(), dataset.height()));
     if (options.relief_tone) {
       if (options.relief_shadows == AutoChoice::always) shadow_scale = 1.0;
       if (options.relief_shadows == AutoChoice::automatic) {

@@ -317,6 +317,8 @@ CARBTF_FUNCTION bool carbtf_staircase_next_is_light(float light_left, float view
 }
 // The penumbra of the relief's cast shadows, in tangent of elevation (relief_horizons.hpp).
 CARBTF_CONST_FLOAT(CARBTF_RELIEF_SHADOW_SOFTNESS, 0.1f)
+// The relief's ambient share of the relit factor (kReliefAmbient, material.hpp).
+CARBTF_CONST_FLOAT(CARBTF_RELIEF_AMBIENT, 0.1f)
 // Lights one draw of carbtf's own mesh pipeline shades with.
 CARBTF_CONST_UINT(CARBTF_RENDER_MAX_LIGHTS, 4u)
 

@@ -521,7 +521,8 @@ vec3 carbtf_material_shade(CarbtfSurface surface, vec3 light) {
   float n_dot_l = max(dot(relief.normal, light), 0.0);
   float visibility = 1.0;
   if (carbtf_shadows_compiled && carbtf_header.shadows != 0u) visibility = carbtf_relief_visibility(relief, light);
-  float relit = n_dot_l / max(light.z, carbtf_header.light_z_floor) * visibility;
+  float relit = CARBTF_RELIEF_AMBIENT +
+                (1.0 - CARBTF_RELIEF_AMBIENT) * n_dot_l / max(light.z, carbtf_header.light_z_floor) * visibility;
   vec3 colour = relit * carbtf_interpolated_btf(surface.uv, light, surface.view_index, surface.view_weight, relief.tone,
                                                 surface.lod);
   // The relief's specular lobe (RangeTiles::specular_strength), grey, where the facet turns to the half vector.

@@ -274,7 +274,8 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
         }
         const float n_dot_l = std::max(glm::dot(normal, l), 0.0f);
         const float visibility = shadows ? relief_visibility(horizon_at, {l.x, l.y, l.z}) : 1.0f;
-        const float relit = n_dot_l / std::max(l.z, light_z_floor) * visibility;
+        const float relit =
+            kReliefAmbient + (1.0f - kReliefAmbient) * n_dot_l / std::max(l.z, light_z_floor) * visibility;
         glm::vec3 shade = relit * btf;
         if (material.range.specular_strength > 0.0f) {
           const float n_dot_h = std::max(glm::dot(normal, glm::normalize(l + view)), 0.0f);

@@ -42,6 +42,7 @@ Plane relit_factor(const Plane& range_map, const std::array<double, 3>& light, d
     for (Eigen::Index c = 0; c < cols; ++c) {
       factor(r, c) = std::max(range_map_facet(range_map, r, c).cosine(light), 0.0) / denominator;
       if (!horizons.empty()) factor(r, c) *= horizon_visibility(horizons, r * cols + c, light);
+      factor(r, c) = kReliefAmbient + (1.0 - kReliefAmbient) * factor(r, c);
     }
   }
   return factor;

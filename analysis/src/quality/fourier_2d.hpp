@@ -1,5 +1,6 @@
 // Internal: 2D discrete Fourier transforms of row-major fields through Eigen's FFT (rows, then
-// columns), shared by the quality measures.
+// columns), shared by the quality measures and the normal integration's preconditioner
+// (range/surface_integration.cpp).
 #pragma once
 
 #include <complex>

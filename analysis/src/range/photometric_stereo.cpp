@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "../btf/image_sources.hpp"
+#include "median.hpp"
 #include "carbtf/reference/parallel_for.hpp"
 
 namespace carbtf {
@@ -43,13 +44,6 @@ PixelFit solve(const std::vector<std::array<double, 3>>& lights, const std::vect
   fit.c = ambient ? x(3) : 0.0;
   fit.ok = fit.b.allFinite() && fit.b.norm() > 0.0;
   return fit;
-}
-
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
 }
 
 }  // namespace
@@ -113,7 +107,7 @@ NormalMap photometric_stereo(const std::vector<std::span<const float>>& images,
             residuals.push_back(std::abs(grey[l] - (fit.b.dot(Eigen::Vector3d(lights[l].data())) + fit.c)));
         }
         const double threshold =
-            std::max(options.rejection * 1.4826 * median(residuals), 1e-3 * fit.b.norm());
+            std::max(options.rejection * 1.4826 * detail::median(residuals), 1e-3 * fit.b.norm());
         for (std::size_t l = 0; l < count; ++l) {
           const Eigen::Vector3d light(lights[l].data());
           const double residual = grey[l] - (fit.b.dot(light) + fit.c);

@@ -191,6 +191,15 @@ float pair_gain(const Material& material, std::uint32_t light, std::uint32_t vie
 // when it de-shades (analysis/model/deshade.hpp).
 float relight_floor(const Material& material);
 
+// The ambient share of the render pass's relit factor:
+//   relit = kReliefAmbient + (1 - kReliefAmbient) max(N . L, 0) / max(L.z, relight_floor) visibility,
+// so that a facet turned from the light, or in the relief's cast shadow, keeps a tenth of a flat
+// facet's brightness, as the light from the rest of the sky and from the walls around it gives it in
+// a photograph; a flat, unshadowed facet stays at 1. Without it such texels drew black: the hard black
+// patches of coast_sand_rocks at grazing light, where the measurement has soft dark shadows (issue 42,
+// item 4c; docs/design.md 5.3). CARBTF_RELIEF_AMBIENT in carbtf_gpu_shared.h.
+inline constexpr float kReliefAmbient = 0.1f;
+
 // Checks that the material is safe to synthesize and render: sizes agree, indices are in range,
 // neighbours are causal and within reach, every number is finite and within kMaxModelMagnitude,
 // sigma >= 0, every CAR band is stable with the margin of car_stability.hpp (the analysis's own test),
