@@ -10,6 +10,7 @@
 #include "carbtf/analysis/model/deshade.hpp"
 #include "carbtf/analysis/sample/height_field_renderer.hpp"
 #include "carbtf/analysis/sample/sample_materials.hpp"
+#include "carbtf/engine/material/material.hpp"
 
 namespace carbtf {
 namespace {
@@ -36,15 +37,20 @@ TEST_CASE("the relit factor of a tilted facet is the render pass's", "[deshade]"
     for (Eigen::Index c = 0; c < 8; ++c)
       ramp(r, c) = 0.5 * static_cast<double>(c) + 0.25 * static_cast<double>(r);
   // Height rises to the right (dx = 0.5) and downwards (dy = -0.25, y up): N ~ (-0.5, 0.25, 1).
+  // relit = a + (1 - a) max(N.L, 0) / max(L.z, floor), a the ambient share.
+  const double a = kReliefAmbient;
   const double s = std::sqrt(0.5);
   const Plane factor = relit_factor(ramp, {s, 0.0, s}, 0.2);
-  const double expected = (-0.5 * s + s) / std::sqrt(0.25 + 0.0625 + 1.0) / s;
+  const double expected = a + (1.0 - a) * (-0.5 * s + s) / std::sqrt(0.25 + 0.0625 + 1.0) / s;
   CHECK(factor(4, 4) == Approx(expected).epsilon(1e-12));
   const Plane up = relit_factor(ramp, {0.0, s, s}, 0.2);
-  CHECK(up(4, 4) == Approx((0.25 * s + s) / std::sqrt(1.3125) / s).epsilon(1e-12));
-  // Facing away: zero, never negative; the denominator is floored.
-  CHECK(relit_factor(ramp, {-1.0, 0.0, 0.0}, 0.2)(4, 4) == Approx(0.5 / std::sqrt(1.3125) / 0.2));
-  CHECK(relit_factor(ramp, {1.0, 0.0, 0.0}, 0.2)(4, 4) == 0.0);
+  CHECK(up(4, 4) == Approx(a + (1.0 - a) * (0.25 * s + s) / std::sqrt(1.3125) / s).epsilon(1e-12));
+  // The denominator is floored; facing away: the ambient share alone, never less.
+  CHECK(relit_factor(ramp, {-1.0, 0.0, 0.0}, 0.2)(4, 4) ==
+        Approx(a + (1.0 - a) * 0.5 / std::sqrt(1.3125) / 0.2));
+  CHECK(relit_factor(ramp, {1.0, 0.0, 0.0}, 0.2)(4, 4) == Approx(a).epsilon(1e-12));
+  // A flat facet under any light above the floor stays at 1.
+  CHECK(relit_factor(Plane::Zero(8, 8), {s, 0.0, s}, 0.2)(4, 4) == Approx(1.0).epsilon(1e-12));
 }
 
 TEST_CASE("the relit factor follows the shading of a rendered sample, and dividing it out flattens it",

@@ -130,7 +130,8 @@ TEST_CASE("integrating the normals of a periodic height field gives the heights 
   }
 }
 
-TEST_CASE("integrating photometric stereo's normals keeps the flat cells flat for the render pass", "[range]") {
+TEST_CASE("integrating photometric stereo's normals keeps the flat cells flat for the render pass",
+          "[range]") {
   // The render pass takes a texel's normal from the central difference of the heights, as
   // surface_normals() does. On flat texels (true normal within 8 degrees of vertical) it should follow
   // the truth about as well as the stereo normals themselves do; stereo's wrong normals in the creases
@@ -158,7 +159,8 @@ TEST_CASE("integrating photometric stereo's normals keeps the flat cells flat fo
   }
 }
 
-TEST_CASE("the relief's band limit scales each period by its response and removes the checkerboard", "[range]") {
+TEST_CASE("the relief's band limit scales each period by its response and removes the checkerboard",
+          "[range]") {
   const Eigen::Index n = 32;
   // A cosine of `period` texels along the rows is scaled by (10 + 8 cos w - 2 cos 2w) / 16; a constant
   // stays; the filter is separable, so a pattern down the columns is scaled alike.
@@ -175,8 +177,10 @@ TEST_CASE("the relief's band limit scales each period by its response and remove
     INFO("period " << period << ": response " << response);
     for (Eigen::Index r = 0; r < n; ++r)
       for (Eigen::Index c = 0; c < n; ++c) {
-        REQUIRE(along_limited(r, c) == Approx(5.0 + response * std::cos(w * static_cast<double>(c))).margin(1e-12));
-        REQUIRE(down_limited(r, c) == Approx(5.0 + response * std::cos(w * static_cast<double>(r))).margin(1e-12));
+        REQUIRE(along_limited(r, c) ==
+                Approx(5.0 + response * std::cos(w * static_cast<double>(c))).margin(1e-12));
+        REQUIRE(down_limited(r, c) ==
+                Approx(5.0 + response * std::cos(w * static_cast<double>(r))).margin(1e-12));
       }
   }
 }

@@ -8,8 +8,8 @@
 #include <stdexcept>
 
 #include "../btf/image_sources.hpp"
-#include "median.hpp"
 #include "carbtf/reference/parallel_for.hpp"
+#include "median.hpp"
 
 namespace carbtf {
 namespace {

@@ -17,7 +17,8 @@ Plane filter_pass(const Plane& in, bool along_rows) {
       double sum = 0.0;
       for (Eigen::Index t = -2; t <= 2; ++t) {
         const double tap = kBandLimitTaps[static_cast<std::size_t>(t + 2)];
-        sum += along_rows ? tap * in(r, ((c + t) % cols + cols) % cols) : tap * in(((r + t) % rows + rows) % rows, c);
+        sum += along_rows ? tap * in(r, ((c + t) % cols + cols) % cols)
+                          : tap * in(((r + t) % rows + rows) % rows, c);
       }
       out(r, c) = sum;
     }

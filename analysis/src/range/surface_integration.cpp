@@ -152,7 +152,8 @@ Plane integrate_normals(std::span<const float> normals, std::uint32_t width, std
   }
   std::vector<StepEquation> equations = step_equations(p, q, width, height);
   const WeightedPoisson poisson(width, height);
-  Eigen::VectorXd heights = poisson.solve(equations, Eigen::VectorXd::Zero(static_cast<Eigen::Index>(pixels)));
+  Eigen::VectorXd heights =
+      poisson.solve(equations, Eigen::VectorXd::Zero(static_cast<Eigen::Index>(pixels)));
   std::vector<double> residuals(equations.size());
   for (int round = 0; round < kRobustIntegrationRounds; ++round) {
     for (std::size_t e = 0; e < equations.size(); ++e)

@@ -1,8 +1,8 @@
 // A de-shaded smooth texture (issue 13, item 3b; the second row of the paper's Fig. 8).
 //
 // The render pass multiplies the smooth BTF by the range map relit for the light,
-//   relit(x) = a + (1 - a) max(N(x) . L, 0) / max(L.z, z_floor)     (compute_shaders/include/carbtf_material.glsl)
-// (a = kReliefAmbient, carbtf/engine/material/material.hpp)
+//   relit(x) = a + (1 - a) max(N(x) . L, 0) / max(L.z, z_floor)
+// (compute_shaders/include/carbtf_material.glsl; a = kReliefAmbient, carbtf/engine/material/material.hpp)
 // with N from central differences of the range map. A measured subspace image already holds that
 // shading, so fitting the CAR to it and rendering it relit applies the relief twice. Dividing the
 // representative pair's relit factor out before fitting leaves the smooth part for the CAR model.
