@@ -57,7 +57,7 @@ std::vector<StepEquation> step_equations(const std::vector<double>& p, const std
 // grid), by conjugate gradients preconditioned with the same system at full weight: that one is
 // circulant, so the Fourier transform solves it exactly, and the robust weights, which only lower
 // some equations' weights, leave it solvable. The creases' low weights cost iterations (from 90 for
-// the first reweighting to 450 for the last, at 256^2): 2.7 s at 256^2 and 28 s at 512^2 on this
+// the first reweighting to 450 for the last, at 256^2): 2.3 s at 256^2 and 23 s at 512^2 on this
 // project's 2-core machine, where a sparse Cholesky factorization of the periodic grid's system,
 // which fills in, took 9 and 170 s. The heights are defined up to a constant; the iterates keep a
 // zero mean.

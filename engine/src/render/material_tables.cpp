@@ -11,10 +11,10 @@
 #include "carbtf/engine/material/material_directions.hpp"
 #include "carbtf/engine/render/relief_horizons.hpp"
 #include "carbtf/engine/render/relief_normals.hpp"
+#include "carbtf/engine/render/rendered_values.hpp"
 
 static_assert(carbtf::kReliefAmbient == carbtf::gpu::CARBTF_RELIEF_AMBIENT,
               "the relit factor's ambient share differs between the C++ and GLSL");
-#include "carbtf/engine/render/rendered_values.hpp"
 
 namespace carbtf {
 namespace {

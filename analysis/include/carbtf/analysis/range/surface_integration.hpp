@@ -18,7 +18,8 @@
 
 namespace carbtf {
 
-// How many times the weights are refitted to the residuals (each a sparse Cholesky factorization).
+// How many times the weights are refitted to the residuals (each a preconditioned conjugate-gradient
+// solve, surface_integration.cpp).
 inline constexpr int kRobustIntegrationRounds = 3;
 
 // `normals` is width * height * 3 (x right, y up, z out); nz is clamped to at least 0.1 so grazing
