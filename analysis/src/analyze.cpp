@@ -339,6 +339,7 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
   note("segmentation: " + std::to_string(result.segmentation.representatives.size()) + " subspaces after " +
        std::to_string(result.segmentation.iterations) + " k-means iterations");
 
+  std::optional<NormalMap> strict_normals;  // AnalysisOptions::strict_stereo's candidate
   {
     StageClock clock(result, "photometric stereo");
     result.stereo_view =
@@ -347,7 +348,16 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
       throw std::invalid_argument("the stereo view index is out of range");
     PhotometricStereoOptions stereo = options.stereo;
     stereo.threads = options.threads;
+    if (options.strict_stereo == AutoChoice::always)
+      stereo.dark_fraction = std::max(stereo.dark_fraction, kStrictStereoDarkFraction);
     result.normals = photometric_stereo(dataset, result.stereo_view, stereo);
+    const bool strict_candidate = options.relief_tone && options.relief_shadows == AutoChoice::automatic &&
+                                  options.strict_stereo == AutoChoice::automatic &&
+                                  stereo.dark_fraction < kStrictStereoDarkFraction;
+    if (strict_candidate) {
+      stereo.dark_fraction = kStrictStereoDarkFraction;
+      strict_normals = photometric_stereo(dataset, result.stereo_view, stereo);
+    }
   }
   const auto valid = std::count(result.normals.valid.begin(), result.normals.valid.end(), 1);
   char line[160];
@@ -417,7 +427,23 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
     if (options.relief_tone) {
       if (options.relief_shadows == AutoChoice::always) shadow_scale = 1.0;
       if (options.relief_shadows == AutoChoice::automatic) {
-        const ShadowFit fit = fit_shadow_scale(dataset, result.stereo_view, result.range_map, z_floor);
+        ShadowFit fit = fit_shadow_scale(dataset, result.stereo_view, result.range_map, z_floor);
+        if (strict_normals) {
+          Plane strict_map = band_limit_relief(
+              integrate_normals(strict_normals->normals, dataset.width(), dataset.height()));
+          const ShadowFit strict_fit = fit_shadow_scale(dataset, result.stereo_view, strict_map, z_floor);
+          const bool keep = strict_fit.error <= (1.0 - kShadowFitGain) * fit.error;
+          std::snprintf(line, sizeof line,
+                        "photometric stereo: samples under %.2f of the brightest rejected: %s (images "
+                        "explained with error %.4f, %.4f without)",
+                        kStrictStereoDarkFraction, keep ? "kept" : "not kept", strict_fit.error, fit.error);
+          note(line);
+          if (keep) {
+            result.normals = std::move(*strict_normals);
+            result.range_map = std::move(strict_map);
+            fit = strict_fit;
+          }
+        }
         shadow_scale = fit.scale;
         std::snprintf(line, sizeof line,
                       "relief shadows: scale %.2f%s (the view's images explained with error %.4f, without "
@@ -510,6 +536,9 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
       {"relief_shadows", options.relief_shadows == AutoChoice::automatic ? "where they explain the images"
                          : options.relief_shadows == AutoChoice::always  ? "yes"
                                                                          : "no"},
+      {"strict_stereo", options.strict_stereo == AutoChoice::automatic ? "where it explains the images"
+                        : options.strict_stereo == AutoChoice::always  ? "yes"
+                                                                       : "no"},
       {"remainder_clamps", join_numbers(options.remainder_clamps)},
       {"selection_draws", std::to_string(options.selection_draws)},
       {"deshade_floor", std::to_string(options.deshade_floor)},

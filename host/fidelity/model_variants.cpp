@@ -61,6 +61,11 @@ const std::vector<ModelVariant>& model_variants() {
        [](AnalysisOptions& o) { o.other_level_counts = {}; }},
       {"no_shadows", "the default without the relief's cast shadows",
        [](AnalysisOptions& o) { o.relief_shadows = AutoChoice::never; }},
+      {"usual_stereo", "the default without photometric stereo's strict rejection of shadowed samples",
+       [](AnalysisOptions& o) { o.strict_stereo = AutoChoice::never; }},
+      {"strict_stereo",
+       "the default with photometric stereo's strict rejection of shadowed samples everywhere",
+       [](AnalysisOptions& o) { o.strict_stereo = AutoChoice::always; }},
       {"shadows", "the default with the relief's cast shadows at full strength",
        [](AnalysisOptions& o) { o.relief_shadows = AutoChoice::always; }},
   };

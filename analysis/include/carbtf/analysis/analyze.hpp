@@ -59,6 +59,14 @@ struct AnalysisOptions {
   // view's images, where shadows explain them better (coast_sand_rocks at 256^2: mean rel 0.264 ->
   // 0.208; leather and fabric: none); always: at scale 1.
   AutoChoice relief_shadows = AutoChoice::automatic;
+  // With the relief tone and automatic shadows: whether photometric stereo also rejects every sample
+  // under kStrictStereoDarkFraction of the pixel's brightest (model/relief_shadows.hpp). Steep crease
+  // walls see most lights in cast or attached shadow, and those samples pull their normals towards the
+  // vertical (leather's 69-degree walls came out at 49). Automatic: that range map is kept where, with
+  // its own cast shadows, it explains the photometric-stereo view's images better by kShadowFitGain
+  // (leather and fabric at 256^2; coast_sand_rocks' relief is explained as well either way, and its
+  // models look further with it). Never: PhotometricStereoOptions::dark_fraction alone.
+  AutoChoice strict_stereo = AutoChoice::automatic;
   // With the relief tone: the smooth remainder is clamped to its median +- k robust standard
   // deviations before the fit (model/relief_tone.hpp; k = 0: not clamped). Per subspace, the k of
   // this list whose model image (CPU synthesis x tone x relit factor) is nearest the measured image
