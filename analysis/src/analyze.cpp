@@ -475,9 +475,9 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
   {
     StageClock clock(result, "subspace models");
     const double with_lobe = subspace_stage();
-    // Automatic: a fitted lobe stays where the subspace models look clearly nearer the measurement with
-    // it (by kLevelChoiceMargin, as a level count must). It explains the stereo view's images better on
-    // fabric and on coast_sand_rocks, but only fabric's renders look nearer with it (docs/design.md 5.2).
+    // Automatic: a fitted lobe stays where the subspace models look nearer the measurement with it by
+    // kSpecularKeepMargin. It explains the stereo view's images better on every sample, but
+    // coast_sand_rocks' renders look further with it (docs/design.md 5.2 and 5.3).
     if (options.relief_specular == AutoChoice::automatic && specular.strength > 0.0) {
       Material with = result.material;
       auto with_tone = result.tone;
@@ -485,7 +485,7 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
       auto with_notes = subspace_notes;
       relief_stage({}, tiles, shadow_scale);
       const double without_lobe = subspace_stage();
-      const bool keep = with_lobe < without_lobe * (1.0 - kLevelChoiceMargin);
+      const bool keep = with_lobe < without_lobe * (1.0 - kSpecularKeepMargin);
       std::snprintf(
           line, sizeof line,
           "relief specular: %s (the subspace models' mean texture distance %.4f with it, %.4f without)",
