@@ -119,16 +119,20 @@ void register_analyze_command(CLI::App& app) {
   command->add_flag(
       "!--no-relief-tone", a.relief_tone,
       "For comparison: leave out the relief tone, the photometric-stereo albedo stored with the range tiles "
-      "that puts the creases' dark colour where the range map puts the creases");
+      "that puts the creases' dark colour where the range map puts the creases. Without it the samples' "
+      "models are no nearer than a Gaussian field (docs/figures.md, variant tiles128)");
   command->add_flag_callback(
       "--specular", [&a] { a.relief_specular = AutoChoice::always; },
       "Opt-in: keep the relief's specular lobe wherever it is fitted (highlights where the range map's "
       "facets turn to the half vector of light and view). By default it is kept only where the subspace "
-      "models look nearer the measurement with it (docs/figures.md gives the measured difference)");
+      "models look nearer the measurement with it (fabric, leather); forced, it makes coast_sand_rocks "
+      "look further (docs/figures.md, variants specular and no_specular)");
   command->add_flag(
       "!--no-pair-gains", a.pair_gains,
       "For comparison: leave out the pair gains, per measured light and view the colour gains that give the "
-      "pair its measured mean colour, which its subspace image (the representative pair's) does not have");
+      "pair its measured mean colour, which its subspace image (the representative pair's) does not have. "
+      "Without them the file is smaller and coast_sand_rocks looks further (docs/figures.md, variant "
+      "no_pair_gains)");
   command->add_option("--threads", a.threads, "Worker threads (0: all cores; at most 256)")
       ->check(CLI::Range(0u, 256u))
       ->capture_default_str();
