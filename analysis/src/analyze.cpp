@@ -52,6 +52,24 @@ std::string join_numbers(const std::vector<double>& values) {
   return text.str();
 }
 
+// How the settings record names an automatic choice: `automatic` says where it is made, `always` what
+// is forced.
+const char* describe_choice(AutoChoice choice, const char* automatic, const char* always = "yes") {
+  return choice == AutoChoice::automatic ? automatic : choice == AutoChoice::always ? always : "no";
+}
+
+// The range map the model stores for a normal map: robustly integrated, then band-limited.
+Plane relief_of(const NormalMap& normals) {
+  return band_limit_relief(integrate_normals(normals.normals, normals.width, normals.height));
+}
+
+// The share of a normal map's texels whose stereo fit had enough samples, in percent.
+double valid_percent(const NormalMap& normals) {
+  const auto valid = std::count(normals.valid.begin(), normals.valid.end(), 1);
+  return 100.0 * static_cast<double>(valid) /
+         static_cast<double>(std::max<std::size_t>(1, normals.valid.size()));
+}
+
 MaterialDirection to_material(const Direction& d) {
   return {static_cast<float>(d.theta), static_cast<float>(d.phi)};
 }
@@ -359,12 +377,9 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
       strict_normals = photometric_stereo(dataset, result.stereo_view, stereo);
     }
   }
-  const auto valid = std::count(result.normals.valid.begin(), result.normals.valid.end(), 1);
-  char line[160];
+  char line[200];
   std::snprintf(line, sizeof line, "photometric stereo: view %u, normals for %.1f%% of pixels",
-                result.stereo_view,
-                100.0 * static_cast<double>(valid) /
-                    static_cast<double>(std::max<std::size_t>(1, result.normals.valid.size())));
+                result.stereo_view, valid_percent(result.normals));
   note(line);
 
   for (const Direction& d : dataset.lights()) result.material.lights.push_back(to_material(d));
@@ -422,21 +437,20 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
   double shadow_scale = 0.0;
   {
     StageClock clock(result, "range map and tiles");
-    result.range_map =
-        band_limit_relief(integrate_normals(result.normals.normals, dataset.width(), dataset.height()));
+    result.range_map = relief_of(result.normals);
     if (options.relief_tone) {
       if (options.relief_shadows == AutoChoice::always) shadow_scale = 1.0;
       if (options.relief_shadows == AutoChoice::automatic) {
         ShadowFit fit = fit_shadow_scale(dataset, result.stereo_view, result.range_map, z_floor);
         if (strict_normals) {
-          Plane strict_map = band_limit_relief(
-              integrate_normals(strict_normals->normals, dataset.width(), dataset.height()));
+          Plane strict_map = relief_of(*strict_normals);
           const ShadowFit strict_fit = fit_shadow_scale(dataset, result.stereo_view, strict_map, z_floor);
           const bool keep = strict_fit.error <= (1.0 - kShadowFitGain) * fit.error;
           std::snprintf(line, sizeof line,
-                        "photometric stereo: samples under %.2f of the brightest rejected: %s (images "
-                        "explained with error %.4f, %.4f without)",
-                        kStrictStereoDarkFraction, keep ? "kept" : "not kept", strict_fit.error, fit.error);
+                        "photometric stereo: samples under %.2f of the brightest rejected: %s (normals for "
+                        "%.1f%% of pixels; images explained with error %.4f, %.4f without)",
+                        kStrictStereoDarkFraction, keep ? "kept" : "not kept", valid_percent(*strict_normals),
+                        strict_fit.error, fit.error);
           note(line);
           if (keep) {
             result.normals = std::move(*strict_normals);
@@ -530,23 +544,15 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
       {"calibrate_collapse", options.calibrate_collapse ? "yes" : "no"},
       {"relief_tone", options.relief_tone ? "yes" : "no"},
       {"coloured_tone", options.relief_tone && options.coloured_tone ? "where it explains the colour" : "no"},
-      {"tone_planes", options.tone_planes == TonePlanes::automatic ? "where its colour is visible"
-                      : options.tone_planes == TonePlanes::always  ? "yes"
-                                                                   : "no"},
-      {"relief_shadows", options.relief_shadows == AutoChoice::automatic ? "where they explain the images"
-                         : options.relief_shadows == AutoChoice::always  ? "yes"
-                                                                         : "no"},
-      {"strict_stereo", options.strict_stereo == AutoChoice::automatic ? "where it explains the images"
-                        : options.strict_stereo == AutoChoice::always  ? "yes"
-                                                                       : "no"},
+      {"tone_planes", describe_choice(options.tone_planes, "where its colour is visible")},
+      {"relief_shadows", describe_choice(options.relief_shadows, "where they explain the images")},
+      {"strict_stereo", describe_choice(options.strict_stereo, "where it explains the images")},
       {"remainder_clamps", join_numbers(options.remainder_clamps)},
       {"selection_draws", std::to_string(options.selection_draws)},
       {"deshade_floor", std::to_string(options.deshade_floor)},
       {"pair_gains", options.pair_gains ? "yes" : "no"},
-      {"relief_specular", options.relief_specular == AutoChoice::automatic
-                              ? "where the models look nearer with it"
-                          : options.relief_specular == AutoChoice::always ? "fitted"
-                                                                          : "no"},
+      {"relief_specular",
+       describe_choice(options.relief_specular, "where the models look nearer with it", "fitted")},
       {"stereo_view", std::to_string(result.stereo_view)},
       {"tile_size", std::to_string(material.range.tile_size)},
       {"edge_colours", std::to_string(material.range.edge_colours)},
