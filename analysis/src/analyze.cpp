@@ -20,6 +20,7 @@
 #include "carbtf/analysis/model/relief_tone.hpp"
 #include "carbtf/analysis/progress.hpp"
 #include "carbtf/analysis/quality/texture_distributions.hpp"
+#include "carbtf/analysis/range/range_tiling_choice.hpp"
 #include "carbtf/analysis/range/relief_band_limit.hpp"
 #include "carbtf/analysis/range/surface_integration.hpp"
 #include "carbtf/analysis/resource_usage.hpp"
@@ -340,6 +341,8 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
   }
   if (options.selection_draws < 1 || options.selection_draws > 16)
     throw std::invalid_argument("selection draws must be within 1..16");
+  if (options.tiling_candidates < 1 || options.tiling_candidates > 64)
+    throw std::invalid_argument("range tiling candidates must be within 1..64");
   if (dataset.present_pairs().empty()) throw std::invalid_argument("the dataset holds no images");
   AnalysisResult result;
   auto note = [&](const std::string& line) {
@@ -385,9 +388,34 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
   for (const Direction& d : dataset.lights()) result.material.lights.push_back(to_material(d));
   for (const Direction& d : dataset.views()) result.material.views.push_back(to_material(d));
   const double z_floor = relight_floor(result.material);  // the render pass's, from the light set
+  // The range map's Wang tiles with `tone`: the first time, the best-looking of the candidate tilings
+  // (range/range_tiling_choice.hpp); after, the same tiling again, since only the tone changes.
+  std::optional<std::uint64_t> tiling_seed;
+  std::size_t tiling_draw = 0;  // the kept draw's index
+  const auto tile_relief = [&](std::span<const Plane> tone, double shadow_scale) {
+    RangeTileOptions tiles = options.tiles;
+    tiles.seed = options.segmentation.seed;
+    if (tiling_seed) {
+      tiles.seed = *tiling_seed;
+      return build_range_tiles(result.range_map, tiles, tone);
+    }
+    RangeTilingChoice choice = choose_range_tiling(result.range_map, tiles, tone, {z_floor, shadow_scale},
+                                                   options.tiling_candidates, options.threads);
+    tiling_seed = choice.seed;
+    tiling_draw = choice.chosen;
+    if (choice.distances.size() > 1) {
+      const auto [lowest, highest] = std::minmax_element(choice.distances.begin(), choice.distances.end());
+      std::snprintf(line, sizeof line,
+                    "range tiling: draw %zu of %zu kept (its relief's texture distance from the whole map's "
+                    "%.3f; the draws' %.3f to %.3f)",
+                    choice.chosen + 1, choice.distances.size(), choice.distances[choice.chosen], *lowest,
+                    *highest);
+      note(line);
+    }
+    return std::move(choice.tiles);
+  };
   // The tone, its planes and the range tiles, for the highlights `lobe` (none: strength 0).
-  const auto relief_stage = [&](const SpecularLobe& lobe, const RangeTileOptions& tiles,
-                                double shadow_scale) {
+  const auto relief_stage = [&](const SpecularLobe& lobe, double shadow_scale) {
     result.tone = relief_tone(dataset, result.stereo_view, result.range_map, z_floor, result.horizons, lobe);
     result.tone_planes = {result.tone};
     if (options.tone_planes != TonePlanes::never) {
@@ -400,7 +428,7 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
                     coloured ? "stored as R, G and B planes" : "stored grey");
       note(line);
     }
-    result.material.range = build_range_tiles(result.range_map, tiles, result.tone_planes);
+    result.material.range = tile_relief(result.tone_planes, shadow_scale);
     result.material.range.shadow_scale = static_cast<float>(shadow_scale);
     result.material.range.specular_strength = static_cast<float>(lobe.strength);
     result.material.range.specular_gloss = static_cast<float>(lobe.gloss);
@@ -432,8 +460,6 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
   };
 
   SpecularLobe specular;  // the relief's highlights, fitted with the tone
-  RangeTileOptions tiles = options.tiles;
-  tiles.seed = options.segmentation.seed;
   double shadow_scale = 0.0;
   {
     StageClock clock(result, "range map and tiles");
@@ -480,9 +506,9 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
         note(line);
       }
       // The tone of the images without their highlights, which the render adds apart from it.
-      relief_stage(specular, tiles, shadow_scale);
+      relief_stage(specular, shadow_scale);
     } else {
-      result.material.range = build_range_tiles(result.range_map, tiles, {});
+      result.material.range = tile_relief({}, 0.0);
     }
   }
 
@@ -497,7 +523,7 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
       auto with_tone = result.tone;
       auto with_planes = result.tone_planes;
       auto with_notes = subspace_notes;
-      relief_stage({}, tiles, shadow_scale);
+      relief_stage({}, shadow_scale);
       const double without_lobe = subspace_stage();
       const bool keep = with_lobe < without_lobe * (1.0 - kSpecularKeepMargin);
       std::snprintf(
@@ -555,6 +581,10 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
        describe_choice(options.relief_specular, "where the models look nearer with it", "fitted")},
       {"stereo_view", std::to_string(result.stereo_view)},
       {"tile_size", std::to_string(material.range.tile_size)},
+      {"tilings", options.tiling_candidates == 1
+                      ? "one draw"
+                      : "draw " + std::to_string(tiling_draw + 1) + ", the best-looking of " +
+                            std::to_string(options.tiling_candidates)},
       {"edge_colours", std::to_string(material.range.edge_colours)},
   };
   return result;

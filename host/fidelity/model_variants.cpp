@@ -29,7 +29,7 @@ const std::vector<ModelVariant>& model_variants() {
        }},
       {"default",
        "relief tone (R, G, B planes where its colour is not grey), 128-texel tiles with feathered cuts, "
-       "6-bit heights, "
+       "the best-looking of 8 tilings, 6-bit heights, "
        "4-bit grey tone or 6-bit colour planes; clamp, levels and noise gains per scale chosen per subspace",
        [](AnalysisOptions&) {}},
       {"specular", "the default with the relief's specular lobe wherever it is fitted (--specular)",
@@ -66,6 +66,8 @@ const std::vector<ModelVariant>& model_variants() {
       {"strict_stereo",
        "the default with photometric stereo's strict rejection of shadowed samples everywhere",
        [](AnalysisOptions& o) { o.strict_stereo = AutoChoice::always; }},
+      {"one_tiling", "the default with the range tiles' first draw, unscored (before the tiling choice)",
+       [](AnalysisOptions& o) { o.tiling_candidates = 1; }},
       {"shadows", "the default with the relief's cast shadows at full strength",
        [](AnalysisOptions& o) { o.relief_shadows = AutoChoice::always; }},
   };

@@ -119,14 +119,19 @@ struct AnalysisOptions {
   bool pair_gains = true;
   // With the relief tone: fit the relief's specular lobe (model/relief_specular.hpp) to the
   // photometric-stereo view's images, where it explains them better; automatic: keep it where the
-  // subspace models look nearer the measurement with it by kLevelChoiceMargin (fabric's glossy threads:
-  // mean s at 256^2 0.55 -> 0.47; coast_sand_rocks, whose images it also explains, would rise from 0.69
-  // to 0.83, and its models are only 1% nearer; docs/design.md 5.2); always: keep it wherever fitted.
+  // subspace models look nearer the measurement with it by kSpecularKeepMargin (docs/design.md 5.2 and
+  // 5.3: leather's and fabric's sheen; coast_sand_rocks, whose images it also explains, looks further
+  // with it, and its models are under 1% nearer); always: keep it wherever fitted.
   AutoChoice relief_specular = AutoChoice::automatic;
   double deshade_floor =
       0.0;  // > 0: divide the relit range map out before fitting, floored here (model/deshade.hpp)
-  RangeTileOptions tiles;  // its seed is ignored: the tiles follow segmentation.seed
-  unsigned threads = 0;    // 0: all hardware threads
+  RangeTileOptions tiles;  // its seed is ignored: the first tiling drawn follows segmentation.seed
+  // Range tilings drawn (range/range_tiling_choice.hpp), 1..64: the one whose enlarged relief looks most
+  // like the whole map's is kept. Which places the patches come from moves the fidelity as much as a
+  // model change: coast_sand_rocks' eight draws at 256^2 scored 0.05 to 0.26 (mean s, five pairs), and
+  // the look's ranking put the best four first (docs/design.md 5.3). 1: the first draw, unscored.
+  std::uint32_t tiling_candidates = 8;
+  unsigned threads = 0;  // 0: all hardware threads
   bool progress = true;
 };
 
