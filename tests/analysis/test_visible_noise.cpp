@@ -25,18 +25,27 @@ namespace {
 
 constexpr std::uint32_t kSize = 64;
 
+// The mean rel over the synthesis seeds 7 to 11, none the analysis' own, so that the choice must hold for
+// other draws too. A mean over draws, the same draws for every model compared: one draw's rel differs
+// from the next by about 1% (fabric at 64^2: 0.303 to 0.312), as much as a coefficient's flipped sign
+// moves it, so a single draw ranks the draw as much as the model.
 double mean_rel(const Material& material, const std::vector<RgbField>& measured) {
-  reference::SubspaceBlock block;
-  block.seed = 7;  // not the analysis' seed: the choice must hold for other draws too
-  block.width = kSize;
-  block.height = kSize;
-  SynthesizedImages images;
-  images.width = images.height = kSize;
-  images.images = reference::synthesize_subspaces(material, {}, block);
-  for (const SubspaceModel& s : material.subspaces) images.channels.push_back(s.channels);
-  const SubspaceFidelity f = subspace_fidelity(material, images, measured);
-  REQUIRE(f.pairs == material.subspaces.size());
-  return f.mean_rel;
+  constexpr std::uint64_t kFirstSeed = 7, kDraws = 5;
+  double sum = 0.0;
+  for (std::uint64_t seed = kFirstSeed; seed < kFirstSeed + kDraws; ++seed) {
+    reference::SubspaceBlock block;
+    block.seed = seed;
+    block.width = kSize;
+    block.height = kSize;
+    SynthesizedImages images;
+    images.width = images.height = kSize;
+    images.images = reference::synthesize_subspaces(material, {}, block);
+    for (const SubspaceModel& s : material.subspaces) images.channels.push_back(s.channels);
+    const SubspaceFidelity f = subspace_fidelity(material, images, measured);
+    REQUIRE(f.pairs == material.subspaces.size());
+    sum += f.mean_rel;
+  }
+  return sum / static_cast<double>(kDraws);
 }
 
 Material with_sigma_times(Material m, float factor) {
