@@ -5,10 +5,10 @@
 // cast shadow at grazing light that the sample does not have, and another draw of the same map scored
 // 0.189 / 0.361 against 0.078 / 0.203 (mean s, five pairs / spread16, docs/design.md 5.3). So the
 // analysis draws a few tilings and keeps the one whose enlarged relief (its tone times the relit
-// heights, with their cast shadows, under a top light and four grazing ones) is nearest the whole
-// map's relief under the same lights, by the texture measure (quality/texture_distributions.hpp). The
-// comparison is of the relief alone against itself, so it judges what the tiling changes and nothing
-// the subspace models do.
+// heights, with their cast shadows, under a light 30 degrees from the top and four grazing ones) is
+// nearest the whole map's relief under the same lights, by the texture measure
+// (quality/texture_distributions.hpp). The comparison is of the relief alone against itself, so it
+// judges what the tiling changes and nothing the subspace models do.
 #pragma once
 
 #include <cstdint>
