@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates docs/figures.md, the one file of measured model figures that the README, docs/design.md
 # and the help texts point to instead of quoting numbers: `carbtf bench fidelity` on the three built-in
-# samples, one analysis per variant, each scored by the calibrated fidelity measure (docs/design.md 5).
+# samples, one analysis per variant, each scored by the calibrated fidelity measure (docs/design.md 5),
+# with each sample's plot of mean s against size (docs/figures/fidelity_size_SAMPLE.png).
 #
 #   scripts/figures.sh [SIZE [VARIANTS]]     defaults: 256 and default,specular,no_specular
 #   CARBTF_BIN=path/to/carbtf scripts/figures.sh ...   the figures of another build of carbtf
@@ -33,9 +34,16 @@ for sample in leather fabric coast_sand_rocks; do
   "$carbtf" sample "$sample" --size "$size" --out "$work/$sample" > /dev/null
   "$carbtf" bench fidelity "$work/$sample/btf" --variants "$variants" --out "$work/$sample-bench" >&2
   cat "$work/$sample-bench/fidelity_size.md" >> "$work/figures.md"
-  echo >> "$work/figures.md"
+  mkdir -p "$work/plots"
+  cp "$work/$sample-bench/fidelity_size.png" "$work/plots/fidelity_size_$sample.png"
+  {
+    echo
+    echo "![$sample: mean s against the material's size, per variant](figures/fidelity_size_$sample.png)"
+    echo
+  } >> "$work/figures.md"
 done
-mkdir -p docs
+mkdir -p docs/figures
+cp "$work"/plots/*.png docs/figures/
 cp "$work/figures.md" docs/figures.md.tmp
 mv docs/figures.md.tmp docs/figures.md
-echo "figures.sh: wrote docs/figures.md" >&2
+echo "figures.sh: wrote docs/figures.md and its plots in docs/figures/" >&2
