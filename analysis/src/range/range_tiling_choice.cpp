@@ -1,12 +1,12 @@
 #include "carbtf/analysis/range/range_tiling_choice.hpp"
 
 #include <array>
-#include <cmath>
-#include <numbers>
 #include <stdexcept>
 
+#include "carbtf/analysis/btf/directions.hpp"
 #include "carbtf/analysis/model/deshade.hpp"
 #include "carbtf/analysis/model/relief_shadows.hpp"
+#include "carbtf/analysis/model/relief_tone.hpp"
 #include "carbtf/analysis/quality/texture_distributions.hpp"
 #include "carbtf/engine/material/range_tiles.hpp"
 #include "carbtf/reference/parallel_for.hpp"
@@ -21,32 +21,23 @@ constexpr std::array<std::array<double, 2>, 5> kLookLights{
 // Enlargement layouts scored per candidate: the seeds of the Wang layout (range_tile_at).
 constexpr std::array<std::uint64_t, 2> kLookLayouts{1, 2};
 
-std::array<double, 3> light_vector(const std::array<double, 2>& degrees) {
-  const double theta = degrees[0] * std::numbers::pi / 180.0, phi = degrees[1] * std::numbers::pi / 180.0;
-  return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
-}
-
-// The relief's look under each of kLookLights: tone times the relit heights, interleaved RGB.
+// The relief's look under each of kLookLights: tone times the relit heights (apply_relief on white).
 std::vector<DistributionStatistics> look_statistics(const Plane& heights, std::span<const Plane> tone,
                                                     const ReliefLook& look) {
   const std::vector<float> horizons =
       look.shadow_scale > 0.0 ? range_map_horizons(heights, look.shadow_scale) : std::vector<float>{};
-  const auto width = static_cast<std::uint32_t>(heights.cols());
-  const auto height = static_cast<std::uint32_t>(heights.rows());
+  std::vector<Plane> tones;  // per colour channel
+  for (std::size_t k = 0; k < 3; ++k)
+    tones.push_back(tone.empty() ? Plane::Ones(heights.rows(), heights.cols())
+                                 : tone[tone.size() == 3 ? k : 0]);
   std::vector<DistributionStatistics> statistics;
-  std::vector<float> rgb(std::size_t{width} * height * 3);
   for (const auto& light : kLookLights) {
-    const Plane relit = relit_factor(heights, light_vector(light), look.light_z_floor, horizons);
-    for (Eigen::Index r = 0; r < heights.rows(); ++r) {
-      for (Eigen::Index c = 0; c < heights.cols(); ++c) {
-        const std::size_t texel = static_cast<std::size_t>(r * heights.cols() + c);
-        for (std::size_t k = 0; k < 3; ++k) {
-          const double t = tone.empty() ? 1.0 : tone[tone.size() == 3 ? k : 0](r, c);
-          rgb[texel * 3 + k] = static_cast<float>(t * relit(r, c));
-        }
-      }
-    }
-    statistics.push_back(distribution_statistics(rgb, width, height));
+    const Plane relit = relit_factor(heights, Direction::from_degrees(light[0], light[1]).vector(),
+                                     look.light_z_floor, horizons);
+    std::vector<float> rgb(static_cast<std::size_t>(heights.size()) * 3, 1.0f);
+    apply_relief(rgb, tones, relit);
+    statistics.push_back(distribution_statistics(rgb, static_cast<std::uint32_t>(heights.cols()),
+                                                 static_cast<std::uint32_t>(heights.rows())));
   }
   return statistics;
 }
