@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "bitmap_font.hpp"
 
@@ -170,13 +173,26 @@ Figure scatter_figure(std::span<const ScatterPoint> points, std::string_view x_t
   draw_text(f, x_title, static_cast<int>(left + plot_w / 2) - detail::text_width(x_title, 1) / 2,
             static_cast<int>(height) - 18, axis);
   draw_text_up(f, y_title, 8, static_cast<int>(top + plot_h / 2) + detail::text_width(y_title, 1) / 2, axis);
+  // Two variants that build the same model land on one spot, and a disc drawn over another would hide
+  // it: a point within a disc's width of points drawn before it is drawn as a ring around them, one ring
+  // wider for each of them, so every series stays visible where they coincide.
+  std::vector<std::pair<long, long>> drawn;
   for (const ScatterPoint& p : points) {
     if (!(p.x > 0.0) || !(p.y > 0.0)) continue;
     const auto colour = subspace_colour(2 * p.series);
     const long cx = std::lround(x_of(std::log10(p.x))), cy = std::lround(y_of(std::log10(p.y)));
-    for (int dy = -3; dy <= 3; ++dy)
-      for (int dx = -3; dx <= 3; ++dx)
-        if (dx * dx + dy * dy <= 9) set_pixel(f, cx + dx, cy + dy, colour);
+    const auto beneath = std::count_if(drawn.begin(), drawn.end(), [&](const std::pair<long, long>& d) {
+      return std::abs(d.first - cx) <= 6 && std::abs(d.second - cy) <= 6;
+    });
+    const long outer = 3 + 3 * beneath, inner = outer - 2;
+    for (long dy = -outer; dy <= outer; ++dy) {
+      for (long dx = -outer; dx <= outer; ++dx) {
+        const long r2 = dx * dx + dy * dy;
+        if (r2 <= outer * outer && (beneath == 0 || r2 > inner * inner))
+          set_pixel(f, cx + dx, cy + dy, colour);
+      }
+    }
+    drawn.emplace_back(cx, cy);
   }
   for (std::size_t i = 0; i < legend.size(); ++i) {
     const int y = static_cast<int>(top) + 8 + static_cast<int>(i) * 14;

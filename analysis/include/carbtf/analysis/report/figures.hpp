@@ -35,7 +35,8 @@ struct ScatterPoint {
 };
 
 // Log-log scatter plot with a grid line and a label per decade, axis titles, and a legend naming each
-// series (legend[i] for series i). Non-positive values are left out.
+// series (legend[i] for series i). Non-positive values are left out. A point that lands on points drawn
+// before it is drawn as a ring around them, so that coinciding series stay visible.
 Figure scatter_figure(std::span<const ScatterPoint> points, std::string_view x_title,
                       std::string_view y_title, std::span<const std::string_view> legend = {},
                       std::uint32_t width = 720, std::uint32_t height = 480);
