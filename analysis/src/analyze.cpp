@@ -159,13 +159,27 @@ constexpr std::array<GainGroup, 6> kGainGroups{
      {"every band", false, Scales::every, Gains::lower},
      {"chroma bands", true, Scales::every, Gains::lower}}};
 
+// The draws that score a chosen subspace model apart from its choice (fit_subspace's held-out
+// distance): their seeds start kHeldOutSeedOffset after the analysis seed, beyond the candidates' draws
+// (AnalysisOptions::selection_draws, at most 16).
+constexpr std::uint64_t kHeldOutSeedOffset = 1000;
+constexpr std::uint64_t kHeldOutDraws = 2;
+
+// The subspace models' mean texture distance from their measured images: at the draws their candidates
+// were chosen on, and at held-out draws.
+struct SubspaceScores {
+  double chosen = 0.0;
+  double held_out = 0.0;
+};
+
 // The model of one subspace image; notes name the band they concern.
 SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plane& range_map,
                            std::span<const float> horizons, std::span<const Plane> tone,
                            const std::array<float, 3>& chroma, const SpecularLobe& specular,
                            double light_z_floor, const AnalysisOptions& options,
-                           std::vector<std::string>& notes, double& chosen_distance) {
-  chosen_distance = 0.0;  // no candidates scored
+                           std::vector<std::string>& notes, double& chosen_distance,
+                           double& held_out_distance) {
+  chosen_distance = held_out_distance = 0.0;  // no candidates scored
   const std::uint32_t width = dataset.width(), height = dataset.height();
   std::vector<float> rgb(dataset.pixel_count() * 3);
   dataset.linear_rgb(pair, rgb);
@@ -222,14 +236,15 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
   // The mean distance over `draws` draws of a candidate's model image, as the render pass composes it
   // (smooth texture x its share of the tone x relit factor, plus the highlights). Draw d of every
   // candidate uses the same noise, so only the model differs between candidates.
-  const auto distance_of = [&](const SubspaceModel& model, const std::vector<Plane>& share) {
+  const auto distance_of = [&](const SubspaceModel& model, const std::vector<Plane>& share,
+                               std::uint64_t first_seed) {
     Material single;
     single.subspaces.push_back(model);
     double distance = 0.0;
     std::vector<float> image(rgb.size());
     for (std::uint32_t draw = 0; draw < draws; ++draw) {
       reference::SubspaceBlock block;  // the default burn-in, as synthesis uses
-      block.seed = options.segmentation.seed + draw;
+      block.seed = first_seed + draw;
       block.width = width;
       block.height = height;
       reference::synthesize_subspace(single, 0, block, image);
@@ -257,7 +272,7 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
         candidate.tone_weight = static_cast<float>(weight);
         // One draw's distance varies by about as much as the candidates differ (on fabric the choice
         // followed the noise stream), so a candidate scores the mean over several draws.
-        const double distance = distance_of(candidate, share);
+        const double distance = distance_of(candidate, share, options.segmentation.seed);
         // Another level count has to be clearly nearer: within one draw's noise the default stays.
         const double score =
             levels == options.pyramid_levels ? distance : distance * (1.0 + kLevelChoiceMargin);
@@ -299,7 +314,7 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
         if (selected(b))
           candidate.bands[b].sigma = to_stored_precision(static_cast<float>(candidate.bands[b].sigma * gain));
       }
-      const double distance = distance_of(candidate, best_share);
+      const double distance = distance_of(candidate, best_share, options.segmentation.seed);
       if (distance < best_distance) {
         best = std::move(candidate);
         best_distance = distance;
@@ -321,6 +336,12 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
                 candidates + gain_candidates, best_distance, draws);
   notes.push_back(line + part);
   chosen_distance = best_distance;
+  // The chosen model's distance at draws no candidate was chosen on: the minimum over the candidates is
+  // biased low by the draw's own noise, this is not, so two analyses compare fairly by it.
+  for (std::uint64_t d = 0; d < kHeldOutDraws; ++d) {
+    held_out_distance +=
+        distance_of(*best, best_share, options.segmentation.seed + kHeldOutSeedOffset + d) / kHeldOutDraws;
+  }
   return *best;
 }
 
@@ -414,8 +435,9 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
     }
     return std::move(choice.tiles);
   };
-  // The tone, its planes and the range tiles, for the highlights `lobe` (none: strength 0).
-  const auto relief_stage = [&](const SpecularLobe& lobe, double shadow_scale) {
+  // The tone, its planes and the range tiles, for the highlights `lobe` (none: strength 0), the tone
+  // band-limited where `band_limited`.
+  const auto relief_stage = [&](const SpecularLobe& lobe, double shadow_scale, bool band_limited = false) {
     result.tone = relief_tone(dataset, result.stereo_view, result.range_map, z_floor, result.horizons, lobe);
     result.tone_planes = {result.tone};
     if (options.tone_planes != TonePlanes::never) {
@@ -428,6 +450,12 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
                     coloured ? "stored as R, G and B planes" : "stored grey");
       note(line);
     }
+    if (band_limited) {
+      std::vector<Plane> grey{result.tone};
+      band_limit_tone(grey);
+      result.tone = std::move(grey.front());
+      band_limit_tone(result.tone_planes);
+    }
     result.material.range = tile_relief(result.tone_planes, shadow_scale);
     result.material.range.shadow_scale = static_cast<float>(shadow_scale);
     result.material.range.specular_strength = static_cast<float>(lobe.strength);
@@ -438,29 +466,36 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
                              result.horizons, stored_lobe(result.material));
     }
   };
-  // The subspace models over the relief in result.material.range; their mean texture distance.
+  // The subspace models over the relief in result.material.range; their mean texture distance at the
+  // draws they were chosen on, and at held-out draws.
   std::vector<std::vector<std::string>> subspace_notes;
   const auto subspace_stage = [&] {
     const auto& representatives = result.segmentation.representatives;
     subspace_notes.assign(representatives.size(), {});
-    std::vector<double> distances(representatives.size(), 0.0);
+    std::vector<double> distances(representatives.size(), 0.0), held_out(representatives.size(), 0.0);
     result.material.subspaces.resize(representatives.size());
     Progress progress("subspace models", representatives.size(), options.progress);
     // The analysis goes on with the lobe as stored, as the render pass will draw it.
     const SpecularLobe lobe = stored_lobe(result.material);
     detail::parallel_for(representatives.size(), options.threads, [&](std::size_t s) {
-      result.material.subspaces[s] = fit_subspace(
-          dataset, representatives[s], result.range_map, result.horizons, result.tone_planes,
-          result.material.range.tone_chroma, lobe, z_floor, options, subspace_notes[s], distances[s]);
+      result.material.subspaces[s] =
+          fit_subspace(dataset, representatives[s], result.range_map, result.horizons, result.tone_planes,
+                       result.material.range.tone_chroma, lobe, z_floor, options, subspace_notes[s],
+                       distances[s], held_out[s]);
       progress.advance();
     });
-    double mean = 0.0;
-    for (const double d : distances) mean += d / static_cast<double>(distances.size());
-    return mean;
+    SubspaceScores scores;
+    for (std::size_t s = 0; s < distances.size(); ++s) {
+      scores.chosen += distances[s] / static_cast<double>(distances.size());
+      scores.held_out += held_out[s] / static_cast<double>(distances.size());
+    }
+    return scores;
   };
 
   SpecularLobe specular;  // the relief's highlights, fitted with the tone
   double shadow_scale = 0.0;
+  // Whether the stored tone is band-limited (AnalysisOptions::tone_band_limit).
+  bool tone_band_limited = options.relief_tone && options.tone_band_limit == AutoChoice::always;
   {
     StageClock clock(result, "range map and tiles");
     result.range_map = relief_of(result.normals);
@@ -506,37 +541,66 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
         note(line);
       }
       // The tone of the images without their highlights, which the render adds apart from it.
-      relief_stage(specular, shadow_scale);
+      relief_stage(specular, shadow_scale, tone_band_limited);
     } else {
       result.material.range = tile_relief({}, 0.0);
     }
   }
 
+  // What a choice between two reliefs sets aside while it fits the other: the material, its tone and
+  // the subspace models' notes.
+  struct ReliefModels {
+    Material material;
+    Plane tone;
+    std::vector<Plane> tone_planes;
+    std::vector<std::vector<std::string>> notes;
+  };
+  const auto keep_models = [&] {
+    return ReliefModels{result.material, result.tone, result.tone_planes, subspace_notes};
+  };
+  const auto restore_models = [&](ReliefModels&& kept) {
+    result.material = std::move(kept.material);
+    result.tone = std::move(kept.tone);
+    result.tone_planes = std::move(kept.tone_planes);
+    subspace_notes = std::move(kept.notes);
+  };
   {
     StageClock clock(result, "subspace models");
-    const double with_lobe = subspace_stage();
+    const SubspaceScores first = subspace_stage();
+    const double with_lobe = first.chosen;
+    SubspaceScores kept_scores = first;  // the kept models'
     // Automatic: a fitted lobe stays where the subspace models look nearer the measurement with it by
     // kSpecularKeepMargin. It explains the stereo view's images better on every sample, but
     // coast_sand_rocks' renders look further with it (docs/design.md 5.2 and 5.3).
     if (options.relief_specular == AutoChoice::automatic && specular.strength > 0.0) {
-      Material with = result.material;
-      auto with_tone = result.tone;
-      auto with_planes = result.tone_planes;
-      auto with_notes = subspace_notes;
-      relief_stage({}, shadow_scale);
-      const double without_lobe = subspace_stage();
+      ReliefModels with = keep_models();
+      relief_stage({}, shadow_scale, tone_band_limited);
+      const SubspaceScores without = subspace_stage();
+      const double without_lobe = without.chosen;
       const bool keep = with_lobe < without_lobe * (1.0 - kSpecularKeepMargin);
+      if (!keep) kept_scores = without;
       std::snprintf(
           line, sizeof line,
           "relief specular: %s (the subspace models' mean texture distance %.4f with it, %.4f without)",
           keep ? "kept" : "left out", with_lobe, without_lobe);
       note(line);
-      if (keep) {
-        result.material = std::move(with);
-        result.tone = std::move(with_tone);
-        result.tone_planes = std::move(with_planes);
-        subspace_notes = std::move(with_notes);
-      }
+      if (keep) restore_models(std::move(with));
+    }
+    // Automatic: the band-limited tone where the subspace models, refitted over it with the tiling and
+    // the lobe kept so far, look nearer by kToneBandLimitMargin.
+    if (options.relief_tone && options.tone_band_limit == AutoChoice::automatic) {
+      ReliefModels sharp = keep_models();
+      relief_stage(stored_lobe(result.material), shadow_scale, true);
+      const SubspaceScores band_limited = subspace_stage();
+      const bool keep = band_limited.held_out < kept_scores.held_out * (1.0 - kToneBandLimitMargin);
+      std::snprintf(line, sizeof line,
+                    "relief tone: %s (the subspace models' mean texture distance at held-out draws %.4f "
+                    "band-limited, %.4f as measured; at their own draws %.4f, %.4f)",
+                    keep ? "band-limited" : "kept as measured", band_limited.held_out, kept_scores.held_out,
+                    band_limited.chosen, kept_scores.chosen);
+      note(line);
+      tone_band_limited = keep;
+      if (!keep) restore_models(std::move(sharp));
     }
     const auto& representatives = result.segmentation.representatives;
     for (std::size_t s = 0; s < subspace_notes.size(); ++s) {
@@ -579,6 +643,10 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
       {"pair_gains", options.pair_gains ? "yes" : "no"},
       {"relief_specular",
        describe_choice(options.relief_specular, "where the models look nearer with it", "fitted")},
+      {"tone_band_limit", options.relief_tone && options.tone_band_limit == AutoChoice::automatic
+                              ? (tone_band_limited ? "yes: the models look nearer with it"
+                                                   : "no: the models look no nearer with it")
+                              : (tone_band_limited ? "yes" : "no")},
       {"stereo_view", std::to_string(result.stereo_view)},
       {"tile_size", std::to_string(material.range.tile_size)},
       {"tilings", options.tiling_candidates == 1

@@ -29,7 +29,7 @@ const std::vector<ModelVariant>& model_variants() {
        }},
       {"default",
        "relief tone (R, G, B planes where its colour is not grey), 128-texel tiles with feathered cuts, "
-       "the best-looking of 8 tilings, 6-bit heights, "
+       "the best-looking of 8 tilings, 6-bit heights, the tone band-limited where the models look nearer, "
        "4-bit grey tone or 6-bit colour planes; clamp, levels and noise gains per scale chosen per subspace",
        [](AnalysisOptions&) {}},
       {"specular", "the default with the relief's specular lobe wherever it is fitted (--specular)",
@@ -70,6 +70,10 @@ const std::vector<ModelVariant>& model_variants() {
        [](AnalysisOptions& o) { o.tiling_candidates = 1; }},
       {"shadows", "the default with the relief's cast shadows at full strength",
        [](AnalysisOptions& o) { o.relief_shadows = AutoChoice::always; }},
+      {"sharp_tone", "the default with the relief tone as measured, never band-limited",
+       [](AnalysisOptions& o) { o.tone_band_limit = AutoChoice::never; }},
+      {"band_limited_tone", "the default with the relief tone band-limited on every material",
+       [](AnalysisOptions& o) { o.tone_band_limit = AutoChoice::always; }},
   };
   return variants;
 }

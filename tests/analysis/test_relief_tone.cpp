@@ -205,4 +205,43 @@ TEST_CASE("the tone's colour planes follow each thread's colour, and only a weav
   CHECK_THROWS_AS(weighted_tone(two, 1.0, {1.0f, 1.0f, 1.0f}), std::invalid_argument);
 }
 
+TEST_CASE("the band-limited tone keeps coarse periods and the mean, and spreads a one-texel line",
+          "[analysis][tone]") {
+  const Eigen::Index n = 32;
+  const double pi = 3.14159265358979323846;
+  // Periods of 8 texels along the rows, of 2 along the columns, and a constant, in three planes.
+  std::vector<Plane> planes(3, Plane(n, n));
+  for (Eigen::Index r = 0; r < n; ++r) {
+    for (Eigen::Index c = 0; c < n; ++c) {
+      planes[0](r, c) = 1.0 + 0.5 * std::cos(2.0 * pi * static_cast<double>(c) / 8.0);
+      planes[1](r, c) = (r % 2 == 0) ? 1.5 : 0.5;
+      planes[2](r, c) = 0.7;
+    }
+  }
+  band_limit_tone(planes);
+  // Away from the edges, a period of p keeps 1 - 2w + 2w cos(2 pi / p) of its amplitude.
+  const double w = kToneBandLimitSide;
+  const double kept8 = 1.0 - 2.0 * w + 2.0 * w * std::cos(pi / 4.0), kept2 = 1.0 - 4.0 * w;
+  for (Eigen::Index r = 2; r < n - 2; ++r) {
+    for (Eigen::Index c = 2; c < n - 2; ++c) {
+      REQUIRE(planes[0](r, c) ==
+              Approx(1.0 + 0.5 * kept8 * std::cos(2.0 * pi * static_cast<double>(c) / 8.0)).margin(1e-12));
+      REQUIRE(planes[1](r, c) == Approx(1.0 + ((r % 2 == 0) ? 0.5 : -0.5) * kept2).margin(1e-12));
+    }
+  }
+  CHECK(kept2 < 0.5);  // the finest period loses over half its amplitude
+  // A constant stays, edges included.
+  CHECK((planes[2] - 0.7).abs().maxCoeff() < 1e-12);
+
+  // A crease drawn as a one-texel dark line becomes a three-texel softer one of the same total darkness.
+  std::vector<Plane> line(1, Plane::Ones(n, n));
+  line[0].col(16) = 0.2;
+  band_limit_tone(line);
+  CHECK(line[0](10, 16) == Approx(1.0 - 0.8 * (1.0 - 2.0 * w)));
+  CHECK(line[0](10, 15) == Approx(1.0 - 0.8 * w));
+  CHECK(line[0](10, 17) == Approx(1.0 - 0.8 * w));
+  CHECK(line[0](10, 14) == Approx(1.0));
+  CHECK(line[0].row(10).sum() == Approx(static_cast<double>(n) - 0.8));
+}
+
 }  // namespace carbtf
