@@ -40,6 +40,9 @@ void run_analyze(const AnalyzeCommandOptions& options) {
                dataset.width(), dataset.height(), load_seconds);
   const AnalysisResult result = analyze_btf(
       dataset, options.analysis, [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); });
+  // A folder named in --out that is not there yet is made, as the image outputs and --report do; only
+  // after the analysis, so that a failed one leaves nothing behind.
+  create_folder(fs::path(options.out).parent_path());
   check(write_material_file(options.out, result.material), "cannot write the material");
   if (!options.report.empty()) write_analysis_report(options.report, dataset, result);
 
@@ -71,7 +74,8 @@ void register_analyze_command(CLI::App& app) {
                    "A UBO2003 folder or .zip, a manifest .csv, a photometric-stereo folder, or a Bonn "
                    "UBO2014 .btf file (DFMF or raw)")
       ->required();
-  command->add_option("--out", options->out, "Material file to write (.cbtf)")->required();
+  command->add_option("--out", options->out, "Material file to write (.cbtf; its folder is made if missing)")
+      ->required();
   command->add_option("--report", options->report,
                       "Folder for the pictures and data: index_table.png, eigenvalues.png/.csv, subspace "
                       "images, normals, range map, "
