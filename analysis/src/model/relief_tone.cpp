@@ -98,25 +98,24 @@ double tone_colour_deviation(std::span<const Plane> planes) {
   return std::sqrt(sum / (3.0 * static_cast<double>(std::max<Eigen::Index>(1, planes[0].size()))));
 }
 
-void band_limit_tone(std::vector<Plane>& planes) {
+Plane band_limited_tone(const Plane& tone) {
   constexpr double side = kToneBandLimitSide, centre = 1.0 - 2.0 * side;
-  for (Plane& plane : planes) {
-    const Eigen::Index rows = plane.rows(), cols = plane.cols();
-    if (rows == 0 || cols == 0) continue;
-    Plane along_rows(rows, cols);
-    for (Eigen::Index r = 0; r < rows; ++r) {
-      for (Eigen::Index c = 0; c < cols; ++c) {
-        along_rows(r, c) = centre * plane(r, c) + side * (plane(r, std::max<Eigen::Index>(c - 1, 0)) +
-                                                          plane(r, std::min(c + 1, cols - 1)));
-      }
-    }
-    for (Eigen::Index r = 0; r < rows; ++r) {
-      for (Eigen::Index c = 0; c < cols; ++c) {
-        plane(r, c) = centre * along_rows(r, c) + side * (along_rows(std::max<Eigen::Index>(r - 1, 0), c) +
-                                                          along_rows(std::min(r + 1, rows - 1), c));
-      }
+  const Eigen::Index rows = tone.rows(), cols = tone.cols();
+  if (rows == 0 || cols == 0) return tone;
+  Plane along_rows(rows, cols), out(rows, cols);
+  for (Eigen::Index r = 0; r < rows; ++r) {
+    for (Eigen::Index c = 0; c < cols; ++c) {
+      along_rows(r, c) = centre * tone(r, c) + side * (tone(r, std::max<Eigen::Index>(c - 1, 0)) +
+                                                       tone(r, std::min(c + 1, cols - 1)));
     }
   }
+  for (Eigen::Index r = 0; r < rows; ++r) {
+    for (Eigen::Index c = 0; c < cols; ++c) {
+      out(r, c) = centre * along_rows(r, c) + side * (along_rows(std::max<Eigen::Index>(r - 1, 0), c) +
+                                                      along_rows(std::min(r + 1, rows - 1), c));
+    }
+  }
+  return out;
 }
 
 void clamp_remainder(std::vector<Plane>& channels, double k) {

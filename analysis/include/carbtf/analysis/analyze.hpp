@@ -126,7 +126,7 @@ struct AnalysisOptions {
   // 5.3: leather's and fabric's sheen; coast_sand_rocks, whose images it also explains, looks further
   // with it, and its models are under 1% nearer); always: keep it wherever fitted.
   AutoChoice relief_specular = AutoChoice::automatic;
-  // With the relief tone: band-limit it (model/relief_tone.hpp, band_limit_tone); automatic: where the
+  // With the relief tone: band-limit it (model/relief_tone.hpp, band_limited_tone); automatic: where the
   // subspace models, refitted over the band-limited tone (the tiling and the lobe as chosen before), look
   // nearer the measurement by kToneBandLimitMargin, at held-out draws. Measured at 256^2 (docs/design.md
   // 5.3): leather's and coast_sand_rocks' models look nearer with it, fabric's, whose threads the tone

@@ -53,7 +53,7 @@ double tone_colour_deviation(std::span<const Plane> planes);
 // 0.264 -> 0.278) and whose file grows by 23-24 KiB.
 inline constexpr double kToneColourVisible = 0.15;
 
-// Band-limits a tone: each plane filtered by the kernel [w, 1 - 2w, w], w = kToneBandLimitSide, along
+// A tone plane band-limited: filtered by the kernel [w, 1 - 2w, w], w = kToneBandLimitSide, along
 // rows and then along columns (edges repeated). Per axis a period of 8 texels keeps 91% of its amplitude,
 // of 4 texels 70%, of 2 texels 40%; the mean stays. Why: the tone is the measured images over the relit
 // range map, and where the recovered heights miss a crease's depth (leather's narrowest creases by about
@@ -62,7 +62,7 @@ inline constexpr double kToneColourVisible = 0.15;
 // models look nearer with it (AnalysisOptions::tone_band_limit). A wider kernel ([1 2 1] / 4) took more of
 // leather's grain, and the edges of coast_sand_rocks' rocks and grains with it (docs/design.md 5.3).
 inline constexpr double kToneBandLimitSide = 0.15;
-void band_limit_tone(std::vector<Plane>& planes);
+Plane band_limited_tone(const Plane& tone);
 
 // Clamps every channel to its median +- k robust standard deviations (1.4826 x the median absolute
 // deviation). After the tone is divided out, what remains outside that band is relief the tone does
