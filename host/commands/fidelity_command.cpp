@@ -1,8 +1,8 @@
 // `carbtf fidelity material.cbtf DATASET --out DIR`: how close the model looks to the measurement it
 // was fitted to, measured (docs/design.md 5): both drawn through the same render pass at a spread of measured
 // (light, view) pairs, compared by the calibrated texture measure on distributions, beside the best
-// stationary Gaussian texture. Prints rel per pair, mean and worst; writes a CSV, a markdown table and
-// a picture grid (measured | model | Gaussian reference).
+// stationary Gaussian texture. Prints rel per pair, mean and worst; writes a CSV, a markdown table, a
+// CSV per octave (where a distance comes from) and a picture grid (measured | model | Gaussian reference).
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
@@ -72,11 +72,12 @@ void run_fidelity_command(const FidelityOptions& options) {
 
   write_output_file(out / "fidelity.csv", fidelity_csv(results, material));
   write_output_file(out / "fidelity.md", fidelity_markdown(results));
+  write_output_file(out / "fidelity_octaves.csv", fidelity_octaves_csv(results));
   const RgbField grid = fidelity_grid(results);
   write_rgb_image(out / "fidelity_grid.png", grid.rgb, grid.width, grid.height);
   std::printf(
-      "wrote %s/fidelity.csv, fidelity.md and fidelity_grid.png (rows: pairs; columns: measured | model | "
-      "Gaussian reference)\n",
+      "wrote %s/fidelity.csv, fidelity.md, fidelity_octaves.csv (per octave: energy and light vectors) and "
+      "fidelity_grid.png (rows: pairs; columns: measured | model | Gaussian reference)\n",
       out.string().c_str());
 }
 
@@ -91,7 +92,8 @@ void register_fidelity_command(CLI::App& app) {
                                      "texture measure on distributions (s: 0 = the measurement "
                                      "against another region of itself, 1 = no better than a Gaussian field "
                                      "of its spectrum; rel: 1 = white noise), "
-                                     "with a verdict against that Gaussian per pair; CSV, markdown and a "
+                                     "with a verdict against that Gaussian per pair; CSV, markdown, a CSV "
+                                     "per octave (energy and light vectors of model and measurement) and a "
                                      "picture grid (measured | model | Gaussian)");
   command->add_option("material", options->material, "Material file (.cbtf)")->required();
   command->add_option("dataset", options->dataset, "The measured BTF the material was analysed from")

@@ -374,4 +374,30 @@ std::string fidelity_csv(const std::vector<PairFidelity>& results, const Materia
   return csv.str();
 }
 
+std::string fidelity_octaves_csv(const std::vector<PairFidelity>& results) {
+  std::ostringstream csv;
+  csv << "light,view,octave,period_px";
+  for (const char* image : {"model", "measured"}) {
+    csv << ',' << image << "_energy_db";
+    for (const char* vector : {"skewness", "dark_side", "bright_side"})
+      csv << ',' << image << '_' << vector << "_x," << image << '_' << vector << "_y";
+  }
+  csv << '\n';
+  for (const PairFidelity& r : results) {
+    const DistributionStatistics model = distribution_statistics(r.model.rgb, r.model.width, r.model.height);
+    const DistributionStatistics measured =
+        distribution_statistics(r.measured.rgb, r.measured.width, r.measured.height);
+    for (std::size_t o = 0; o < std::min(model.octaves, measured.octaves); ++o) {
+      csv << r.pair.light << ',' << r.pair.view << ',' << o << ',' << (4u << o);
+      for (const DistributionStatistics* s : {&model, &measured}) {
+        const OctaveProfile p = octave_profile(*s, o);
+        csv << ',' << p.energy_db;
+        for (const auto& v : {p.skewness, p.dark_side, p.bright_side}) csv << ',' << v[0] << ',' << v[1];
+      }
+      csv << '\n';
+    }
+  }
+  return csv.str();
+}
+
 }  // namespace carbtf::cli

@@ -155,3 +155,36 @@ TEST_CASE("calibrated fidelity puts the measurement near 0, white noise near 1 a
 }
 
 }  // namespace carbtf
+
+namespace carbtf {
+
+TEST_CASE("an octave's light vectors point along the light's azimuth and turn with it",
+          "[quality][distributions]") {
+  // Leather at 45 degrees, lit from azimuth 0 (along +x) and from the opposite side: at the creases'
+  // octave the vectors turn over, and a Gaussian field of the same spectrum has almost none.
+  const RgbField from_0 = test::rendered_sample("leather", 45.0, 0.0);
+  const RgbField from_180 = test::rendered_sample("leather", 45.0, 180.0);
+  const DistributionStatistics a = distribution_statistics(from_0.rgb, from_0.width, from_0.height);
+  const DistributionStatistics b = distribution_statistics(from_180.rgb, from_180.width, from_180.height);
+  const RgbField gaussian_image = phase_randomised(from_0, 1);
+  const DistributionStatistics gaussian =
+      distribution_statistics(gaussian_image.rgb, gaussian_image.width, gaussian_image.height);
+  const auto dot = [](const std::array<double, 2>& u, const std::array<double, 2>& v) {
+    return u[0] * v[0] + u[1] * v[1];
+  };
+  const auto length = [](const std::array<double, 2>& u) { return std::hypot(u[0], u[1]); };
+  const OctaveProfile pa = octave_profile(a, 0), pb = octave_profile(b, 0), pg = octave_profile(gaussian, 0);
+  CHECK(dot(pa.skewness, pb.skewness) < -0.5 * length(pa.skewness) * length(pb.skewness));
+  CHECK(dot(pa.dark_side, pb.dark_side) < -0.5 * length(pa.dark_side) * length(pb.dark_side));
+  CHECK(length(pg.skewness) < 0.25 * length(pa.skewness));
+  // Along the light's azimuth (x) or against it, not across it.
+  CHECK(std::abs(pa.skewness[0]) > 0.9 * length(pa.skewness));
+  CHECK(std::abs(pb.dark_side[0]) > 0.9 * length(pb.dark_side));
+  // The energy is the band's, the same for both lights to within what the shading moves it, and the
+  // phase-randomised field keeps it.
+  CHECK(pg.energy_db == Approx(pa.energy_db).margin(1.0));
+  CHECK(pa.energy_db > octave_profile(a, a.octaves - 1).energy_db);
+  CHECK_THROWS_AS(octave_profile(a, a.octaves), std::out_of_range);
+}
+
+}  // namespace carbtf

@@ -227,6 +227,29 @@ TEST_CASE("carbtf fidelity scores the pairs asked for or a spread over every lig
   double steepest = 0.0;
   CHECK(scored_pairs(folder / "chosen" / "fidelity.csv", steepest) ==
         std::vector<std::pair<int, int>>{{1, 0}, {19, 0}});
+  // Per pair, its octaves in order, periods doubling from 4 pixels, every value a number.
+  std::ifstream octaves(folder / "chosen" / "fidelity_octaves.csv");
+  std::string line;
+  std::getline(octaves, line);
+  CHECK(line.rfind("light,view,octave,period_px,model_energy_db,model_skewness_x", 0) == 0);
+  std::vector<std::vector<double>> rows;
+  while (std::getline(octaves, line)) {
+    std::stringstream fields(line);
+    std::string field;
+    std::vector<double> row;
+    while (std::getline(fields, field, ',')) row.push_back(std::stod(field));
+    CHECK(row.size() == 18);
+    CHECK(std::all_of(row.begin(), row.end(), [](double v) { return std::isfinite(v); }));
+    rows.push_back(row);
+  }
+  REQUIRE(rows.size() >= 4);
+  REQUIRE(rows.size() % 2 == 0);
+  const std::size_t per_pair = rows.size() / 2;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    CHECK(rows[i][0] == (i < per_pair ? 1.0 : 19.0));
+    CHECK(rows[i][2] == static_cast<double>(i % per_pair));
+    CHECK(rows[i][3] == std::ldexp(4.0, static_cast<int>(i % per_pair)));
+  }
 
   // Six distinct pairs, the same on every run, none so oblique that the 64-pixel plane is too thin to
   // score (the run fails on such a pair: cos 75 degrees x 64 is 16.6 pixels).

@@ -391,6 +391,31 @@ DistributionStatistics distribution_statistics(std::span<const float> rgb, std::
   return s;
 }
 
+namespace {
+
+// The L* band energy of an octave over its orientations, in dB.
+double octave_energy_db(const DistributionStatistics& s, std::size_t octave) {
+  double energy = 0.0;
+  for (std::uint32_t k = 0; k < kOrientations; ++k)
+    energy += std::pow(10.0, s.energy_db[octave * kOrientations + k] / 10.0) / kOrientations;
+  return decibels(energy);
+}
+
+// A per-orientation statistic changes sign with the direction along its orientation: its first circular
+// harmonic over the orientations (0, 45, 90, 135 degrees) is a vector.
+std::array<double, 2> first_harmonic(const std::vector<double>& per_orientation, std::size_t octave) {
+  double x = 0.0, y = 0.0;
+  for (std::uint32_t k = 0; k < kOrientations; ++k) {
+    const double v = per_orientation[octave * kOrientations + k];
+    const double angle = k * std::numbers::pi / kOrientations;
+    x += v * std::cos(angle) / 2.0;
+    y += v * std::sin(angle) / 2.0;
+  }
+  return {x, y};
+}
+
+}  // namespace
+
 DistributionDistance distribution_distance(const DistributionStatistics& a, const DistributionStatistics& b) {
   if (a.octaves != b.octaves || a.energy_db.size() != b.energy_db.size() ||
       a.cross_scale.size() != b.cross_scale.size()) {
@@ -419,13 +444,8 @@ DistributionDistance distribution_distance(const DistributionStatistics& a, cons
   };
   std::vector<double> octave_db_a(octaves), octave_db_b(octaves);
   for (std::size_t o = 0; o < octaves; ++o) {
-    double ea = 0.0, eb = 0.0;
-    for (std::uint32_t k = 0; k < kOrientations; ++k) {
-      ea += std::pow(10.0, a.energy_db[o * kOrientations + k] / 10.0) / kOrientations;
-      eb += std::pow(10.0, b.energy_db[o * kOrientations + k] / 10.0) / kOrientations;
-    }
-    octave_db_a[o] = decibels(ea);
-    octave_db_b[o] = decibels(eb);
+    octave_db_a[o] = octave_energy_db(a, o);
+    octave_db_b[o] = octave_energy_db(b, o);
     g[1].add((octave_db_a[o] - octave_db_b[o]) / kEnergyScale, sensitivity(o));
   }
   for (std::size_t i = 0; i < a.chroma_energy_db.size(); ++i) {
@@ -474,14 +494,8 @@ DistributionDistance distribution_distance(const DistributionStatistics& a, cons
     // the direction along the orientation, so their first circular harmonic is a vector towards the
     // light; a quarter turn or a light from elsewhere turns it.
     const auto harmonic_difference = [&](const std::vector<double>& va, const std::vector<double>& vb) {
-      double x = 0.0, y = 0.0;
-      for (std::uint32_t k = 0; k < kOrientations; ++k) {
-        const double d = va[o * kOrientations + k] - vb[o * kOrientations + k];
-        const double angle = k * std::numbers::pi / kOrientations;
-        x += d * std::cos(angle) / 2.0;
-        y += d * std::sin(angle) / 2.0;
-      }
-      return std::hypot(x, y);
+      const std::array<double, 2> ha = first_harmonic(va, o), hb = first_harmonic(vb, o);
+      return std::hypot(ha[0] - hb[0], ha[1] - hb[1]);
     };
     const double side_scale = std::hypot(kLightSideScale, kLightSideNoise * noise);
     g[7].add(harmonic_difference(a.odd_skewness, b.odd_skewness) / skew_scale, structure_weight);
@@ -503,6 +517,16 @@ DistributionDistance distribution_distance(const DistributionStatistics& a, cons
     d.total += kGroupWeights[i] * d.groups[i] / weights;
   }
   return d;
+}
+
+OctaveProfile octave_profile(const DistributionStatistics& s, std::size_t octave) {
+  if (octave >= s.octaves) throw std::out_of_range("octave_profile: the statistics hold no such octave");
+  OctaveProfile p;
+  p.energy_db = octave_energy_db(s, octave);
+  p.skewness = first_harmonic(s.odd_skewness, octave);
+  p.dark_side = first_harmonic(s.dark_side, octave);
+  p.bright_side = first_harmonic(s.bright_side, octave);
+  return p;
 }
 
 }  // namespace carbtf

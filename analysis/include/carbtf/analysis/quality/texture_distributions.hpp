@@ -83,4 +83,16 @@ DistributionStatistics distribution_statistics(std::span<const float> rgb, std::
 // options and images large enough for the same octaves; throws otherwise.
 DistributionDistance distribution_distance(const DistributionStatistics& a, const DistributionStatistics& b);
 
+// What the energy and lighting groups compare at one octave (0: the finest, periods of 4 pixels; each
+// next one doubles them), for reading where a distance comes from (`carbtf fidelity`'s
+// fidelity_octaves.csv). Throws std::out_of_range for an octave the statistics do not hold.
+struct OctaveProfile {
+  double energy_db = 0.0;  // the L* band energy over the four orientations, in dB
+  // Which way the octave is lit: the first circular harmonic over the orientations (x right, y up) of
+  // the odd response's skewness, and of its mean over the band's darkest and brightest tenths in units
+  // of its RMS. It points along the light's azimuth or against it; the Gaussian field's is near 0.
+  std::array<double, 2> skewness{}, dark_side{}, bright_side{};
+};
+OctaveProfile octave_profile(const DistributionStatistics& s, std::size_t octave);
+
 }  // namespace carbtf
