@@ -253,7 +253,8 @@ CARBTF_FUNCTION float carbtf_polar_angle(float r, float z) {
 // horizons of azimuths 0-3 and 4-7 for cast shadows), binding 2 the lookup tables (readonly
 // storage buffer: MaterialTablesHeader, then the tables), binding 3 the same buffer as RGBA32UI texels
 // (usamplerBuffer: 16-byte "quads"), through which the fragment stage reads the tables after the header.
-// Both textures have MaterialTablesHeader::mip_levels levels.
+// The subspace images have MaterialTablesHeader::mip_levels levels, the range map relief_levels: one more
+// where the texture's size allows it, for the relief's chroma (carbtf_material_shade()).
 CARBTF_CONST_UINT(CARBTF_MATERIAL_BINDING_SUBSPACES, 0u)
 CARBTF_CONST_UINT(CARBTF_MATERIAL_BINDING_RANGE, 1u)
 CARBTF_CONST_UINT(CARBTF_MATERIAL_BINDING_TABLES, 2u)
@@ -360,14 +361,20 @@ struct MaterialTablesHeader {
   uint shadows;         // 1: the relief casts shadows (the range texture's layers 2 and 3 hold its horizons)
   float specular_strength;  // the relief's specular lobe (RangeTiles::specular_strength; 0: none)
   float specular_gloss;
-  uint mip_levels;  // levels of the range map and the subspace images, level 0 included (mip_chain.hpp)
+  uint mip_levels;  // levels of the subspace images, level 0 included (mip_chain.hpp)
   // The parallax ray march (carbtf_parallax_uv): the highest and lowest point of the relief, parallax_scale
   // * (height - range_mean) in texels, and the most steps it takes down the ray (0: offset mapping, one
   // height read).
   float parallax_top;
   float parallax_bottom;
   uint parallax_steps;
-  uint reserved;
+  // Levels of the range map: mip_levels + 1 where its size allows it (and the device can filter it), so
+  // that the relief's chroma can always be read one level above its brightness.
+  uint relief_levels;
+  uint tone_planes;  // the relief tone's planes (tone_planes() of material.hpp): 0 none, 1 grey, 3 R, G, B
+  uint reserved0;
+  uint reserved1;
+  uint reserved2;
 };
 
 #ifdef __cplusplus
@@ -405,11 +412,12 @@ static_assert(sizeof(CollapseItemGpu) == 48, "CollapseItemGpu must match std430"
 static_assert(sizeof(ColourItemGpu) == 32 + 16 * CARBTF_SYNTH_MAX_CHANNELS +
                                            4 * CARBTF_SYNTH_MAX_CHANNELS * CARBTF_SYNTH_MAX_CHANNELS);
 static_assert(sizeof(SynthPassParams) == 36 && sizeof(InterpolateParams) == 112);
-static_assert(sizeof(DirectionLookupGpu) == 32 && sizeof(MaterialTablesHeader) == 128);
+static_assert(sizeof(DirectionLookupGpu) == 32 && sizeof(MaterialTablesHeader) == 144);
 static_assert(offsetof(MaterialTablesHeader, pair_table) == 64 &&
               offsetof(MaterialTablesHeader, parallax_scale) == 80);
 static_assert(offsetof(MaterialTablesHeader, mip_levels) == 108 &&
-              offsetof(MaterialTablesHeader, parallax_steps) == 120);
+              offsetof(MaterialTablesHeader, parallax_steps) == 120 &&
+              offsetof(MaterialTablesHeader, relief_levels) == 124);
 static_assert(sizeof(RenderFrameUniforms) == 160 + 32 * CARBTF_RENDER_MAX_LIGHTS,
               "RenderFrameUniforms must match std140");
 static_assert(offsetof(RenderFrameUniforms, camera) == 128 &&

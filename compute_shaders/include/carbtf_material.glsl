@@ -13,7 +13,8 @@
 // 9-weight (or 5-pair staircase) interpolation of the subspace images (docs/design.md 4.5) through precomputed lookup grids
 // (a fixed, short list of candidates per grid cell: no search over the direction set), times the range
 // map relit for the light, hidden where the relief casts a shadow (the material's shadow scale above
-// 0). The CPU twin is analysis/reference/src/render_reference.cpp.
+// 0), plus its specular lobe; the colour's brightness from the relief at the fragment's level, its chroma
+// from the relief one mip level above. The CPU twin is analysis/reference/src/render_reference.cpp.
 #ifndef CARBTF_MATERIAL_GLSL
 #define CARBTF_MATERIAL_GLSL
 
@@ -399,17 +400,19 @@ void carbtf_order_by_index(inout uvec3 index, inout vec3 weight) {
   carbtf_order_adjacent(index, weight, 0);
 }
 
-// Pair p's part of the interpolated colour: weight w times the pair's gain times its subspace image at
-// uv, with the image's share of the relief tone; nothing where the pair has no layer.
+// Pair p's part of the interpolated colour before the relief tone: weight w times the pair's gain times
+// its subspace image at uv, and the share of the relief tone the image takes (its tone weight); nothing
+// where the pair has no layer.
 vec3 carbtf_pair_colour(uint p, float w, vec2 uv, float lod, CarbtfLod s, CarbtfBilinear b, CarbtfBilinear b_up,
-                        vec3 tone_offset) {
+                        out float tone_weight) {
+  tone_weight = 0.0;
   if (w == 0.0) return vec3(0.0);
   uvec4 quad = carbtf_probed(CARBTF_COST_PROBE_PAIR_READS) ? uvec4(p % 16u, 0x10040100u, p % 16u, 0x10040100u)
                                                          : carbtf_table_quad(carbtf_header.pair_table + (p >> 1));
   uvec2 entry = (p & 1u) == 0u ? quad.xy : quad.zw;
   uint layer = entry.x & 0xFFFFu;
   if (layer == CARBTF_PAIR_NO_LAYER) return vec3(0.0);
-  float tone_weight = unpackHalf2x16(entry.x).y;
+  tone_weight = unpackHalf2x16(entry.x).y;
   vec3 texel;
   if (carbtf_probed(CARBTF_COST_PROBE_SUBSPACE_READS)) {
     texel = vec3(float(layer) / 16.0);
@@ -420,7 +423,21 @@ vec3 carbtf_pair_colour(uint p, float w, vec2 uv, float lod, CarbtfLod s, Carbtf
     if (s.t > 0.0) texel = mix(texel, carbtf_subspace_texel(b_up, layer, s.level + 1), s.t);
   }
   vec3 gain = vec3(uvec3(entry.y, entry.y >> 10, entry.y >> 20) & 1023u) * (1.0 / CARBTF_PAIR_GAIN_UNITS);
-  return (w * max(1.0 + tone_weight * tone_offset, vec3(0.0))) * (gain * texel);
+  return w * (gain * texel);
+}
+
+// The smooth BTF under two relief tones at once (the same texel reads): the tone at the fragment
+// (`fine`) and the one its chroma takes (`chroma`, carbtf_material_shade()).
+struct CarbtfBtf {
+  vec3 fine;
+  vec3 chroma;
+};
+
+// Adds a pair's part (carbtf_pair_colour()) to both sums: each with its share of its tone,
+// max(1 + tone weight * (tone - 1), 0) per channel.
+void carbtf_add_pair(inout CarbtfBtf btf, vec3 part, float tone_weight, vec3 fine_offset, vec3 chroma_offset) {
+  btf.fine += max(1.0 + tone_weight * fine_offset, vec3(0.0)) * part;
+  btf.chroma += max(1.0 + tone_weight * chroma_offset, vec3(0.0)) * part;
 }
 
 // The measured directions of `set` (the lights or the views) around a tangent-frame direction and
@@ -436,20 +453,21 @@ void carbtf_measured_weights(DirectionLookupGpu set, vec3 direction, out uvec3 i
 
 // The smooth BTF colour at (already parallax-shifted) uv for a tangent-frame light direction and the
 // view's measured directions vi and weights vw (carbtf_measured_weights(): a fragment lit by several lights
-// looks the view up once), with the relief tone `tone` at uv (one per colour channel): sum over the
-// (light, view) pairs around the directions (the 3 x 3 nearest, or the staircase's 5 of them:
+// looks the view up once), with the relief tones `tone` and `chroma_tone` at uv (one per colour channel):
+// sum over the (light, view) pairs around the directions (the 3 x 3 nearest, or the staircase's 5 of them:
 // carbtf_pair_coupling) of weight * max(1 + tone weight * (tone - 1), 0) * (pair gain * subspace image
 // of the pair), per channel, as render_reference.cpp computes it.
-vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, uvec3 vi, vec3 vw, vec3 tone, float lod) {
+CarbtfBtf carbtf_interpolated_btf(vec2 uv, vec3 light, uvec3 vi, vec3 vw, vec3 tone, vec3 chroma_tone, float lod) {
   uvec3 li;
   vec3 lw;
   carbtf_measured_weights(carbtf_header.lights, light, li, lw);
   CarbtfLod s = carbtf_split_lod(lod);
   CarbtfBilinear b = carbtf_bilinear(uv, s.level);
   CarbtfBilinear b_up = carbtf_bilinear(uv, s.level + (s.t > 0.0 ? 1 : 0));
-  vec3 colour = vec3(0.0);
+  CarbtfBtf btf = CarbtfBtf(vec3(0.0), vec3(0.0));
   uint views = carbtf_header.views.count;
-  vec3 tone_offset = tone - 1.0;
+  vec3 fine_offset = tone - 1.0, chroma_offset = chroma_tone - 1.0;
+  float tone_weight;
   if (carbtf_pair_coupling == CARBTF_PAIR_COUPLING_STAIRCASE) {
     carbtf_order_by_index(li, lw);
     carbtf_order_by_index(vi, vw);
@@ -458,7 +476,8 @@ vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, uvec3 vi, vec3 vw, vec3 tone, 
     for (uint k = 0u; k < CARBTF_STAIRCASE_STEPS; ++k) {
       // The two sides' sums agree only to rounding: what one overdraws is never negative weight.
       float w = max(min(light_left, view_left), 0.0);
-      colour += carbtf_pair_colour(li[i] * views + vi[j], w, uv, lod, s, b, b_up, tone_offset);
+      vec3 part = carbtf_pair_colour(li[i] * views + vi[j], w, uv, lod, s, b, b_up, tone_weight);
+      carbtf_add_pair(btf, part, tone_weight, fine_offset, chroma_offset);
       if (carbtf_staircase_next_is_light(light_left, view_left, i, j)) {
         view_left -= light_left;
         i = min(i + 1u, 2u);
@@ -472,21 +491,24 @@ vec3 carbtf_interpolated_btf(vec2 uv, vec3 light, uvec3 vi, vec3 vw, vec3 tone, 
   } else {
     for (int i = 0; i < 3; ++i) {
       for (int j = 0; j < 3; ++j) {
-        colour += carbtf_pair_colour(li[i] * views + vi[j], lw[i] * vw[j], uv, lod, s, b, b_up, tone_offset);
+        vec3 part = carbtf_pair_colour(li[i] * views + vi[j], lw[i] * vw[j], uv, lod, s, b, b_up, tone_weight);
+        carbtf_add_pair(btf, part, tone_weight, fine_offset, chroma_offset);
       }
     }
   }
-  return colour;
+  return btf;
 }
 
-// What the material at one point and view is, whatever the light: the relief there and the view's
-// lookup. A fragment lit by several lights computes it once (carbtf_material_surface()) and shades each
-// light from it, which saves a relief read and a lookup per light after the first.
+// What the material at one point and view is, whatever the light: the relief there and one mip level
+// above (its chroma, carbtf_material_shade()) and the view's lookup. A fragment lit by several lights
+// computes it once (carbtf_material_surface()) and shades each light from it, which saves the relief
+// reads and a lookup per light after the first.
 struct CarbtfSurface {
   vec2 uv;  // parallax-shifted
   vec3 view;
   float lod;
   CarbtfRelief relief;
+  CarbtfRelief chroma_relief;
   uvec3 view_index;
   vec3 view_weight;
 };
@@ -498,39 +520,74 @@ CarbtfSurface carbtf_material_surface(vec2 uv, vec3 view, float lod) {
   surface.lod = lod;
   if (carbtf_probed(CARBTF_COST_PROBE_RELIEF)) {
     surface.relief = CarbtfRelief(vec3(0.0, 0.0, 1.0), 1.0, vec3(1.0), vec4(0.0), vec4(0.0));
+    surface.chroma_relief = surface.relief;
   } else {
     surface.relief = carbtf_relief(uv, lod);
+    surface.chroma_relief = carbtf_relief(uv, min(lod + 1.0, float(max(carbtf_header.relief_levels, 1u) - 1u)));
   }
   carbtf_measured_weights(carbtf_header.views, view, surface.view_index, surface.view_weight);
   return surface;
 }
 
+// The relief under a light (tangent frame, unit): the relit factor, max(N.L, 0) / max(L.z, light_z_floor)
+// (the measured images already hold the flat surface's cosine falloff, L.z, so the relit factor swaps it
+// for the local facet's and a flat range map changes nothing; beyond the last measured elevation the
+// interpolation holds that ring's images, whose falloff is the floor's, so the floor keeps the product
+// bounded at grazing light) where the relief casts no shadow, over an ambient share; and its specular
+// lobe (RangeTiles::specular_strength), grey, where the facet turns to the half vector. Above level 0 the
+// normal is the mean of the facets' (shorter where they differ): its length scales N.L as their mean
+// would, but the lobe's power of a shortened N.H would dim it to nothing, so the lobe takes its direction.
+struct CarbtfLit {
+  float relit;
+  float lobe;
+};
+
+CarbtfLit carbtf_relief_lit(CarbtfRelief relief, vec3 light, vec3 half_vector) {
+  float n_dot_l = max(dot(relief.normal, light), 0.0);
+  float visibility = 1.0;
+  if (carbtf_shadows_compiled && carbtf_header.shadows != 0u) visibility = carbtf_relief_visibility(relief, light);
+  CarbtfLit lit;
+  lit.relit = CARBTF_RELIEF_AMBIENT +
+              (1.0 - CARBTF_RELIEF_AMBIENT) * n_dot_l / max(light.z, carbtf_header.light_z_floor) * visibility;
+  lit.lobe = 0.0;
+  if (carbtf_header.specular_strength > 0.0) {
+    float n_dot_h = max(dot(relief.normal, half_vector), 0.0) / relief.normal_length;
+    lit.lobe = carbtf_header.specular_strength * n_dot_l * visibility * pow(n_dot_h, carbtf_header.specular_gloss);
+  }
+  return lit;
+}
+
+// sRGB's exponent: the relief's chroma is mixed in values encoded about as a camera stores them.
+const float CARBTF_CHROMA_GAMMA = 1.0 / 2.4;
+const vec3 CARBTF_LUMA_WEIGHTS = vec3(0.299, 0.587, 0.114);  // Rec. 601's, as JPEG's YCbCr
+
 // The material under one light: the interpolated smooth BTF, each image with its share of the relief
-// tone, times the range map
-// relit for the light, max(N.L, 0) / max(L.z, light_z_floor). The measured images already hold the flat surface's cosine
-// falloff (L.z), so the relit factor swaps it for the local facet's and a flat range map changes
-// nothing. Beyond the last measured elevation the interpolation holds that ring's images, whose
-// falloff is the floor's, so the floor keeps the product bounded at grazing light. Directions are
-// unit vectors in the tangent frame; uv is the parallax-shifted coordinate. Zero below the horizon.
+// tone, times the relit factor of the range map, plus the relief's specular lobe (carbtf_relief_lit()).
+// Its brightness follows the relief at the fragment's level, its chroma the relief one mip level above: in
+// encoded values, the luma (Rec. 601) of the fragment's colour plus the colour differences of the same BTF
+// under the relief of the next level (its relit factor, lobe and, where the tone is one grey plane, tone).
+// The measured images' colour is band-limited, by the camera's colour filters and by JPEG's 4:2:0
+// chroma, so their creases and facets at periods of 2 to 4 texels are brightness alone; with the relief's
+// full-resolution chroma the model's a* and b* followed them (docs/design.md 4.6). A coloured tone (three
+// planes) is the albedo's own colour and keeps the fragment's level. Directions are unit vectors in the
+// tangent frame; zero below the horizon.
 // `lod`: carbtf_material_lod() of the fragment (0, level 0 only, where the host has none). Under several
 // lights, shade each from one carbtf_material_surface(uv, view, lod); the other forms build it per call.
 vec3 carbtf_material_shade(CarbtfSurface surface, vec3 light) {
   vec3 view = surface.view;
   if (light.z <= 0.0 || view.z <= 0.0) return vec3(0.0);
-  CarbtfRelief relief = surface.relief;
-  float n_dot_l = max(dot(relief.normal, light), 0.0);
-  float visibility = 1.0;
-  if (carbtf_shadows_compiled && carbtf_header.shadows != 0u) visibility = carbtf_relief_visibility(relief, light);
-  float relit = CARBTF_RELIEF_AMBIENT +
-                (1.0 - CARBTF_RELIEF_AMBIENT) * n_dot_l / max(light.z, carbtf_header.light_z_floor) * visibility;
-  vec3 colour = relit * carbtf_interpolated_btf(surface.uv, light, surface.view_index, surface.view_weight, relief.tone,
-                                                surface.lod);
-  // The relief's specular lobe (RangeTiles::specular_strength), grey, where the facet turns to the half vector.
-  if (carbtf_header.specular_strength > 0.0) {
-    float n_dot_h = max(dot(relief.normal, normalize(light + view)), 0.0);
-    colour += vec3(carbtf_header.specular_strength * n_dot_l * visibility * pow(n_dot_h, carbtf_header.specular_gloss));
-  }
-  return colour;
+  vec3 half_vector = normalize(light + view);
+  CarbtfLit lit = carbtf_relief_lit(surface.relief, light, half_vector);
+  CarbtfLit chroma_lit = carbtf_relief_lit(surface.chroma_relief, light, half_vector);
+  vec3 chroma_tone = carbtf_header.tone_planes == 1u ? surface.chroma_relief.tone : surface.relief.tone;
+  CarbtfBtf btf = carbtf_interpolated_btf(surface.uv, light, surface.view_index, surface.view_weight,
+                                          surface.relief.tone, chroma_tone, surface.lod);
+  vec3 colour = lit.relit * btf.fine + lit.lobe;
+  vec3 chroma_colour = chroma_lit.relit * btf.chroma + chroma_lit.lobe;
+  vec3 encoded = pow(max(colour, vec3(0.0)), vec3(CARBTF_CHROMA_GAMMA));
+  vec3 chroma_encoded = pow(max(chroma_colour, vec3(0.0)), vec3(CARBTF_CHROMA_GAMMA));
+  vec3 mixed = dot(encoded, CARBTF_LUMA_WEIGHTS) + (chroma_encoded - dot(chroma_encoded, CARBTF_LUMA_WEIGHTS));
+  return pow(max(mixed, vec3(0.0)), vec3(1.0 / CARBTF_CHROMA_GAMMA));
 }
 vec3 carbtf_material_shade(vec2 uv, vec3 light, vec3 view, float lod) {
   return carbtf_material_shade(carbtf_material_surface(uv, view, lod), light);

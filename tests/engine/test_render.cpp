@@ -26,6 +26,11 @@ using namespace carbtf;
 
 namespace {
 
+// The GPU's fragment stage against the CPU reference, in shares of the picture's peak (the reasons at
+// the test below).
+constexpr double kConformanceWorst = 4e-4;
+constexpr double kConformanceRms = 2e-5;
+
 std::unique_ptr<SubspaceSynthesizer> synthesized(Context& context, const Material& m,
                                                  SynthesizedImages& images,
                                                  std::uint32_t periodic_overlap = 0) {
@@ -139,8 +144,11 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
   input.parallax_scale = binding_info.parallax_scale;
   input.wrap = periodic;
   input.mip_levels = binding->mip_levels();
-  // 96 x 80 halves evenly 4 times; lavapipe blits RGBA32F and RG32F with a linear filter.
+  input.relief_levels = binding->relief_levels();
+  // 96 x 80 halves evenly 4 times; lavapipe blits RGBA32F and RG32F with a linear filter. The range map
+  // can have no level more, so at the top level the relief's chroma reads that level (below it, the next).
   CHECK(binding->mip_levels() == 5);
+  CHECK(binding->relief_levels() == 5);
 
   auto direction = [](float theta, float phi) {
     return std::array<float, 3>{std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
@@ -199,12 +207,15 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
   CHECK(coverage_differs <= 2 * (target.width + target.height));
   // Documented tolerance: the GPU interpolates uv across the triangles and finds its direction weights
   // in float through the lookup grids; the reference intersects rays and searches the triangulation in
-  // double. Measured: 5.4e-5 (measured directions, coloured tone) and 2.2e-5 (between them) of the peak at
-  // worst, 1e-6 RMS; with the cast shadows, whose penumbra steepens the light's direction rounding, up
-  // to 6.6e-5 of the peak (between the directions, periodic). Allowed: 1e-4 of the peak at any pixel, 1e-5
-  // RMS.
-  CHECK(worst <= 1e-4 * peak);
-  CHECK(rms <= 1e-5 * peak);
+  // double. Before the relief's chroma came from the next mip level, that left up to 6.6e-5 of the peak
+  // at a pixel (with the cast shadows, whose penumbra steepens the light's direction rounding) and 1e-6
+  // RMS, and the colour of the next level's relief alone still agrees as closely (4e-5 at worst). The mix
+  // of the two colours in encoded values (x^(1/2.4), carbtf_material_shade()) magnifies those
+  // differences where a channel of the next level's colour is much darker than the result: by 2.4 times
+  // their ratio to the power 0.58, up to about 8 here. Measured: 2.5e-4 of the peak at worst (measured
+  // directions, coloured tone), 1.0e-5 RMS. Allowed: 4e-4 of the peak at any pixel, 2e-5 RMS.
+  CHECK(worst <= kConformanceWorst * peak);
+  CHECK(rms <= kConformanceRms * peak);
 
   // The same scene drawn through another binding of the same textures.
   auto render_through = [&](const MaterialBindingInfo& info, std::unique_ptr<MaterialBinding>& other) {
@@ -286,8 +297,8 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
     INFO("staircase: max error " << d.worst << ", rms " << d.rms << " (peak " << peak
                                  << "), max difference from the product's picture " << d.from_gpu);
     REQUIRE(d.compared > gpu.size() / 4 / 4);
-    CHECK(d.worst <= 1e-4 * peak);
-    CHECK(d.rms <= 1e-5 * peak);
+    CHECK(d.worst <= kConformanceWorst * peak);
+    CHECK(d.rms <= kConformanceRms * peak);
     if (what == "measured") {
       CHECK(d.from_gpu == 0.0);
     } else {

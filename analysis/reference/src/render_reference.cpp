@@ -123,6 +123,52 @@ struct Sampler {
   }
 };
 
+// The relief at a point, as the shader's CarbtfRelief holds it.
+struct ReliefPoint {
+  glm::vec3 normal;
+  float normal_length;
+  glm::vec3 tone;
+  std::array<float, kReliefHorizonDirections> horizons{};
+};
+
+ReliefPoint relief_point(const Sampler& sampler, glm::vec2 uv, float lod, bool shadows) {
+  const glm::vec4 relief = sampler.relief_at(uv, lod);
+  ReliefPoint point{glm::vec3(relief), relief.w, sampler.tone_at(uv, lod), {}};
+  if (shadows) {
+    const glm::vec4 a = sampler.filtered(sampler.horizons_a, uv, lod),
+                    b = sampler.filtered(sampler.horizons_b, uv, lod);
+    point.horizons = {a.x, a.y, a.z, a.w, b.x, b.y, b.z, b.w};
+  }
+  return point;
+}
+
+// The shader's carbtf_relief_lit(): the relit factor and the specular lobe of a relief point.
+struct ReliefLight {
+  float relit;
+  float lobe;
+};
+
+ReliefLight relief_light(const Material& material, const ReliefPoint& point, glm::vec3 l,
+                         glm::vec3 half_vector, float light_z_floor, bool shadows) {
+  const float n_dot_l = std::max(glm::dot(point.normal, l), 0.0f);
+  const float visibility = shadows ? relief_visibility(point.horizons, {l.x, l.y, l.z}) : 1.0f;
+  ReliefLight lit{
+      kReliefAmbient + (1.0f - kReliefAmbient) * n_dot_l / std::max(l.z, light_z_floor) * visibility, 0.0f};
+  if (material.range.specular_strength > 0.0f) {
+    const float n_dot_h = std::max(glm::dot(point.normal, half_vector), 0.0f) / point.normal_length;
+    lit.lobe = material.range.specular_strength * n_dot_l * visibility *
+               std::pow(n_dot_h, material.range.specular_gloss);
+  }
+  return lit;
+}
+
+// relief_chroma_mix() of glm colours.
+glm::vec3 chroma_from(glm::vec3 colour, glm::vec3 chroma_colour) {
+  const std::array<float, 3> mixed =
+      relief_chroma_mix({colour.r, colour.g, colour.b}, {chroma_colour.r, chroma_colour.g, chroma_colour.b});
+  return {mixed[0], mixed[1], mixed[2]};
+}
+
 void angles(glm::vec3 d, double& theta, double& phi) {
   theta =
       std::atan2(std::hypot(static_cast<double>(d.x), static_cast<double>(d.y)), static_cast<double>(d.z));
@@ -154,6 +200,9 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
   // The mean and the march's bounds as the binding computes them.
   const ReliefExtent extent = relief_extent(input.range_map, input.parallax_scale);
   const std::uint32_t levels = std::clamp(input.mip_levels, 1u, mip_level_count(tw, th));
+  const std::uint32_t relief_levels =
+      std::clamp(input.relief_levels > 0 ? input.relief_levels : levels + 1, 1u, mip_level_count(tw, th));
+  const float chroma_top_level = static_cast<float>(relief_levels - 1);
   const bool shadows = material.range.shadow_scale > 0.0f;
   std::vector<float> horizons;
   if (shadows) relief_horizons(input.range_map, tw, th, input.wrap, material.range.shadow_scale, horizons);
@@ -161,10 +210,10 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
                   tw,
                   th,
                   extent.mean,
-                  MipChain(height_tone_texels(input.range_map, input.tone_map), tw, th, 4, levels),
-                  relief_chain(normal_texels(input.range_map, tw, th, input.wrap), tw, th, levels),
-                  MipChain(horizon_texels(horizons, input.range_map.size(), 0), tw, th, 4, levels),
-                  MipChain(horizon_texels(horizons, input.range_map.size(), 1), tw, th, 4, levels),
+                  MipChain(height_tone_texels(input.range_map, input.tone_map), tw, th, 4, relief_levels),
+                  relief_chain(normal_texels(input.range_map, tw, th, input.wrap), tw, th, relief_levels),
+                  MipChain(horizon_texels(horizons, input.range_map.size(), 0), tw, th, 4, relief_levels),
+                  MipChain(horizon_texels(horizons, input.range_map.size(), 1), tw, th, 4, relief_levels),
                   {}};
   for (std::size_t i = 0; i < input.images->images.size(); ++i) {
     const auto& image = input.images->images[i];
@@ -232,23 +281,22 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
           parallax_march([&](glm::vec2 at) { return sampler.height_at(at, lod); }, uv, view,
                          glm::vec2(static_cast<float>(tw), static_cast<float>(th)), input.parallax_scale,
                          extent, input.parallax_steps);
-      const glm::vec4 relief = sampler.relief_at(shifted, lod);
-      glm::vec3 normal(relief);
+      // The relief at the fragment's level and one level above, whose chroma the colour takes
+      // (carbtf_material_shade()).
+      const float chroma_lod = std::min(lod + 1.0f, chroma_top_level);
+      ReliefPoint fine = relief_point(sampler, shifted, lod, shadows);
       if (input.normals_from_heights) {
         const glm::vec2 texel(1.0f / static_cast<float>(tw), 1.0f / static_cast<float>(th));
         const float dx = 0.5f * (sampler.height_at(shifted + glm::vec2(texel.x, 0), 0.0f) -
                                  sampler.height_at(shifted - glm::vec2(texel.x, 0), 0.0f));
         const float dy = 0.5f * (sampler.height_at(shifted - glm::vec2(0, texel.y), 0.0f) -
                                  sampler.height_at(shifted + glm::vec2(0, texel.y), 0.0f));
-        normal = glm::normalize(glm::vec3(-dx, -dy, 1.0f));
+        fine.normal = glm::normalize(glm::vec3(-dx, -dy, 1.0f));
       }
-      std::array<float, kReliefHorizonDirections> horizon_at{};
-      if (shadows) {
-        const glm::vec4 a = sampler.filtered(sampler.horizons_a, shifted, lod),
-                        b = sampler.filtered(sampler.horizons_b, shifted, lod);
-        horizon_at = {a.x, a.y, a.z, a.w, b.x, b.y, b.z, b.w};
-      }
-      const glm::vec3 tone_offset = sampler.tone_at(shifted, lod) - 1.0f;
+      const ReliefPoint coarse = relief_point(sampler, shifted, chroma_lod, shadows);
+      const glm::vec3 tone_offset = fine.tone - 1.0f;
+      const glm::vec3 chroma_tone_offset =
+          (tone_planes(material.range) == 1 ? coarse.tone : fine.tone) - 1.0f;
 
       glm::vec3 colour(0.0f);
       for (std::size_t i = 0; i < scene.lights.size(); ++i) {  // at most kMaxRenderLights: checked on entry
@@ -262,26 +310,23 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
         angles(l, lt, lp);
         angles(view, vt, vp_angle);
         const PairWeights w = directions.weights(lt, lp, vt, vp_angle, input.pair_coupling);
-        glm::vec3 btf(0.0f);
+        glm::vec3 btf(0.0f), chroma_btf(0.0f);
         for (int k = 0; k < 9; ++k) {
           if (w.weight[k] == 0.0f) continue;
           const std::uint32_t subspace = subspace_of(material, w.light[k], w.view[k]);
           if (input.images->images[subspace].empty()) continue;
           const float tone_weight = rendered_tone_weight(material.subspaces[subspace].tone_weight);
           const std::array<float, 3> gain = rendered_pair_gain(material, w.light[k], w.view[k]);
-          btf += (w.weight[k] * glm::max(1.0f + tone_weight * tone_offset, glm::vec3(0.0f))) *
-                 (glm::vec3(gain[0], gain[1], gain[2]) * sampler.subspace_at(shifted, lod, subspace));
+          const glm::vec3 part = w.weight[k] * (glm::vec3(gain[0], gain[1], gain[2]) *
+                                                sampler.subspace_at(shifted, lod, subspace));
+          btf += glm::max(1.0f + tone_weight * tone_offset, glm::vec3(0.0f)) * part;
+          chroma_btf += glm::max(1.0f + tone_weight * chroma_tone_offset, glm::vec3(0.0f)) * part;
         }
-        const float n_dot_l = std::max(glm::dot(normal, l), 0.0f);
-        const float visibility = shadows ? relief_visibility(horizon_at, {l.x, l.y, l.z}) : 1.0f;
-        const float relit =
-            kReliefAmbient + (1.0f - kReliefAmbient) * n_dot_l / std::max(l.z, light_z_floor) * visibility;
-        glm::vec3 shade = relit * btf;
-        if (material.range.specular_strength > 0.0f) {
-          const float n_dot_h = std::max(glm::dot(normal, glm::normalize(l + view)), 0.0f);
-          shade += glm::vec3(material.range.specular_strength * n_dot_l * visibility *
-                             std::pow(n_dot_h, material.range.specular_gloss));
-        }
+        const glm::vec3 half_vector = glm::normalize(l + view);
+        const ReliefLight lit = relief_light(material, fine, l, half_vector, light_z_floor, shadows);
+        const ReliefLight chroma_lit = relief_light(material, coarse, l, half_vector, light_z_floor, shadows);
+        const glm::vec3 shade =
+            chroma_from(lit.relit * btf + lit.lobe, chroma_lit.relit * chroma_btf + chroma_lit.lobe);
         colour += falloff * glm::vec3(light.colour[0], light.colour[1], light.colour[2]) * shade;
       }
       pixel[0] = colour.r;

@@ -69,11 +69,12 @@ struct MaterialBinding::Resources {
   std::uint32_t height = 0;
   Buffer table_buffer;
   UniqueHandle<VkBufferView> table_quads;  // the tables as RGBA32UI texels, for the fragment stage
-  // RGBA32F, mip_levels levels: layer 0 the height (r) and the relief tone of each colour channel (gba),
+  // RGBA32F, relief_levels levels: layer 0 the height (r) and the relief tone of each colour channel (gba),
   // layer 1 the relief normal (rgb, relief_normals.hpp) and its length (a), layers 2 and 3 the horizons of
   // azimuths 0-3 and 4-7 (relief_horizons.hpp; 0 where the material casts no shadows).
   std::unique_ptr<TextureArray> range_image;
-  std::uint32_t mip_levels = 1;
+  std::uint32_t mip_levels = 1;     // of the subspace images
+  std::uint32_t relief_levels = 1;  // of the range texture (MaterialTablesHeader::relief_levels)
   bool shadows = false;
   bool hardware_filtering = false;
   std::uint32_t cost_probe = 0;  // MaterialBindingInfo::cost_probe
@@ -144,17 +145,21 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     // Host side (material_tables.hpp): the tables and the relief.
     // The range map gets as many levels as the subspace images have (fewer where the device cannot blit
     // RGBA32F with a linear filter); the render pass reads the levels both have.
+    // The range map has one level more where its size allows it: the relief's chroma is read one level
+    // above its brightness (carbtf_material_shade()), at the top level too.
     r.mip_levels = textures.mip_levels;
     if (info.max_mip_levels > 0) r.mip_levels = std::min(r.mip_levels, info.max_mip_levels);
-    if (!can_blit_mips(context, VK_FORMAT_R32G32B32A32_SFLOAT)) r.mip_levels = 1;
+    r.relief_levels = std::min(r.mip_levels + 1, mip_level_count(textures.width, textures.height));
+    if (!can_blit_mips(context, VK_FORMAT_R32G32B32A32_SFLOAT)) r.mip_levels = r.relief_levels = 1;
     const TextureWindow block{info.seed,      info.row0,       info.col0,
                               textures.width, textures.height, textures.periodic_overlap};
     ReliefMaps relief = relief_maps(material, block);
     const MaterialLayers layers{textures.layers, textures.pair_layers};
-    CARBTF_TRY(build_material_tables(material, layers,
-                                     {textures.width, textures.height, relief.wrap, r.mip_levels,
-                                      info.parallax_scale, info.lookup_grid_size, info.parallax_steps},
-                                     relief, r.tables, r.pair_table));
+    CARBTF_TRY(
+        build_material_tables(material, layers,
+                              {textures.width, textures.height, relief.wrap, r.mip_levels, r.relief_levels,
+                               info.parallax_scale, info.lookup_grid_size, info.parallax_steps},
+                              relief, r.tables, r.pair_table));
     r.pair_layers = !textures.pair_layers.empty();
     r.shadows = material.range.shadow_scale > 0.0f;
 
@@ -167,9 +172,9 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     std::memcpy(r.table_buffer.mapped(), r.tables.data(), r.tables.size() * 4);
     // The levels come from here, not from blits: the normal layer's w holds each texel's own length.
     CARBTF_TRY(TextureArray::create(context, textures.width, textures.height, kRangeTextureLayers,
-                                    VK_FORMAT_R32G32B32A32_SFLOAT, r.range_image, r.mip_levels, true));
-    if (r.range_image->mip_levels() != r.mip_levels)
-      return {ErrorCode::vulkan_error, "the range map did not get the subspace images' mip levels"};
+                                    VK_FORMAT_R32G32B32A32_SFLOAT, r.range_image, r.relief_levels, true));
+    if (r.range_image->mip_levels() != r.relief_levels)
+      return {ErrorCode::vulkan_error, "the range map did not get its mip levels"};
     CARBTF_TRY(set_range_layer(*r.range_image, 0, height_tone_texels(relief.heights, relief.tone), false));
     CARBTF_TRY(set_range_layer(
         *r.range_image, 1, normal_texels(relief.heights, relief.width, relief.height, relief.wrap), true));
@@ -202,7 +207,7 @@ Status MaterialBinding::create(Context& context, const Material& material, const
         textures.periodic_overlap > 0 ? VK_SAMPLER_ADDRESS_MODE_REPEAT
                                       : VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     sampler_info.minLod = 0.0f;
-    sampler_info.maxLod = static_cast<float>(r.mip_levels - 1);
+    sampler_info.maxLod = static_cast<float>(r.relief_levels - 1);  // each image view holds its own levels
     VkSampler sampler = VK_NULL_HANDLE;
     CARBTF_VK_TRY(vk.vkCreateSampler(device, &sampler_info, nullptr, &sampler));
     r.sampler = UniqueHandle<VkSampler>(&vk, device, sampler);
@@ -292,6 +297,10 @@ Status MaterialBinding::record_upload(VkCommandBuffer command_buffer) const noex
 
 std::uint32_t MaterialBinding::mip_levels() const noexcept {
   return resources_->mip_levels;
+}
+
+std::uint32_t MaterialBinding::relief_levels() const noexcept {
+  return resources_->relief_levels;
 }
 
 bool MaterialBinding::casts_shadows() const noexcept {

@@ -137,6 +137,8 @@ Status build_material_tables(const Material& material, const MaterialLayers& lay
   header.parallax_top = extent.top;
   header.parallax_bottom = extent.bottom;
   header.parallax_steps = info.parallax_steps;
+  header.relief_levels = info.relief_levels;
+  header.tone_planes = static_cast<std::uint32_t>(tone_planes(material.range));
   std::memcpy(tables.data(), &header, sizeof header);
   return {};
 }

@@ -25,4 +25,22 @@ std::array<float, 3> rendered_pair_gain(const Material& material, std::uint32_t 
   return gain;
 }
 
+std::array<float, 3> relief_chroma_mix(const std::array<float, 3>& colour,
+                                       const std::array<float, 3>& chroma_colour) noexcept {
+  constexpr float kGamma = 1.0f / 2.4f;  // the shader's CARBTF_CHROMA_GAMMA
+  constexpr std::array<float, 3> kLuma{0.299f, 0.587f, 0.114f};
+  std::array<float, 3> encoded{}, chroma_encoded{};
+  float luma = 0.0f, chroma_luma = 0.0f;
+  for (std::size_t k = 0; k < 3; ++k) {
+    encoded[k] = std::pow(std::max(colour[k], 0.0f), kGamma);
+    chroma_encoded[k] = std::pow(std::max(chroma_colour[k], 0.0f), kGamma);
+    luma += kLuma[k] * encoded[k];
+    chroma_luma += kLuma[k] * chroma_encoded[k];
+  }
+  std::array<float, 3> mixed{};
+  for (std::size_t k = 0; k < 3; ++k)
+    mixed[k] = std::pow(std::max(luma + (chroma_encoded[k] - chroma_luma), 0.0f), 1.0f / kGamma);
+  return mixed;
+}
+
 }  // namespace carbtf

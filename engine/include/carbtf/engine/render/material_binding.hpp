@@ -129,8 +129,11 @@ class MaterialBinding {
 
   // Records the range map's upload, with its mip levels, and its transition for fragment-shader reads.
   Status record_upload(VkCommandBuffer command_buffer) const noexcept;
-  // Levels of the range map and the subspace images the render pass samples, level 0 included.
+  // Levels of the subspace images the render pass samples, level 0 included.
   std::uint32_t mip_levels() const noexcept;
+  // Mip levels of the range texture: mip_levels() + 1 where its size and the device allow, so that the
+  // relief's chroma is read one level above its brightness (carbtf_material_shade()).
+  std::uint32_t relief_levels() const noexcept;
   // Whether the material's relief casts shadows (RangeTiles::shadow_scale): a pipeline that draws only
   // materials without may set carbtf_material.glsl's specialization constant CARBTF_SHADOWS_CONSTANT_ID
   // (1000 by default) to false, which saves the horizon reads (on lavapipe a fifth of a sphere frame's render
