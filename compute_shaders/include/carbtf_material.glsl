@@ -238,19 +238,43 @@ CarbtfRelief carbtf_relief(vec2 uv, float lod) {
   return relief;
 }
 
-// The share of a directional light (tangent frame) the relief leaves at a point: relief_visibility()
-// of relief_horizons.hpp, the horizon interpolated between the two azimuths nearest the light's.
-float carbtf_relief_visibility(CarbtfRelief relief, vec3 light) {
+// The weights of the relief's 8 horizon azimuths (layers 2 and 3: 0-3 and 4-7) for a directional light
+// (tangent frame): the two azimuths nearest the light's, linearly, and the light's elevation as a slope;
+// computed once per light and shared by the reads of the relief at two levels (carbtf_material_shade()).
+struct CarbtfHorizonWeights {
+  vec4 a;
+  vec4 b;
+  float slope;    // light.z over its horizontal length
+  bool overhead;  // a light from the zenith: nothing rises above it
+};
+
+CarbtfHorizonWeights carbtf_horizon_weights(vec3 light) {
+  CarbtfHorizonWeights w;
+  w.a = vec4(0.0);
+  w.b = vec4(0.0);
   float across = length(light.xy);
-  if (across <= 0.0) return 1.0;
+  w.overhead = across <= 0.0;
+  w.slope = w.overhead ? 0.0 : light.z / across;
+  if (w.overhead) return w;
   float sector = atan(light.y, light.x) * (4.0 / CARBTF_PI);
   float base = floor(sector);
   int k0 = (int(base) % 8 + 8) % 8;
   int k1 = (k0 + 1) % 8;
-  float h[8] = float[8](relief.horizon_a.x, relief.horizon_a.y, relief.horizon_a.z, relief.horizon_a.w,
-                        relief.horizon_b.x, relief.horizon_b.y, relief.horizon_b.z, relief.horizon_b.w);
-  float horizon = h[k0] + (sector - base) * (h[k1] - h[k0]);
-  return clamp(0.5 + (light.z / across - horizon) / CARBTF_RELIEF_SHADOW_SOFTNESS, 0.0, 1.0);
+  float t = sector - base;
+  // Constant indices only: a dynamically indexed local array costs lavapipe a spill per read.
+  for (int k = 0; k < 4; ++k) {
+    w.a[k] = k == k0 ? 1.0 - t : (k == k1 ? t : 0.0);
+    w.b[k] = k + 4 == k0 ? 1.0 - t : (k + 4 == k1 ? t : 0.0);
+  }
+  return w;
+}
+
+// The share of a directional light the relief leaves at a point: relief_visibility() of
+// relief_horizons.hpp, the horizon interpolated between the two azimuths nearest the light's.
+float carbtf_relief_visibility(CarbtfRelief relief, CarbtfHorizonWeights w) {
+  if (w.overhead) return 1.0;
+  float horizon = dot(relief.horizon_a, w.a) + dot(relief.horizon_b, w.b);
+  return clamp(0.5 + (w.slope - horizon) / CARBTF_RELIEF_SHADOW_SOFTNESS, 0.0, 1.0);
 }
 
 // The ray from the eye through the plane point uv, in the ray's parameter t (texels along the view
@@ -542,10 +566,10 @@ struct CarbtfLit {
   float lobe;
 };
 
-CarbtfLit carbtf_relief_lit(CarbtfRelief relief, vec3 light, vec3 half_vector) {
+CarbtfLit carbtf_relief_lit(CarbtfRelief relief, vec3 light, vec3 half_vector, CarbtfHorizonWeights horizon) {
   float n_dot_l = max(dot(relief.normal, light), 0.0);
   float visibility = 1.0;
-  if (carbtf_shadows_compiled && carbtf_header.shadows != 0u) visibility = carbtf_relief_visibility(relief, light);
+  if (carbtf_shadows_compiled && carbtf_header.shadows != 0u) visibility = carbtf_relief_visibility(relief, horizon);
   CarbtfLit lit;
   lit.relit = CARBTF_RELIEF_AMBIENT +
               (1.0 - CARBTF_RELIEF_AMBIENT) * n_dot_l / max(light.z, carbtf_header.light_z_floor) * visibility;
@@ -577,8 +601,9 @@ vec3 carbtf_material_shade(CarbtfSurface surface, vec3 light) {
   vec3 view = surface.view;
   if (light.z <= 0.0 || view.z <= 0.0) return vec3(0.0);
   vec3 half_vector = normalize(light + view);
-  CarbtfLit lit = carbtf_relief_lit(surface.relief, light, half_vector);
-  CarbtfLit chroma_lit = carbtf_relief_lit(surface.chroma_relief, light, half_vector);
+  CarbtfHorizonWeights horizon = carbtf_horizon_weights(light);
+  CarbtfLit lit = carbtf_relief_lit(surface.relief, light, half_vector, horizon);
+  CarbtfLit chroma_lit = carbtf_relief_lit(surface.chroma_relief, light, half_vector, horizon);
   vec3 chroma_tone = carbtf_header.tone_planes == 1u ? surface.chroma_relief.tone : surface.relief.tone;
   CarbtfBtf btf = carbtf_interpolated_btf(surface.uv, light, surface.view_index, surface.view_weight,
                                           surface.relief.tone, chroma_tone, surface.lod);

@@ -19,6 +19,7 @@
 #include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
 #include "carbtf/reference/render_reference.hpp"
 #include "carbtf/reference/synthetic_material.hpp"
+#include "rendered_floats.hpp"
 #include "test_materials.hpp"
 #include "test_support.hpp"
 
@@ -59,12 +60,6 @@ std::vector<float> tone_planes(const Material& m, const TextureWindow& block) {
     enlarge_range_map(m.range, block, plane, tone_channel(k));
     for (std::size_t i = 0; i < texels; ++i) out[3 * i + k] = plane[i];
   }
-  return out;
-}
-
-std::vector<float> as_floats(const RenderedImage& image) {
-  std::vector<float> out(image.bytes.size() / 4);
-  std::memcpy(out.data(), image.bytes.data(), image.bytes.size());
   return out;
 }
 
@@ -176,7 +171,7 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
   status = renderer->render(scene, frame);
   INFO(status.message());
   REQUIRE(status.ok());
-  const std::vector<float> gpu = as_floats(frame);
+  const std::vector<float> gpu = test::as_floats(frame);
   const std::vector<float> cpu =
       reference::render_plane(input, scene, target.width, target.height, target.clear);
 
@@ -226,7 +221,7 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
     REQUIRE(other_renderer->set_mesh(make_plane()).ok());
     RenderedImage other_frame;
     REQUIRE(other_renderer->render(scene, other_frame).ok());
-    return as_floats(other_frame);
+    return test::as_floats(other_frame);
   };
   // Another GPU picture against a reference picture over the pixels all three cover: the largest and
   // RMS error, and the largest difference from the first GPU picture (`gpu`).
@@ -487,7 +482,7 @@ TEST_CASE(
     REQUIRE(renderer->set_mesh(make_plane()).ok());
     RenderedImage frame;
     REQUIRE(renderer->render(scene, frame).ok());
-    return as_floats(frame);
+    return test::as_floats(frame);
   };
   // The box-filtered reference: the CPU reference at level 0, one texel per pixel, each pixel the mean
   // of its kSuper x kSuper block.

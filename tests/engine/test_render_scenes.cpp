@@ -18,6 +18,7 @@
 #include "carbtf/engine/synthesis/subspace_synthesizer.hpp"
 #include "carbtf/reference/render_reference.hpp"
 #include "carbtf/reference/synthetic_material.hpp"
+#include "rendered_floats.hpp"
 #include "test_materials.hpp"
 #include "test_support.hpp"
 
@@ -71,7 +72,7 @@ std::vector<float> draw(Context& context, const MaterialBinding& binding, const 
   const Status status = renderer->render(scene, frame);
   INFO(status.message());
   REQUIRE(status.ok());
-  return as_floats(frame);
+  return test::as_floats(frame);
 }
 
 std::vector<float> render_with(Context& context, const Material& m,
