@@ -270,7 +270,9 @@ CarbtfHorizonWeights carbtf_horizon_weights(vec3 light) {
 }
 
 // The share of a directional light the relief leaves at a point: relief_visibility() of
-// relief_horizons.hpp, the horizon interpolated between the two azimuths nearest the light's.
+// relief_horizons.hpp, the horizon interpolated between the two azimuths nearest the light's (there as
+// h0 + t (h1 - h0), here as (1 - t) h0 + t h1: equal but for rounding; the C++ form stays, since the
+// analysis' shadow fit reads it and its choices would move).
 float carbtf_relief_visibility(CarbtfRelief relief, CarbtfHorizonWeights w) {
   if (w.overhead) return 1.0;
   float horizon = dot(relief.horizon_a, w.a) + dot(relief.horizon_b, w.b);

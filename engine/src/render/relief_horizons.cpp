@@ -81,8 +81,7 @@ float relief_visibility(std::span<const float, kReliefHorizonDirections> horizon
   const float base = std::floor(sector);
   const int k0 = (static_cast<int>(base) % 8 + 8) % 8, k1 = (k0 + 1) % 8;
   const float h0 = horizons[static_cast<std::size_t>(k0)], h1 = horizons[static_cast<std::size_t>(k1)];
-  const float t = sector - base;
-  const float horizon = (1.0f - t) * h0 + t * h1;  // the shader's weights (carbtf_horizon_weights())
+  const float horizon = h0 + (sector - base) * (h1 - h0);
   return std::clamp(0.5f + (light[2] / across - horizon) / kReliefShadowSoftness, 0.0f, 1.0f);
 }
 
