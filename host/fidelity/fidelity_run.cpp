@@ -378,7 +378,7 @@ std::string fidelity_octaves_csv(const std::vector<PairFidelity>& results) {
   std::ostringstream csv;
   csv << "light,view,octave,period_px";
   for (const char* image : {"model", "measured"}) {
-    csv << ',' << image << "_energy_db";
+    csv << ',' << image << "_energy_db," << image << "_a_energy_db," << image << "_b_energy_db";
     for (const char* vector : {"skewness", "dark_side", "bright_side"})
       csv << ',' << image << '_' << vector << "_x," << image << '_' << vector << "_y";
   }
@@ -391,7 +391,7 @@ std::string fidelity_octaves_csv(const std::vector<PairFidelity>& results) {
       csv << r.pair.light << ',' << r.pair.view << ',' << o << ',' << (4u << o);
       for (const DistributionStatistics* s : {&model, &measured}) {
         const OctaveProfile p = octave_profile(*s, o);
-        csv << ',' << p.energy_db;
+        csv << ',' << p.energy_db << ',' << p.chroma_energy_db[0] << ',' << p.chroma_energy_db[1];
         for (const auto& v : {p.skewness, p.dark_side, p.bright_side}) csv << ',' << v[0] << ',' << v[1];
       }
       csv << '\n';

@@ -187,4 +187,26 @@ TEST_CASE("an octave's light vectors point along the light's azimuth and turn wi
   CHECK_THROWS_AS(octave_profile(a, a.octaves), std::out_of_range);
 }
 
+TEST_CASE("an octave's chroma energies are its a* and b* bands", "[quality][distributions]") {
+  // A grey field whose red and green trade places every 2 pixels along x (the finest octave, periods of
+  // 4) at about the same luminance: a* swings there and b* hardly does; coarser octaves hold little.
+  constexpr std::uint32_t kSide = 128;
+  std::vector<float> rgb(3 * kSide * kSide);
+  for (std::uint32_t r = 0; r < kSide; ++r) {
+    for (std::uint32_t c = 0; c < kSide; ++c) {
+      const bool red = (c / 2) % 2 == 0;
+      float* p = &rgb[3 * (r * kSide + c)];
+      p[0] = red ? 0.30f : 0.15f;
+      p[1] = red ? 0.15f : 0.22f;
+      p[2] = 0.18f;
+    }
+  }
+  const DistributionStatistics s = distribution_statistics(rgb, kSide, kSide);
+  const OctaveProfile fine = octave_profile(s, 0), coarse = octave_profile(s, s.octaves - 1);
+  INFO("finest a* " << fine.chroma_energy_db[0] << " dB, b* " << fine.chroma_energy_db[1]
+                    << " dB; coarsest a* " << coarse.chroma_energy_db[0] << " dB");
+  CHECK(fine.chroma_energy_db[0] > fine.chroma_energy_db[1] + 6.0);
+  CHECK(fine.chroma_energy_db[0] > coarse.chroma_energy_db[0] + 10.0);
+}
+
 }  // namespace carbtf

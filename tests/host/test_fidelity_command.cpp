@@ -231,14 +231,17 @@ TEST_CASE("carbtf fidelity scores the pairs asked for or a spread over every lig
   std::ifstream octaves(folder / "chosen" / "fidelity_octaves.csv");
   std::string line;
   std::getline(octaves, line);
-  CHECK(line.rfind("light,view,octave,period_px,model_energy_db,model_skewness_x", 0) == 0);
+  CHECK(
+      line.rfind(
+          "light,view,octave,period_px,model_energy_db,model_a_energy_db,model_b_energy_db,model_skewness_x",
+          0) == 0);
   std::vector<std::vector<double>> rows;
   while (std::getline(octaves, line)) {
     std::stringstream fields(line);
     std::string field;
     std::vector<double> row;
     while (std::getline(fields, field, ',')) row.push_back(std::stod(field));
-    CHECK(row.size() == 18);
+    CHECK(row.size() == 22);
     CHECK(std::all_of(row.begin(), row.end(), [](double v) { return std::isfinite(v); }));
     rows.push_back(row);
   }

@@ -523,6 +523,8 @@ OctaveProfile octave_profile(const DistributionStatistics& s, std::size_t octave
   if (octave >= s.octaves) throw std::out_of_range("octave_profile: the statistics hold no such octave");
   OctaveProfile p;
   p.energy_db = octave_energy_db(s, octave);
+  for (std::size_t c = 0; c < 2 && (c + 1) * s.octaves <= s.chroma_energy_db.size(); ++c)
+    p.chroma_energy_db[c] = s.chroma_energy_db[c * s.octaves + octave];
   p.skewness = first_harmonic(s.odd_skewness, octave);
   p.dark_side = first_harmonic(s.dark_side, octave);
   p.bright_side = first_harmonic(s.bright_side, octave);

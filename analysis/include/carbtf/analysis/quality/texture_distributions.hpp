@@ -88,6 +88,8 @@ DistributionDistance distribution_distance(const DistributionStatistics& a, cons
 // fidelity_octaves.csv). Throws std::out_of_range for an octave the statistics do not hold.
 struct OctaveProfile {
   double energy_db = 0.0;  // the L* band energy over the four orientations, in dB
+  // The a* and b* band energies in dB (the chroma the grain and energy groups compare).
+  std::array<double, 2> chroma_energy_db{};
   // Which way the octave is lit: the first circular harmonic over the orientations (x right, y up) of
   // the odd response's skewness, and of its mean over the band's darkest and brightest tenths in units
   // of its RMS. It points along the light's azimuth or against it; the Gaussian field's is near 0.
