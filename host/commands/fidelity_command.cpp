@@ -76,7 +76,8 @@ void run_fidelity_command(const FidelityOptions& options) {
   const RgbField grid = fidelity_grid(results);
   write_rgb_image(out / "fidelity_grid.png", grid.rgb, grid.width, grid.height);
   std::printf(
-      "wrote %s/fidelity.csv, fidelity.md, fidelity_octaves.csv (per octave: energy and light vectors) and "
+      "wrote %s/fidelity.csv, fidelity.md, fidelity_octaves.csv (per octave: L*, a*, b* energies and light "
+      "vectors) and "
       "fidelity_grid.png (rows: pairs; columns: measured | model | Gaussian reference)\n",
       out.string().c_str());
 }
@@ -85,16 +86,17 @@ void run_fidelity_command(const FidelityOptions& options) {
 
 void register_fidelity_command(CLI::App& app) {
   auto options = std::make_shared<FidelityOptions>();
-  auto* command = app.add_subcommand("fidelity",
-                                     "How close the model looks to its measurement: model and measured "
-                                     "images through the same render pass at a spread of "
-                                     "(light, view) pairs, grazing light included, scored by a calibrated "
-                                     "texture measure on distributions (s: 0 = the measurement "
-                                     "against another region of itself, 1 = no better than a Gaussian field "
-                                     "of its spectrum; rel: 1 = white noise), "
-                                     "with a verdict against that Gaussian per pair; CSV, markdown, a CSV "
-                                     "per octave (energy and light vectors of model and measurement) and a "
-                                     "picture grid (measured | model | Gaussian)");
+  auto* command =
+      app.add_subcommand("fidelity",
+                         "How close the model looks to its measurement: model and measured "
+                         "images through the same render pass at a spread of "
+                         "(light, view) pairs, grazing light included, scored by a calibrated "
+                         "texture measure on distributions (s: 0 = the measurement "
+                         "against another region of itself, 1 = no better than a Gaussian field "
+                         "of its spectrum; rel: 1 = white noise), "
+                         "with a verdict against that Gaussian per pair; CSV, markdown, a CSV "
+                         "per octave (L*, a*, b* energies and light vectors of model and measurement) and a "
+                         "picture grid (measured | model | Gaussian)");
   command->add_option("material", options->material, "Material file (.cbtf)")->required();
   command->add_option("dataset", options->dataset, "The measured BTF the material was analysed from")
       ->required();

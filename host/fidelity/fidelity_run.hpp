@@ -90,8 +90,8 @@ std::string fidelity_csv(const std::vector<PairFidelity>& results, const Materia
 
 // fidelity_octaves.csv, where a pair's distance comes from: one row per pair and octave of the measure
 // (octave_profile(), analysis/quality/texture_distributions.hpp), the octave's period in pixels, then
-// for the model and for the measurement the L* band energy in dB and the lighting vectors (x, y) of the
-// odd response's skewness and of its dark-side and bright-side means.
+// for the model and for the measurement the L*, a* and b* band energies in dB and the lighting vectors
+// (x, y) of the odd response's skewness and of its dark-side and bright-side means.
 std::string fidelity_octaves_csv(const std::vector<PairFidelity>& results);
 
 }  // namespace carbtf::cli

@@ -143,10 +143,9 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     r.pair_coupling = info.pair_coupling;
 
     // Host side (material_tables.hpp): the tables and the relief.
-    // The range map gets as many levels as the subspace images have (fewer where the device cannot blit
-    // RGBA32F with a linear filter); the render pass reads the levels both have.
-    // The range map has one level more where its size allows it: the relief's chroma is read one level
-    // above its brightness (carbtf_material_shade()), at the top level too.
+    // The range map gets one level more than the subspace images where its size allows it, so that the
+    // relief's chroma can be read one level above its brightness at every level the images have
+    // (carbtf_material_shade()); one level alone where the device cannot blit RGBA32F with a linear filter.
     r.mip_levels = textures.mip_levels;
     if (info.max_mip_levels > 0) r.mip_levels = std::min(r.mip_levels, info.max_mip_levels);
     r.relief_levels = std::min(r.mip_levels + 1, mip_level_count(textures.width, textures.height));
