@@ -320,6 +320,12 @@ CARBTF_FUNCTION bool carbtf_staircase_next_is_light(float light_left, float view
 CARBTF_CONST_FLOAT(CARBTF_RELIEF_SHADOW_SOFTNESS, 0.1f)
 // The relief's ambient share of the relit factor (kReliefAmbient, material.hpp).
 CARBTF_CONST_FLOAT(CARBTF_RELIEF_AMBIENT, 0.1f)
+// The relief's chroma is mixed in values encoded about as a camera stores them (sRGB's exponent), by
+// Rec. 601's luma weights, JPEG's YCbCr (carbtf_material_shade(), relief_chroma_mix()).
+CARBTF_CONST_FLOAT(CARBTF_CHROMA_GAMMA, 1.0f / 2.4f)
+CARBTF_CONST_FLOAT(CARBTF_LUMA_RED, 0.299f)
+CARBTF_CONST_FLOAT(CARBTF_LUMA_GREEN, 0.587f)
+CARBTF_CONST_FLOAT(CARBTF_LUMA_BLUE, 0.114f)
 // Lights one draw of carbtf's own mesh pipeline shades with.
 CARBTF_CONST_UINT(CARBTF_RENDER_MAX_LIGHTS, 4u)
 

@@ -583,9 +583,7 @@ CarbtfLit carbtf_relief_lit(CarbtfRelief relief, vec3 light, vec3 half_vector, C
   return lit;
 }
 
-// sRGB's exponent: the relief's chroma is mixed in values encoded about as a camera stores them.
-const float CARBTF_CHROMA_GAMMA = 1.0 / 2.4;
-const vec3 CARBTF_LUMA_WEIGHTS = vec3(0.299, 0.587, 0.114);  // Rec. 601's, as JPEG's YCbCr
+const vec3 CARBTF_LUMA_WEIGHTS = vec3(CARBTF_LUMA_RED, CARBTF_LUMA_GREEN, CARBTF_LUMA_BLUE);
 
 // The material under one light: the interpolated smooth BTF, each image with its share of the relief
 // tone, times the relit factor of the range map, plus the relief's specular lobe (carbtf_relief_lit()).

@@ -27,8 +27,8 @@ std::array<float, 3> rendered_pair_gain(const Material& material, std::uint32_t 
 
 std::array<float, 3> relief_chroma_mix(const std::array<float, 3>& colour,
                                        const std::array<float, 3>& chroma_colour) noexcept {
-  constexpr float kGamma = 1.0f / 2.4f;  // the shader's CARBTF_CHROMA_GAMMA
-  constexpr std::array<float, 3> kLuma{0.299f, 0.587f, 0.114f};
+  constexpr float kGamma = gpu::CARBTF_CHROMA_GAMMA;
+  constexpr std::array<float, 3> kLuma{gpu::CARBTF_LUMA_RED, gpu::CARBTF_LUMA_GREEN, gpu::CARBTF_LUMA_BLUE};
   std::array<float, 3> encoded{}, chroma_encoded{};
   float luma = 0.0f, chroma_luma = 0.0f;
   for (std::size_t k = 0; k < 3; ++k) {
