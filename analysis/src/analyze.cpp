@@ -21,7 +21,6 @@
 #include "carbtf/analysis/progress.hpp"
 #include "carbtf/analysis/quality/texture_distributions.hpp"
 #include "carbtf/analysis/range/range_tiling_choice.hpp"
-#include "carbtf/analysis/range/relief_band_limit.hpp"
 #include "carbtf/analysis/range/surface_integration.hpp"
 #include "carbtf/analysis/resource_usage.hpp"
 #include "carbtf/reference/parallel_for.hpp"
@@ -59,10 +58,12 @@ const char* describe_choice(AutoChoice choice, const char* automatic, const char
   return choice == AutoChoice::automatic ? automatic : choice == AutoChoice::always ? always : "no";
 }
 
-// The range map the model stores for a normal map: robustly integrated, then half band-limited
-// (relief_band_limit.hpp).
+// The range map the model stores for a normal map: robustly integrated, its central differences the
+// stereo's slopes. Not band-limited: the (-1 4 10 4 -1) / 16 filter it once had took the creases' walls
+// to about 0.6 of their slope, and without it the stereo view's images are explained better and every
+// sample's fidelity improves but fabric's five pairs (docs/design.md 5.2).
 Plane relief_of(const NormalMap& normals) {
-  return band_limit_relief(integrate_normals(normals.normals, normals.width, normals.height));
+  return integrate_normals(normals.normals, normals.width, normals.height);
 }
 
 // The share of a normal map's texels whose stereo fit had enough samples, in percent.

@@ -109,8 +109,11 @@ void check_fidelity_ranking(const std::string& name) {
   CHECK(without_tone_rel > fitted_rel);
   // The pair gains (on by default) give each pair its measured mean colour: the colour group and rel fall.
   // Not on fabric, whose tone planes already give each thread its colour: there the gains cost a little
-  // (mean s 0.540 without, 0.547 with, at 256^2 over fidelity seeds 1-3; docs/design.md 5.2).
-  if (name != "fabric") {
+  // (mean s 0.540 without, 0.547 with, at 256^2 over fidelity seeds 1-3; docs/design.md 5.2). Nor on
+  // leather at this size since the range map is stored as integrated (not band-limited): its 64^2 colour
+  // group is then 0.732 / 0.797 / 0.789 with the gains and 0.732 / 0.790 / 0.778 without (fidelity seeds
+  // 1-3), while at 256^2 the gains still take it from 0.716 to 0.520 (seeds 1-3; docs/design.md 5.2).
+  if (name == "coast_sand_rocks") {
     const fs::path without_gains = folder / "without_gains.cbtf";
     REQUIRE(run("analyze " + btf.string() + " --no-pair-gains --out " + without_gains.string()).status == 0);
     const double without_gains_rel = fidelity_of(without_gains, btf, folder / "without_gains");
@@ -119,11 +122,9 @@ void check_fidelity_ranking(const std::string& name) {
     INFO(name << ": fitted rel " << fitted_rel << " colour " << colour << ", without pair gains rel "
               << without_gains_rel << " colour " << without_gains_colour);
     CHECK(without_gains_colour > colour);
-    // On the whole (rel) only where the colour is most of the difference: leather's 64^2 models tie
-    // (rel 0.405 with the gains, 0.406 without before fidelity integrated a camera pixel's footprint,
-    // 0.350 and 0.349 after); at 256^2 its spread pairs score 0.726 with them and 0.759 without
-    // (docs/design.md 5.2). coast_sand_rocks: -0.008 against 0.001.
-    if (name == "coast_sand_rocks") CHECK(without_gains_rel > fitted_rel);
+    // On the whole (rel) as well: coast_sand_rocks' colour is most of the difference (-0.008 against
+    // 0.001 when this was written).
+    CHECK(without_gains_rel > fitted_rel);
   }
   if (name == "fabric") {
     // Its threads are blue and white: the analysis gives the tone a plane per colour channel.

@@ -9,7 +9,7 @@
 // flat cells came out tilted and hatched under grazing light, the render's normals 8.4 degrees off the
 // truth there. Iteratively reweighted least squares, with Cauchy weights on each equation's residual,
 // keeps it in the crease (2.4 degrees; docs/design.md 5.3). The mean height is removed. Heights are
-// in texel units. What the model stores is this map half band-limited (relief_band_limit.hpp).
+// in texel units. The model stores this map as it is (analyze.cpp's relief_of()).
 #pragma once
 
 #include <span>
