@@ -253,8 +253,9 @@ CARBTF_FUNCTION float carbtf_polar_angle(float r, float z) {
 // horizons of azimuths 0-3 and 4-7 for cast shadows), binding 2 the lookup tables (readonly
 // storage buffer: MaterialTablesHeader, then the tables), binding 3 the same buffer as RGBA32UI texels
 // (usamplerBuffer: 16-byte "quads"), through which the fragment stage reads the tables after the header.
-// The subspace images have MaterialTablesHeader::mip_levels levels, the range map relief_levels: one more
-// where the texture's size allows it, for the relief's chroma (carbtf_material_shade()).
+// The subspace images have MaterialTablesHeader::mip_levels levels, the range map relief_levels:
+// CARBTF_RELIEF_CHROMA_LEVELS more where the texture's size allows it, for the relief's chroma
+// (carbtf_material_shade()).
 CARBTF_CONST_UINT(CARBTF_MATERIAL_BINDING_SUBSPACES, 0u)
 CARBTF_CONST_UINT(CARBTF_MATERIAL_BINDING_RANGE, 1u)
 CARBTF_CONST_UINT(CARBTF_MATERIAL_BINDING_TABLES, 2u)
@@ -326,6 +327,11 @@ CARBTF_CONST_FLOAT(CARBTF_CHROMA_GAMMA, 1.0f / 2.4f)
 CARBTF_CONST_FLOAT(CARBTF_LUMA_RED, 0.299f)
 CARBTF_CONST_FLOAT(CARBTF_LUMA_GREEN, 0.587f)
 CARBTF_CONST_FLOAT(CARBTF_LUMA_BLUE, 0.114f)
+// How many mip levels above its brightness the relief's chroma is read: periods under 4 * 2^levels texels
+// change the brightness alone, as in a camera's and JPEG's band-limited colour. Two levels were the
+// nearest on all three samples (one: leather 0.285 / 0.362, two: 0.254 / 0.287, three: 0.314 / 0.356;
+// docs/design.md 5.2).
+CARBTF_CONST_UINT(CARBTF_RELIEF_CHROMA_LEVELS, 2u)
 // Lights one draw of carbtf's own mesh pipeline shades with.
 CARBTF_CONST_UINT(CARBTF_RENDER_MAX_LIGHTS, 4u)
 
@@ -374,8 +380,8 @@ struct MaterialTablesHeader {
   float parallax_top;
   float parallax_bottom;
   uint parallax_steps;
-  // Levels of the range map: mip_levels + 1 where its size allows it (and the device can filter it), so
-  // that the relief's chroma can always be read one level above its brightness.
+  // Levels of the range map: mip_levels + CARBTF_RELIEF_CHROMA_LEVELS where its size allows it (and the
+  // device can filter it), so that the relief's chroma can be read that many levels above its brightness.
   uint relief_levels;
   uint tone_planes;  // the relief tone's planes (tone_planes() of material.hpp): 0 none, 1 grey, 3 R, G, B
   uint reserved0;

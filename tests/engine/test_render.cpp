@@ -141,7 +141,8 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
   input.mip_levels = binding->mip_levels();
   input.relief_levels = binding->relief_levels();
   // 96 x 80 halves evenly 4 times; lavapipe blits RGBA32F and RG32F with a linear filter. The range map
-  // can have no level more, so at the top level the relief's chroma reads that level (below it, the next).
+  // can have no level more, so near the top level the relief's chroma reads the top level (below it, the
+  // level CARBTF_RELIEF_CHROMA_LEVELS above).
   CHECK(binding->mip_levels() == 5);
   CHECK(binding->relief_levels() == 5);
 

@@ -33,7 +33,7 @@ struct MaterialTablesInfo {
   std::uint32_t height = 0;
   bool wrap = false;                // periodic textures
   std::uint32_t mip_levels = 1;     // of the subspace images
-  std::uint32_t relief_levels = 1;  // of the range map: mip_levels or one more (MaterialTablesHeader)
+  std::uint32_t relief_levels = 1;  // of the range map: mip_levels or more (MaterialTablesHeader)
   float parallax_scale = 1.0f;
   std::uint32_t lookup_grid_size = 0;                    // 0: DirectionLookupGrid's default
   std::uint32_t parallax_steps = kDefaultParallaxSteps;  // MaterialBindingInfo::parallax_steps
