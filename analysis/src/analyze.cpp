@@ -15,6 +15,7 @@
 #include "carbtf/analysis/model/deshade.hpp"
 #include "carbtf/analysis/model/pair_gains.hpp"
 #include "carbtf/analysis/model/pyramid.hpp"
+#include "carbtf/analysis/model/relief_chroma.hpp"
 #include "carbtf/analysis/model/relief_shadows.hpp"
 #include "carbtf/analysis/model/relief_specular.hpp"
 #include "carbtf/analysis/model/relief_tone.hpp"
@@ -464,6 +465,7 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
     result.material.range.shadow_scale = static_cast<float>(shadow_scale);
     result.material.range.specular_strength = static_cast<float>(lobe.strength);
     result.material.range.specular_gloss = static_cast<float>(lobe.gloss);
+    result.material.range.chroma_levels = relief_chroma_levels(dataset.chroma_halvings);
     if (options.coloured_tone && result.tone_planes.size() == 1) {
       result.material.range.tone_chroma =
           relief_tone_chroma(dataset, result.stereo_view, result.range_map, z_floor, result.tone,
@@ -618,6 +620,13 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
     }
   }
   specular = stored_lobe(result.material);
+  if (result.material.range.tile_size > 0) {
+    std::snprintf(line, sizeof line,
+                  "relief chroma: read %u mip level(s) above its brightness (the images' colour resolution "
+                  "halved %u time(s) below their brightness's)",
+                  result.material.range.chroma_levels, dataset.chroma_halvings);
+    note(line);
+  }
 
   result.material.subspace_index = result.segmentation.index;
   if (options.pair_gains) {

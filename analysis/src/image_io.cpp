@@ -125,6 +125,15 @@ constexpr std::uint64_t kMaxImagePixels = 1ull << 24;
 constexpr int kMaxImageChannels = 16;
 // As for zip entries: no image file of a dataset comes near this.
 constexpr std::uintmax_t kMaxImageFileBytes = std::uintmax_t{256} << 20;
+
+// RgbImage::chroma_halvings of a JPEG's chroma subsampling as OpenImageIO names it (jpeg:subsampling): the
+// axis halved most counts, so 4:2:0 (half along both) and 4:2:2 (half across) both halve once. No
+// attribute (not a JPEG) or 4:4:4: full resolution.
+std::uint32_t chroma_halvings(const std::string& subsampling) {
+  if (subsampling == "4:2:0" || subsampling == "4:2:2" || subsampling == "4:4:0") return 1;
+  if (subsampling == "4:1:1") return 2;
+  return 0;
+}
 }  // namespace
 
 std::vector<std::byte> read_file_bytes(const std::filesystem::path& path) {
@@ -185,6 +194,7 @@ RgbImage decode_rgb_image(const std::string& name, std::span<const std::byte> by
   RgbImage image;
   image.width = static_cast<std::uint32_t>(spec.width);
   image.height = static_cast<std::uint32_t>(spec.height);
+  image.chroma_halvings = chroma_halvings(spec.get_string_attribute("jpeg:subsampling"));
   const auto base = spec.format.basetype;
   const bool is_float = base == OIIO::TypeDesc::FLOAT || base == OIIO::TypeDesc::HALF ||
                         base == OIIO::TypeDesc::DOUBLE || base == OIIO::TypeDesc::UINT16 ||

@@ -254,7 +254,7 @@ CARBTF_FUNCTION float carbtf_polar_angle(float r, float z) {
 // storage buffer: MaterialTablesHeader, then the tables), binding 3 the same buffer as RGBA32UI texels
 // (usamplerBuffer: 16-byte "quads"), through which the fragment stage reads the tables after the header.
 // The subspace images have MaterialTablesHeader::mip_levels levels, the range map relief_levels:
-// CARBTF_RELIEF_CHROMA_LEVELS more where the texture's size allows it, for the relief's chroma
+// relief_chroma_levels more where the texture's size allows it, for the relief's chroma
 // (carbtf_material_shade()).
 CARBTF_CONST_UINT(CARBTF_MATERIAL_BINDING_SUBSPACES, 0u)
 CARBTF_CONST_UINT(CARBTF_MATERIAL_BINDING_RANGE, 1u)
@@ -327,11 +327,6 @@ CARBTF_CONST_FLOAT(CARBTF_CHROMA_GAMMA, 1.0f / 2.4f)
 CARBTF_CONST_FLOAT(CARBTF_LUMA_RED, 0.299f)
 CARBTF_CONST_FLOAT(CARBTF_LUMA_GREEN, 0.587f)
 CARBTF_CONST_FLOAT(CARBTF_LUMA_BLUE, 0.114f)
-// How many mip levels above its brightness the relief's chroma is read: periods under 4 * 2^levels texels
-// change the brightness alone, as in a camera's and JPEG's band-limited colour. Two levels were the
-// nearest on all three samples (one: leather 0.285 / 0.362, two: 0.254 / 0.287, three: 0.314 / 0.356;
-// docs/design.md 5.2).
-CARBTF_CONST_UINT(CARBTF_RELIEF_CHROMA_LEVELS, 2u)
 // Lights one draw of carbtf's own mesh pipeline shades with.
 CARBTF_CONST_UINT(CARBTF_RENDER_MAX_LIGHTS, 4u)
 
@@ -380,11 +375,13 @@ struct MaterialTablesHeader {
   float parallax_top;
   float parallax_bottom;
   uint parallax_steps;
-  // Levels of the range map: mip_levels + CARBTF_RELIEF_CHROMA_LEVELS where its size allows it (and the
-  // device can filter it), so that the relief's chroma can be read that many levels above its brightness.
+  // Levels of the range map: mip_levels + relief_chroma_levels where its size allows it (and the device can
+  // filter it), so that the relief's chroma can be read that many levels above its brightness.
   uint relief_levels;
   uint tone_planes;  // the relief tone's planes (tone_planes() of material.hpp): 0 none, 1 grey, 3 R, G, B
-  uint reserved0;
+  // How many mip levels above its brightness the relief's chroma is read (RangeTiles::chroma_levels): the
+  // measured images' own colour resolution.
+  uint relief_chroma_levels;
   uint reserved1;
   uint reserved2;
 };
@@ -429,7 +426,8 @@ static_assert(offsetof(MaterialTablesHeader, pair_table) == 64 &&
               offsetof(MaterialTablesHeader, parallax_scale) == 80);
 static_assert(offsetof(MaterialTablesHeader, mip_levels) == 108 &&
               offsetof(MaterialTablesHeader, parallax_steps) == 120 &&
-              offsetof(MaterialTablesHeader, relief_levels) == 124);
+              offsetof(MaterialTablesHeader, relief_levels) == 124 &&
+              offsetof(MaterialTablesHeader, relief_chroma_levels) == 132);
 static_assert(sizeof(RenderFrameUniforms) == 160 + 32 * CARBTF_RENDER_MAX_LIGHTS,
               "RenderFrameUniforms must match std140");
 static_assert(offsetof(RenderFrameUniforms, camera) == 128 &&

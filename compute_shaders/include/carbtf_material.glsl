@@ -14,7 +14,8 @@
 // (a fixed, short list of candidates per grid cell: no search over the direction set), times the range
 // map relit for the light, hidden where the relief casts a shadow (the material's shadow scale above
 // 0), plus its specular lobe; the colour's brightness from the relief at the fragment's level, its chroma
-// from the relief CARBTF_RELIEF_CHROMA_LEVELS mip levels above. The CPU twin is analysis/reference/src/render_reference.cpp.
+// from the relief RangeTiles::chroma_levels mip levels above (the header's relief_chroma_levels). The CPU
+// twin is analysis/reference/src/render_reference.cpp.
 #ifndef CARBTF_MATERIAL_GLSL
 #define CARBTF_MATERIAL_GLSL
 
@@ -549,7 +550,7 @@ CarbtfSurface carbtf_material_surface(vec2 uv, vec3 view, float lod) {
     surface.chroma_relief = surface.relief;
   } else {
     surface.relief = carbtf_relief(uv, lod);
-    surface.chroma_relief = carbtf_relief(uv, min(lod + float(CARBTF_RELIEF_CHROMA_LEVELS), float(max(carbtf_header.relief_levels, 1u) - 1u)));
+    surface.chroma_relief = carbtf_relief(uv, min(lod + float(carbtf_header.relief_chroma_levels), float(max(carbtf_header.relief_levels, 1u) - 1u)));
   }
   carbtf_measured_weights(carbtf_header.views, view, surface.view_index, surface.view_weight);
   return surface;
@@ -587,12 +588,12 @@ const vec3 CARBTF_LUMA_WEIGHTS = vec3(CARBTF_LUMA_RED, CARBTF_LUMA_GREEN, CARBTF
 
 // The material under one light: the interpolated smooth BTF, each image with its share of the relief
 // tone, times the relit factor of the range map, plus the relief's specular lobe (carbtf_relief_lit()).
-// Its brightness follows the relief at the fragment's level, its chroma the relief CARBTF_RELIEF_CHROMA_LEVELS
-// mip levels above: in encoded values, the luma (Rec. 601) of the fragment's colour plus the colour
-// differences of the same BTF under that coarser relief (its relit factor, lobe and, where the tone is one
-// grey plane, tone). The measured images' colour is band-limited, by the camera's colour filters and by
-// JPEG's 4:2:0 chroma, so their creases and facets at periods of 2 to 8 texels are brightness alone; with the relief's
-// full-resolution chroma the model's a* and b* followed them (docs/design.md 4.6). A coloured tone (three
+// Its brightness follows the relief at the fragment's level, its chroma the relief
+// RangeTiles::chroma_levels mip levels above: in encoded values, the luma (Rec. 601) of the fragment's
+// colour plus the colour differences of the same BTF under that coarser relief (its relit factor, lobe
+// and, where the tone is one grey plane, tone). A JPEG's colour is band-limited (4:2:0 chroma), so the
+// creases and facets of such a measurement at periods of 2 to 8 texels are brightness alone; with the
+// relief's full-resolution chroma the model's a* and b* followed them (docs/design.md 4.6). A coloured tone (three
 // planes) is the albedo's own colour and keeps the fragment's level. Directions are unit vectors in the
 // tangent frame; zero below the horizon.
 // `lod`: carbtf_material_lod() of the fragment (0, level 0 only, where the host has none). Under several

@@ -111,6 +111,13 @@ void print_material_summary(const std::string& path) {
     } else {
       std::printf("highlights:   none\n");
     }
+    if (material.range.chroma_levels == 0) {
+      std::printf("relief chroma: at the relief's own level (the measurement's colour at full resolution)\n");
+    } else {
+      std::printf(
+          "relief chroma: %u mip level(s) above its brightness (the measurement's colour resolution)\n",
+          material.range.chroma_levels);
+    }
   }
   if (material.pair_gains.empty()) {
     std::printf("pair gains:   none (each pair has its subspace image's mean colour)\n");

@@ -53,6 +53,8 @@ TEST_CASE("a sample written as a UBO2003 folder and as a zip reads back the same
         REQUIRE(dataset->missing_pairs().empty());
         CHECK(dataset->encoding() ==
               (extension == ".exr" ? ColorEncoding::linear_half : ColorEncoding::srgb8));
+        // The JPEGs' 4:2:0 chroma has half the brightness's resolution; PNG and EXR keep it whole.
+        CHECK(dataset->chroma_halvings == (extension == ".jpg" ? 1u : 0u));
       }
       double worst_max = 0, worst_rms = 0;
       for (const auto& [key, rendered] : sample.images) {

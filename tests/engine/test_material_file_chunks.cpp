@@ -1,4 +1,4 @@
-// The material file's optional chunks (TONE, TWGT, TCHR, FTHR, SHDW, SPEC, PGAN): each reads back, is
+// The material file's optional chunks (TONE, TWGT, TCHR, FTHR, SHDW, SPEC, PGAN, RCHL): each reads back, is
 // left out when it holds its default, and is refused with hostile values.
 #include <catch2/catch.hpp>
 
@@ -194,6 +194,25 @@ TEST_CASE("feathered cuts read back while a file without FTHR has hard cuts and 
     const Status s = decode_material(bytes, "bad.cbtf", back);
     CHECK_THAT(s.message(),
                Catch::Contains("bad.cbtf") && Catch::Contains("feather " + std::to_string(hostile)));
+  }
+}
+
+TEST_CASE(
+    "the relief's chroma levels read back while a file without RCHL has the default and a hostile count "
+    "is refused",
+    "[material_file][relief_chroma]") {
+  for (const std::uint32_t levels : {0u, 2u, kMaxReliefChromaLevels}) {
+    auto [bytes, at] = checked_optional_chunk(
+        sample_material(), "RCHL", [&](Material& m) { m.range.chroma_levels = levels; },
+        [](const Material& m) { return m.range.chroma_levels == kDefaultReliefChromaLevels; });
+    Material back;
+    for (const std::uint32_t hostile : {kMaxReliefChromaLevels + 1, 0xFFFFFFFFu}) {
+      std::memcpy(&bytes[at], &hostile, 4);
+      fix_crcs(bytes);
+      const Status s = decode_material(bytes, "bad.cbtf", back);
+      CHECK_THAT(s.message(), Catch::Contains("bad.cbtf") &&
+                                  Catch::Contains("chroma " + std::to_string(hostile) + " levels"));
+    }
   }
 }
 

@@ -1,6 +1,7 @@
-// The relief's chroma one mip level above its brightness (carbtf_material_shade() and its CPU twin,
-// render_reference.cpp): creases and facets finer than two texels change the colour's brightness, not its
-// chroma, as in a measured image whose colour the camera and JPEG's 4:2:0 band-limit. The GPU's picture
+// The relief's chroma RangeTiles::chroma_levels mip levels above its brightness (carbtf_material_shade()
+// and its CPU twin, render_reference.cpp): creases and facets finer than the level change the colour's
+// brightness, not its chroma, as in a measured image whose colour JPEG's 4:2:0 band-limits; at 0 (a
+// measurement with full-resolution colour) they change both. The GPU's picture
 // is the reference's to a documented tolerance (test_render.cpp), so the reference stands for both here.
 #include <catch2/catch.hpp>
 
@@ -30,16 +31,22 @@ Encoded encoded(const float* rgb) {
   return out;
 }
 
-}  // namespace
+// Encoded luma range and the widest swing of the encoded colour differences over the inner pixels of a
+// plane of ridges across x with a period of 4 texels, heights 0, 0, 1, 1, lit from +x at 45 degrees, the
+// relief's chroma read `chroma_levels` levels above its brightness. The ridges' normals tilt -, +, +, -
+// along x, so at level 0 the facets face towards and away from the light in turn, and the means of two
+// neighbours, level 1, and every level above are flat everywhere.
+struct ChromaSwing {
+  double luma_range = 0.0;
+  double difference_spread = 0.0;
+};
 
-TEST_CASE("the relief's fine facets change the colour's brightness and not its chroma", "[render]") {
-  // Ridges across x with a period of 4 texels, heights 0, 0, 1, 1: their normals tilt -, +, +, - along x,
-  // so at level 0 the facets face towards and away from a light from +x in turn, and the means of two
-  // neighbours, level 1, are flat everywhere.
+ChromaSwing ridge_chroma_swing(std::uint32_t chroma_levels) {
   std::vector<float> heights(kSize * kSize);
   for (std::uint32_t r = 0; r < kSize; ++r)
     for (std::uint32_t c = 0; c < kSize; ++c) heights[r * kSize + c] = (c % 4) >= 2 ? 1.0f : 0.0f;
-  const Material material = test::bumpy_material();  // its directions and subspaces; no tone
+  Material material = test::bumpy_material();  // its directions and subspaces; no tone
+  material.range.chroma_levels = chroma_levels;
   SynthesizedImages images;
   images.width = images.height = kSize;
   for (std::size_t s = 0; s < material.subspaces.size(); ++s) {
@@ -58,7 +65,7 @@ TEST_CASE("the relief's fine facets change the colour's brightness and not its c
   input.range_map = heights;
   input.parallax_scale = 0.0f;
   input.wrap = true;
-  input.mip_levels = 1;  // the picture at level 0, its chroma from level 1
+  input.mip_levels = 1;  // the picture at level 0, its chroma from level chroma_levels
   RenderScene scene;
   scene.camera.eye = {0.0f, 0.0f, 3.0f};
   scene.camera.up = {0.0f, 1.0f, 0.0f};
@@ -68,7 +75,8 @@ TEST_CASE("the relief's fine facets change the colour's brightness and not its c
   scene.lights = {{false, {std::sin(light_theta), 0.0f, std::cos(light_theta)}, {1.0f, 1.0f, 1.0f}}};
   const std::vector<float> picture = reference::render_plane(input, scene, kSize, kSize, {0, 0, 0, 0});
 
-  double luma_low = 1e9, luma_high = -1e9, difference_spread = 0.0;
+  double luma_low = 1e9, luma_high = -1e9;
+  ChromaSwing swing;
   const Encoded first = encoded(&picture[4 * (8 * kSize + 8)]);
   for (std::uint32_t r = 8; r < kSize - 8; ++r) {
     for (std::uint32_t c = 8; c < kSize - 8; ++c) {
@@ -78,16 +86,37 @@ TEST_CASE("the relief's fine facets change the colour's brightness and not its c
       luma_low = std::min(luma_low, e.luma);
       luma_high = std::max(luma_high, e.luma);
       for (int k = 0; k < 3; ++k)
-        difference_spread = std::max(difference_spread, std::abs(e.difference[k] - first.difference[k]));
+        swing.difference_spread =
+            std::max(swing.difference_spread, std::abs(e.difference[k] - first.difference[k]));
     }
   }
-  INFO("encoded luma " << luma_low << " to " << luma_high << ", colour differences within "
-                       << difference_spread);
-  // The facets light and darken the brown by a third of its encoded value and more...
-  CHECK(luma_high - luma_low > 0.2);
-  // ... while its colour differences stay those of the flat level above: with the chroma at the facets'
-  // own level they swing by 0.09 (measured with the chroma read at level 0), 40% of the luma's range.
-  CHECK(difference_spread < 0.005 * (luma_high - luma_low));
+  swing.luma_range = luma_high - luma_low;
+  return swing;
+}
+
+}  // namespace
+
+TEST_CASE("the relief's fine facets change the colour's brightness and not its chroma", "[render]") {
+  for (const std::uint32_t levels : {1u, 2u}) {
+    const ChromaSwing swing = ridge_chroma_swing(levels);
+    INFO("chroma " << levels << " levels up: encoded luma range " << swing.luma_range
+                   << ", colour differences within " << swing.difference_spread);
+    // The facets light and darken the brown by a third of its encoded value and more...
+    CHECK(swing.luma_range > 0.2);
+    // ... while its colour differences stay those of the flat level above: with the chroma at the facets'
+    // own level they swing by 0.09, 40% of the luma's range (below).
+    CHECK(swing.difference_spread < 0.005 * swing.luma_range);
+  }
+}
+
+TEST_CASE("a measurement with full-resolution colour keeps the relief's chroma at the facets' level",
+          "[render]") {
+  // RangeTiles::chroma_levels 0 (the analysis' choice for PNG or EXR data): the chroma follows the facets.
+  const ChromaSwing swing = ridge_chroma_swing(0);
+  INFO("encoded luma range " << swing.luma_range << ", colour differences within "
+                             << swing.difference_spread);
+  CHECK(swing.luma_range > 0.2);
+  CHECK(swing.difference_spread > 0.2 * swing.luma_range);
 }
 
 }  // namespace carbtf

@@ -142,7 +142,7 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
   input.relief_levels = binding->relief_levels();
   // 96 x 80 halves evenly 4 times; lavapipe blits RGBA32F and RG32F with a linear filter. The range map
   // can have no level more, so near the top level the relief's chroma reads the top level (below it, the
-  // level CARBTF_RELIEF_CHROMA_LEVELS above).
+  // level RangeTiles::chroma_levels above).
   CHECK(binding->mip_levels() == 5);
   CHECK(binding->relief_levels() == 5);
 

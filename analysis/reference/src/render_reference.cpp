@@ -201,7 +201,8 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
   const ReliefExtent extent = relief_extent(input.range_map, input.parallax_scale);
   const std::uint32_t levels = std::clamp(input.mip_levels, 1u, mip_level_count(tw, th));
   const std::uint32_t relief_levels =
-      std::clamp(input.relief_levels > 0 ? input.relief_levels : levels + gpu::CARBTF_RELIEF_CHROMA_LEVELS, 1u, mip_level_count(tw, th));
+      std::clamp(input.relief_levels > 0 ? input.relief_levels : levels + material.range.chroma_levels, 1u,
+                 mip_level_count(tw, th));
   const float chroma_top_level = static_cast<float>(relief_levels - 1);
   const bool shadows = material.range.shadow_scale > 0.0f;
   std::vector<float> horizons;
@@ -281,9 +282,10 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
           parallax_march([&](glm::vec2 at) { return sampler.height_at(at, lod); }, uv, view,
                          glm::vec2(static_cast<float>(tw), static_cast<float>(th)), input.parallax_scale,
                          extent, input.parallax_steps);
-      // The relief at the fragment's level and CARBTF_RELIEF_CHROMA_LEVELS above, whose chroma the colour
+      // The relief at the fragment's level and RangeTiles::chroma_levels above, whose chroma the colour
       // takes (carbtf_material_shade()).
-      const float chroma_lod = std::min(lod + static_cast<float>(gpu::CARBTF_RELIEF_CHROMA_LEVELS), chroma_top_level);
+      const float chroma_lod =
+          std::min(lod + static_cast<float>(material.range.chroma_levels), chroma_top_level);
       ReliefPoint fine = relief_point(sampler, shifted, lod, shadows);
       if (input.normals_from_heights) {
         const glm::vec2 texel(1.0f / static_cast<float>(tw), 1.0f / static_cast<float>(th));

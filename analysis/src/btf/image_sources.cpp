@@ -59,6 +59,7 @@ BtfDataset decode_sources(const std::vector<ImageSource>& sources, std::vector<D
   BtfDataset dataset(std::move(lights), std::move(views), first.width, first.height,
                      first.linear ? ColorEncoding::linear_half : ColorEncoding::srgb8);
   dataset.source = std::move(description);
+  dataset.chroma_halvings = first.chroma_halvings;
   store(dataset, sources[0], std::move(first));
 
   Progress progress("loading " + std::to_string(sources.size()) + " images", sources.size(),

@@ -133,6 +133,9 @@ Status validate_range(const RangeTiles& r) {
     return invalid("range map: specular gloss " + std::to_string(r.specular_gloss) + " is outside 1.." +
                    std::to_string(int(kMaxSpecularGloss)));
   }
+  if (r.chroma_levels > kMaxReliefChromaLevels)
+    return invalid("range map: the relief's chroma " + std::to_string(r.chroma_levels) +
+                   " levels above its brightness (at most " + std::to_string(kMaxReliefChromaLevels) + ")");
   if (r.feather > kMaxFeather)
     return invalid("range map: feather " + std::to_string(r.feather) + " (at most " +
                    std::to_string(kMaxFeather) + ")");

@@ -143,13 +143,14 @@ Status MaterialBinding::create(Context& context, const Material& material, const
     r.pair_coupling = info.pair_coupling;
 
     // Host side (material_tables.hpp): the tables and the relief.
-    // The range map gets CARBTF_RELIEF_CHROMA_LEVELS levels more than the subspace images where its size
+    // The range map gets RangeTiles::chroma_levels levels more than the subspace images where its size
     // allows it, so that the relief's chroma can be read that far above its brightness at every level the
     // images have (carbtf_material_shade()); one level alone where the device cannot blit RGBA32F with a
     // linear filter.
     r.mip_levels = textures.mip_levels;
     if (info.max_mip_levels > 0) r.mip_levels = std::min(r.mip_levels, info.max_mip_levels);
-    r.relief_levels = std::min(r.mip_levels + gpu::CARBTF_RELIEF_CHROMA_LEVELS, mip_level_count(textures.width, textures.height));
+    r.relief_levels = std::min(r.mip_levels + material.range.chroma_levels,
+                               mip_level_count(textures.width, textures.height));
     if (!can_blit_mips(context, VK_FORMAT_R32G32B32A32_SFLOAT)) r.mip_levels = r.relief_levels = 1;
     const TextureWindow block{info.seed,      info.row0,       info.col0,
                               textures.width, textures.height, textures.periodic_overlap};

@@ -138,6 +138,7 @@ Status build_material_tables(const Material& material, const MaterialLayers& lay
   header.parallax_bottom = extent.bottom;
   header.parallax_steps = info.parallax_steps;
   header.relief_levels = info.relief_levels;
+  header.relief_chroma_levels = material.range.chroma_levels;
   header.tone_planes = static_cast<std::uint32_t>(tone_planes(material.range));
   std::memcpy(tables.data(), &header, sizeof header);
   return {};

@@ -41,6 +41,9 @@ struct RgbImage {
   bool linear = false;              // which of the two vectors holds the pixels
   std::vector<std::uint8_t> srgb8;  // width * height * 3 when !linear
   std::vector<float> linear_rgb;    // width * height * 3 when linear
+  // How many times the stored colour's resolution halves below its brightness's: 1 for a JPEG's 4:2:0,
+  // 4:2:2 or 4:4:0 chroma, 2 for 4:1:1, 0 for full-resolution colour (4:4:4 JPEG, PNG, EXR, ...).
+  std::uint32_t chroma_halvings = 0;
 };
 
 // What an image of a dataset must be, checked from its header before any pixel is decoded.

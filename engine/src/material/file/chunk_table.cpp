@@ -8,24 +8,25 @@ namespace carbtf::detail {
 // The chunks' codecs, each defined in chunks/ with its layout.
 extern const ChunkCodec kSettingsChunk, kDirectionsChunk, kIndexChunk, kSubspacesChunk, kRangeChunk,
     kToneChunk, kToneWeightsChunk, kToneChromaChunk, kFeatherChunk, kShadowsChunk, kPairGainsChunk,
-    kSpecularChunk;
+    kSpecularChunk, kReliefChromaChunk;
 
 namespace {
 
 // The writer's order. A reader takes the chunks in any order; a new chunk is one more row here.
-constexpr std::array<const ChunkCodec*, 12> kMaterialChunks{
-    &kSettingsChunk,     // SETT
-    &kDirectionsChunk,   // DIRS
-    &kIndexChunk,        // INDX
-    &kSubspacesChunk,    // SUBS
-    &kRangeChunk,        // RNGE
-    &kToneChunk,         // TONE (1.1)
-    &kToneWeightsChunk,  // TWGT (1.2)
-    &kToneChromaChunk,   // TCHR (1.4)
-    &kFeatherChunk,      // FTHR (1.6)
-    &kShadowsChunk,      // SHDW (1.8)
-    &kPairGainsChunk,    // PGAN (1.9)
-    &kSpecularChunk,     // SPEC (1.10)
+constexpr std::array<const ChunkCodec*, 13> kMaterialChunks{
+    &kSettingsChunk,      // SETT
+    &kDirectionsChunk,    // DIRS
+    &kIndexChunk,         // INDX
+    &kSubspacesChunk,     // SUBS
+    &kRangeChunk,         // RNGE
+    &kToneChunk,          // TONE (1.1)
+    &kToneWeightsChunk,   // TWGT (1.2)
+    &kToneChromaChunk,    // TCHR (1.4)
+    &kFeatherChunk,       // FTHR (1.6)
+    &kShadowsChunk,       // SHDW (1.8)
+    &kPairGainsChunk,     // PGAN (1.9)
+    &kSpecularChunk,      // SPEC (1.10)
+    &kReliefChromaChunk,  // RCHL (1.11)
 };
 
 }  // namespace

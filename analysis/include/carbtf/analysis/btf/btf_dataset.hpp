@@ -82,6 +82,10 @@ class BtfDataset {
   std::string source;
   // Optional validity mask, width * height, non-zero where the sample is (photometric-stereo sets).
   std::vector<std::uint8_t> mask;
+  // How many times the stored images' colour resolution halves below their brightness's (the first
+  // image's RgbImage::chroma_halvings: 1 for JPEGs with 4:2:0 chroma, as UBO2003's; 0 for full-resolution
+  // colour). The analysis reads the relief's chroma that much coarser (model/relief_chroma.hpp).
+  std::uint32_t chroma_halvings = 0;
 
  private:
   std::size_t slot(LightView pair) const;

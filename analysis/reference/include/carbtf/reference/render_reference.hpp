@@ -32,7 +32,7 @@ struct ReferenceRenderInput {
   // them as the means of 2 x 2 texels (mip_chain.hpp) and picks each pixel's level of detail from the
   // uv of its 2 x 2 quad's neighbours, as the fragment stage's fine derivatives do. 1: level 0 only.
   std::uint32_t mip_levels = 1;
-  // Mip levels of the relief (MaterialBinding::relief_levels()); 0: mip_levels + CARBTF_RELIEF_CHROMA_LEVELS
+  // Mip levels of the relief (MaterialBinding::relief_levels()); 0: mip_levels + RangeTiles::chroma_levels
   // where the size allows, as the binding makes them on a device that filters RGBA32F.
   std::uint32_t relief_levels = 0;
   // The normal as the render pass computed it before normals were stored: per pixel, the central

@@ -76,6 +76,9 @@ struct SubspaceModel {
 // of (north, east, south, west) colours. Each edge colour owns a source patch of tile_size^2 texels;
 // a tile is the four patches of its edges, joined along minimum-error cuts that run from each corner
 // to the centre (range_tiles.hpp builds the tiles and lays them out).
+inline constexpr std::uint32_t kDefaultReliefChromaLevels = 1;
+inline constexpr std::uint32_t kMaxReliefChromaLevels = 4;
+
 struct RangeTiles {
   std::uint32_t tile_size = 0;     // even, texels
   std::uint32_t edge_colours = 2;  // per direction; patches = 2 * edge_colours, tiles = edge_colours^4
@@ -116,6 +119,12 @@ struct RangeTiles {
   // chunk): no lobe. Above 0 only with range tiles (validate_material).
   float specular_strength = 0.0f;
   float specular_gloss = 0.0f;
+  // How many mip levels above its brightness the render pass reads the relief's chroma: the relief's
+  // facets and creases finer than 4 * 2^chroma_levels texels change the colour's brightness and not its
+  // chroma, as in measured images whose colour has less resolution than their brightness (a JPEG's 4:2:0
+  // chroma). The analysis sets it from the data (analysis/model/relief_chroma.hpp); any file without an RCHL
+  // chunk means kDefaultReliefChromaLevels, as the render pass drew those files.
+  std::uint32_t chroma_levels = kDefaultReliefChromaLevels;
   bool operator==(const RangeTiles&) const = default;
 };
 

@@ -131,7 +131,7 @@ class MaterialBinding {
   Status record_upload(VkCommandBuffer command_buffer) const noexcept;
   // Levels of the subspace images the render pass samples, level 0 included.
   std::uint32_t mip_levels() const noexcept;
-  // Mip levels of the range texture: mip_levels() + CARBTF_RELIEF_CHROMA_LEVELS where its size and the
+  // Mip levels of the range texture: mip_levels() + RangeTiles::chroma_levels where its size and the
   // device allow, so that the relief's chroma is read that many levels above its brightness
   // (carbtf_material_shade()).
   std::uint32_t relief_levels() const noexcept;

@@ -22,7 +22,7 @@ std::array<float, 3> rendered_pair_gain(const Material& material, std::uint32_t 
 // The render pass's colour under the relief (carbtf_material_shade()): the encoded luma (Rec. 601 over
 // values to the power 1/2.4, about as a camera stores them) of `colour`, under the relief at the
 // fragment's level, plus the encoded colour differences of `chroma_colour`, the same BTF under the relief
-// CARBTF_RELIEF_CHROMA_LEVELS mip levels above; decoded. Linear RGB in and out.
+// RangeTiles::chroma_levels mip levels above; decoded. Linear RGB in and out.
 std::array<float, 3> relief_chroma_mix(const std::array<float, 3>& colour,
                                        const std::array<float, 3>& chroma_colour) noexcept;
 
