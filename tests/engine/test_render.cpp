@@ -83,6 +83,9 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
     coloured.range.shadow_scale = shadows ? 1.0f : 0.0f;
     coloured.range.specular_strength = shadows ? 0.4f : 0.0f;
     coloured.range.specular_gloss = 12.0f;
+    // The relief's chroma two levels up (a JPEG's data), one (files before format 1.11) and at the
+    // fragment's own level (full-resolution colour).
+    coloured.range.chroma_levels = !shadows ? 2u : three_planes ? 0u : 1u;
     if (three_planes) {
       const std::vector<std::uint8_t> grey = coloured.range.tone;
       const std::uint8_t top = *std::max_element(grey.begin(), grey.end());
@@ -195,8 +198,9 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
     }
   }
   const double rms = std::sqrt(sum_squares / static_cast<double>(3 * std::max<std::size_t>(both, 1)));
-  INFO(what << (periodic ? ", periodic" : ", plain") << (shadows ? ", shadows" : "") << ": " << both
-            << " pixels, peak " << peak << ", max error " << worst << ", rms " << rms
+  INFO(what << (periodic ? ", periodic" : ", plain") << (shadows ? ", shadows" : "") << ", chroma "
+            << m.range.chroma_levels << " levels up"
+            << ": " << both << " pixels, peak " << peak << ", max error " << worst << ", rms " << rms
             << ", coverage differs at " << coverage_differs);
   REQUIRE(both > gpu.size() / 4 / 4);
   // Rasterization decides edge pixels by its own rules: at most the plane's outline may differ.
