@@ -8,7 +8,7 @@ namespace carbtf {
 
 std::uint32_t relief_chroma_levels(std::uint32_t chroma_halvings) {
   if (chroma_halvings == 0) return 0;
-  return std::min(chroma_halvings + 1, kMaxReliefChromaLevels);
+  return std::min(chroma_halvings, kMaxReliefChromaLevels - 1) + 1;  // no wrap past the largest count
 }
 
 }  // namespace carbtf
