@@ -13,8 +13,8 @@ namespace carbtf {
 
 // 0 for full-resolution colour; for colour halved n times, n + 1: the JPEG's quantisation of its
 // already halved chroma takes about one octave more (measured, docs/design.md 4.6: the same leather as
-// JPEG and as PNG, and every acceptance sample as JPEG, each nearest at this level). At most
-// kMaxReliefChromaLevels.
+// JPEG and as PNG; as JPEG, leather and coast_sand_rocks nearest at 2 levels, fabric the same within
+// 0.001 from 1 to 3). At most kMaxReliefChromaLevels.
 std::uint32_t relief_chroma_levels(std::uint32_t chroma_halvings);
 
 }  // namespace carbtf
