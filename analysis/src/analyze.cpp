@@ -534,10 +534,16 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
       }
       result.horizons = range_map_horizons(result.range_map, shadow_scale);
       if (options.relief_specular != AutoChoice::never) {
-        const Plane tone =
-            relief_tone(dataset, result.stereo_view, result.range_map, z_floor, result.horizons);
-        const SpecularFit fit = fit_relief_specular(dataset, result.stereo_view, result.range_map, tone,
-                                                    z_floor, result.horizons);
+        const std::vector<SpecularFit> rounds = fit_relief_specular_with_tone(
+            dataset, result.stereo_view, result.range_map, z_floor, result.horizons);
+        for (std::size_t round = 0; round + 1 < rounds.size(); ++round) {
+          std::snprintf(line, sizeof line,
+                        "relief specular: strength %.4g, gloss %.0f (error %.4f); fitted again against the "
+                        "tone of the images without that lobe",
+                        rounds[round].lobe.strength, rounds[round].lobe.gloss, rounds[round].error);
+          note(line);
+        }
+        const SpecularFit& fit = rounds.back();
         specular = fit.lobe;
         std::snprintf(line, sizeof line,
                       "relief specular: strength %.4g, gloss %.0f%s (the view's images explained with error "

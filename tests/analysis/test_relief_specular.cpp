@@ -1,10 +1,12 @@
 // The relief's specular lobe in the analysis (model/relief_specular.hpp): fitted to the images of a
 // rendered sample whose renderer adds a Blinn-Phong lobe over its true heights, it is kept with about
-// the renderer's strength and gloss; the same sample without the lobe gets none.
+// the renderer's strength and gloss, and fitted in turn with the tone it comes nearer still; the same
+// sample without the lobe gets none.
 #include <catch2/catch.hpp>
 
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "carbtf/analysis/btf/btf_dataset.hpp"
 #include "carbtf/analysis/model/relief_specular.hpp"
@@ -39,6 +41,36 @@ TEST_CASE("a relief's specular lobe is fitted with about the renderer's strength
   CHECK(fit.lobe.strength > truth / 1.5);
   CHECK(fit.lobe.strength < truth * 1.5);
   CHECK(std::abs(std::log2(fit.lobe.gloss / surface.gloss)) <= 1.0);
+}
+
+TEST_CASE("fitted in turn with the tone, the lobe explains the images better and nears the renderer's",
+          "[tone][specular]") {
+  constexpr std::uint32_t size = 64;
+  Surface surface = make_sample_surface("leather", size, 3);
+  surface.specular = 0.06f;
+  surface.gloss = 16.0f;
+  const Plane heights = heights_of(surface);
+  const double z_floor = std::max(std::cos(75.0 * std::numbers::pi / 180.0), 1e-3);
+  const BtfDataset dataset = top_view_dataset(surface);
+  const std::vector<SpecularFit> rounds = fit_relief_specular_with_tone(dataset, 0, heights, z_floor);
+  const double truth =
+      RenderOptions{}.irradiance * surface.specular * (surface.gloss + 8.0) / (8.0 * std::numbers::pi);
+  REQUIRE(rounds.size() == 1 + kSpecularToneRounds);
+  // The first round is the fit against the tone of the images as they are.
+  const SpecularFit first =
+      fit_relief_specular(dataset, 0, heights, relief_tone(dataset, 0, heights, z_floor), z_floor);
+  CHECK(rounds.front().lobe.strength == first.lobe.strength);
+  CHECK(rounds.front().lobe.gloss == first.lobe.gloss);
+  for (std::size_t r = 0; r < rounds.size(); ++r) {
+    INFO("round " << r << ": strength " << rounds[r].lobe.strength << " (renderer " << truth << "), gloss "
+                  << rounds[r].lobe.gloss << ", error " << rounds[r].error);
+    CHECK(rounds[r].lobe.strength > 0.0);
+    if (r > 0) CHECK(rounds[r].error < rounds[r - 1].error);
+  }
+  INFO("strength " << first.lobe.strength << " -> " << rounds.back().lobe.strength << " (renderer " << truth
+                   << ")");
+  CHECK(std::abs(std::log(rounds.back().lobe.strength / truth)) <
+        std::abs(std::log(first.lobe.strength / truth)));
 }
 
 TEST_CASE("a relief without highlights gets no specular lobe", "[tone][specular]") {

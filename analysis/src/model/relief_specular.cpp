@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "carbtf/analysis/model/deshade.hpp"
+#include "carbtf/analysis/model/relief_tone.hpp"
 #include "carbtf/engine/render/relief_horizons.hpp"
 
 namespace carbtf {
@@ -110,6 +111,19 @@ SpecularFit fit_relief_specular(const BtfDataset& dataset, std::uint32_t view, c
     fit.error = fit.error_without;
   }
   return fit;
+}
+
+std::vector<SpecularFit> fit_relief_specular_with_tone(const BtfDataset& dataset, std::uint32_t view,
+                                                       const Plane& range_map, double light_z_floor,
+                                                       std::span<const float> horizons) {
+  std::vector<SpecularFit> rounds{fit_relief_specular(
+      dataset, view, range_map, relief_tone(dataset, view, range_map, light_z_floor, horizons), light_z_floor,
+      horizons)};
+  for (int round = 0; round < kSpecularToneRounds && rounds.back().lobe.strength > 0.0; ++round) {
+    const Plane tone = relief_tone(dataset, view, range_map, light_z_floor, horizons, rounds.back().lobe);
+    rounds.push_back(fit_relief_specular(dataset, view, range_map, tone, light_z_floor, horizons));
+  }
+  return rounds;
 }
 
 }  // namespace carbtf
