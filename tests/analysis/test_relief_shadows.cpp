@@ -48,7 +48,7 @@ TEST_CASE("cast shadows are kept where they explain a shadowed relief, in the me
   const Surface surface = make_sample_surface("leather", size, 3);
   const BtfDataset dataset = top_view_dataset(surface);
   const Plane heights = heights_of(surface);
-  const double z_floor = std::max(std::cos(75.0 * M_PI / 180.0), 1e-3);
+  const double z_floor = test::kTopViewLightZFloor;
 
   const ShadowFit fit = fit_shadow_scale(dataset, 0, heights, z_floor);
   INFO("shadow scale " << fit.scale << ": error " << fit.error << ", without shadows " << fit.error_without);

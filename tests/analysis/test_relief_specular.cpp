@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "carbtf/analysis/btf/btf_dataset.hpp"
@@ -20,45 +22,59 @@ namespace carbtf {
 using test::heights_of;
 using test::top_view_dataset;
 
+namespace {
+
+// The top view of built-in sample `name` (64^2, seed 3) whose renderer adds a lobe of `specular` and
+// `gloss`, and its true heights.
+struct GlossySample {
+  Surface surface;
+  Plane heights;
+  BtfDataset dataset;
+};
+GlossySample glossy_sample(const std::string& name, float specular, float gloss) {
+  Surface surface = make_sample_surface(name, 64, 3);
+  surface.specular = specular;
+  surface.gloss = gloss;
+  const Plane heights = heights_of(surface);
+  BtfDataset dataset = top_view_dataset(surface);
+  return {std::move(surface), heights, std::move(dataset)};
+}
+
+// The renderer's lobe strength: irradiance * N.L * specular * (gloss + 8) / (8 pi) * (N.H)^gloss.
+double renderer_lobe_strength(const Surface& surface) {
+  return RenderOptions{}.irradiance * surface.specular * (surface.gloss + 8.0) / (8.0 * std::numbers::pi);
+}
+
+// The lobe fitted once, against the tone of the sample's images as they are.
+SpecularFit single_fit(const GlossySample& s) {
+  const double z_floor = test::kTopViewLightZFloor;
+  return fit_relief_specular(s.dataset, 0, s.heights, relief_tone(s.dataset, 0, s.heights, z_floor), z_floor);
+}
+
+}  // namespace
+
 TEST_CASE("a relief's specular lobe is fitted with about the renderer's strength and gloss",
           "[tone][specular]") {
-  constexpr std::uint32_t size = 64;
-  Surface surface = make_sample_surface("fabric", size, 3);
-  surface.specular = 0.06f;
-  surface.gloss = 16.0f;
-  const Plane heights = heights_of(surface);
-  const double z_floor = std::max(std::cos(75.0 * std::numbers::pi / 180.0), 1e-3);
-
-  const BtfDataset dataset = top_view_dataset(surface);
-  const SpecularFit fit =
-      fit_relief_specular(dataset, 0, heights, relief_tone(dataset, 0, heights, z_floor), z_floor);
-  // The renderer's lobe: irradiance * N.L * specular * (gloss + 8) / (8 pi) * (N.H)^gloss.
-  const double truth =
-      RenderOptions{}.irradiance * surface.specular * (surface.gloss + 8.0) / (8.0 * std::numbers::pi);
+  const GlossySample sample = glossy_sample("fabric", 0.06f, 16.0f);
+  const SpecularFit fit = single_fit(sample);
+  const double truth = renderer_lobe_strength(sample.surface);
   INFO("strength " << fit.lobe.strength << " (renderer " << truth << "), gloss " << fit.lobe.gloss
                    << ": error " << fit.error << ", without the lobe " << fit.error_without);
   CHECK(fit.error <= (1.0 - kSpecularFitGain) * fit.error_without);
   CHECK(fit.lobe.strength > truth / 1.5);
   CHECK(fit.lobe.strength < truth * 1.5);
-  CHECK(std::abs(std::log2(fit.lobe.gloss / surface.gloss)) <= 1.0);
+  CHECK(std::abs(std::log2(fit.lobe.gloss / sample.surface.gloss)) <= 1.0);
 }
 
 TEST_CASE("fitted in turn with the tone, the lobe explains the images better and nears the renderer's",
           "[tone][specular]") {
-  constexpr std::uint32_t size = 64;
-  Surface surface = make_sample_surface("leather", size, 3);
-  surface.specular = 0.06f;
-  surface.gloss = 16.0f;
-  const Plane heights = heights_of(surface);
-  const double z_floor = std::max(std::cos(75.0 * std::numbers::pi / 180.0), 1e-3);
-  const BtfDataset dataset = top_view_dataset(surface);
-  const std::vector<SpecularFit> rounds = fit_relief_specular_with_tone(dataset, 0, heights, z_floor);
-  const double truth =
-      RenderOptions{}.irradiance * surface.specular * (surface.gloss + 8.0) / (8.0 * std::numbers::pi);
+  const GlossySample sample = glossy_sample("leather", 0.06f, 16.0f);
+  const std::vector<SpecularFit> rounds =
+      fit_relief_specular_with_tone(sample.dataset, 0, sample.heights, test::kTopViewLightZFloor);
+  const double truth = renderer_lobe_strength(sample.surface);
   REQUIRE(rounds.size() == 1 + kSpecularToneRounds);
   // The first round is the fit against the tone of the images as they are.
-  const SpecularFit first =
-      fit_relief_specular(dataset, 0, heights, relief_tone(dataset, 0, heights, z_floor), z_floor);
+  const SpecularFit first = single_fit(sample);
   CHECK(rounds.front().lobe.strength == first.lobe.strength);
   CHECK(rounds.front().lobe.gloss == first.lobe.gloss);
   for (std::size_t r = 0; r < rounds.size(); ++r) {
@@ -74,14 +90,7 @@ TEST_CASE("fitted in turn with the tone, the lobe explains the images better and
 }
 
 TEST_CASE("a relief without highlights gets no specular lobe", "[tone][specular]") {
-  constexpr std::uint32_t size = 64;
-  Surface surface = make_sample_surface("fabric", size, 3);
-  surface.specular = 0.0f;
-  const Plane heights = heights_of(surface);
-  const double z_floor = std::max(std::cos(75.0 * std::numbers::pi / 180.0), 1e-3);
-  const BtfDataset dataset = top_view_dataset(surface);
-  const SpecularFit fit =
-      fit_relief_specular(dataset, 0, heights, relief_tone(dataset, 0, heights, z_floor), z_floor);
+  const SpecularFit fit = single_fit(glossy_sample("fabric", 0.0f, 16.0f));
   INFO("strength " << fit.lobe.strength << ", gloss " << fit.lobe.gloss << ": error " << fit.error
                    << ", without " << fit.error_without);
   CHECK(fit.lobe.strength == 0.0);

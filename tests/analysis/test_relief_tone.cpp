@@ -34,7 +34,7 @@ TEST_CASE("the relief tone follows a crease-darkened albedo and stays flat witho
   constexpr std::uint32_t size = 64;
   const Surface surface = make_sample_surface("leather", size, 3);
   const Plane heights = heights_of(surface);
-  const double z_floor = std::max(std::cos(75.0 * M_PI / 180.0), 1e-3);  // the UBO2003 set's largest theta
+  const double z_floor = test::kTopViewLightZFloor;
   const Plane tone = relief_tone(top_view_dataset(surface), 0, heights, z_floor);
 
   Plane albedo(size, size);
@@ -133,7 +133,7 @@ TEST_CASE("the smooth texture is scaled so that the render keeps the measured me
 
 TEST_CASE("a two-colour weave gets a coloured tone and a leather a grey one", "[tone]") {
   constexpr std::uint32_t size = 64;
-  const double z_floor = std::max(std::cos(75.0 * M_PI / 180.0), 1e-3);
+  const double z_floor = test::kTopViewLightZFloor;
   auto chroma_of = [&](const Surface& surface) {
     const BtfDataset dataset = top_view_dataset(surface);
     const Plane heights = heights_of(surface);
@@ -163,7 +163,7 @@ namespace carbtf {
 TEST_CASE("the tone's colour planes follow each thread's colour, and only a weave's colour counts as visible",
           "[tone]") {
   constexpr std::uint32_t size = 64;
-  const double z_floor = std::max(std::cos(75.0 * M_PI / 180.0), 1e-3);
+  const double z_floor = test::kTopViewLightZFloor;
   auto planes_of = [&](const Surface& surface) {
     return relief_tone_planes(top_view_dataset(surface), 0, heights_of(surface), z_floor);
   };

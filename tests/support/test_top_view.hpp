@@ -2,6 +2,9 @@
 // them, or the photometric-stereo view), a surface's true heights, and the small analysis the cases fit.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <span>
 #include <string>
 #include <vector>
@@ -14,6 +17,9 @@
 #include "carbtf/analysis/sample/sample_materials.hpp"
 
 namespace carbtf::test {
+
+// The relit factor's floor on the light's z for these datasets: the UBO2003 set's largest theta, 75 degrees.
+inline const double kTopViewLightZFloor = std::max(std::cos(75.0 * std::numbers::pi / 180.0), 1e-3);
 
 // `surface` under every UBO2003 light from `views`, held in memory.
 inline BtfDataset rendered_dataset(const Surface& surface, const std::vector<Direction>& views) {
