@@ -11,6 +11,7 @@
 #include "carbtf/analysis/sample/height_field_renderer.hpp"
 #include "carbtf/analysis/sample/sample_materials.hpp"
 #include "carbtf/engine/material/material.hpp"
+#include "test_top_view.hpp"
 
 namespace carbtf {
 namespace {
@@ -69,7 +70,7 @@ TEST_CASE("the relit factor follows the shading of a rendered sample, and dividi
                [&](std::uint32_t, std::uint32_t, std::span<const float> rgb) {
                  image.assign(rgb.begin(), rgb.end());
                });
-    const Plane factor = relit_factor(height, light.vector(), std::cos(75.0 * 3.14159265358979 / 180.0));
+    const Plane factor = relit_factor(height, light.vector(), test::kTopViewLightZFloor);
     std::vector<double> shading, relit;
     std::vector<Plane> channels(1, Plane(size, size));
     for (std::uint32_t p = 0; p < size * size; ++p) {
