@@ -14,6 +14,7 @@
 #include "carbtf/analysis/model/colour_pca.hpp"
 #include "carbtf/analysis/model/deshade.hpp"
 #include "carbtf/analysis/model/pair_gains.hpp"
+#include "carbtf/analysis/model/parallax_view.hpp"
 #include "carbtf/analysis/model/pyramid.hpp"
 #include "carbtf/analysis/model/relief_chroma.hpp"
 #include "carbtf/analysis/model/relief_shadows.hpp"
@@ -147,7 +148,8 @@ SubspaceModel fit_channels(const std::vector<Plane>& channels, LightView pair, s
 // colours, the CAR's chroma is blotches). With the whole-model gains first, a subspace at grazing light
 // took 0 and lost its colour for good, whatever the later groups offered (docs/design.md 5.3).
 enum class Scales { every, finest, coarser };
-enum class Gains { lower, lower_or_raise };  // AnalysisOptions::noise_gains, and noise_raises
+// AnalysisOptions::noise_gains, and noise_raises or chroma_raises
+enum class Gains { lower, lower_or_raise };
 struct GainGroup {
   const char* name;  // in the analysis log
   bool chroma_only;
@@ -175,11 +177,47 @@ struct SubspaceScores {
   double held_out = 0.0;
 };
 
+// One subspace image stands for every pair of its cluster, and the render shows it at each through that
+// pair's light and view: so a candidate is scored at its representative and at kAlsoScoredPairs more
+// members, spread evenly over the cluster in (light, view) order. More members were measured no nearer
+// (docs/design.md 5.2).
+constexpr std::size_t kAlsoScoredPairs = 2;
+std::vector<LightView> also_scored_pairs(const BtfDataset& dataset, const Segmentation& segmentation,
+                                         std::size_t subspace) {
+  const LightView representative = segmentation.representatives[subspace];
+  std::vector<LightView> members;
+  for (std::uint32_t l = 0; l < segmentation.lights; ++l) {
+    for (std::uint32_t v = 0; v < segmentation.views; ++v) {
+      const LightView pair{l, v};
+      if (segmentation.index[std::size_t{l} * segmentation.views + v] == subspace &&
+          dataset.has_image(pair) && !(l == representative.light && v == representative.view))
+        members.push_back(pair);
+    }
+  }
+  std::vector<LightView> chosen;
+  const std::size_t count = std::min(kAlsoScoredPairs, members.size());
+  for (std::size_t i = 0; i < count; ++i)
+    chosen.push_back(members[(2 * i + 1) * members.size() / (2 * count)]);
+  return chosen;
+}
+
+// A measured pair a subspace model is scored at: its image's statistics and what the render pass adds to
+// the subspace image there (the light's relit factor and highlights, the view's parallax).
+struct ScoredPair {
+  DistributionStatistics measured;
+  Plane relit;
+  Plane highlight;
+  ParallaxView view;
+  // Per channel, the measured image's linear mean where the model is to be brought to it, as the pair
+  // gains will (empty at the representative, whose smooth texture is already matched to it).
+  std::vector<double> mean;
+};
+
 // The model of one subspace image; notes name the band they concern.
-SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plane& range_map,
-                           std::span<const float> horizons, std::span<const Plane> tone,
-                           const std::array<float, 3>& chroma, const SpecularLobe& specular,
-                           double light_z_floor, const AnalysisOptions& options,
+SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, std::span<const LightView> also_scored,
+                           const Plane& range_map, std::span<const float> horizons,
+                           std::span<const Plane> tone, const std::array<float, 3>& chroma,
+                           const SpecularLobe& specular, double light_z_floor, const AnalysisOptions& options,
                            std::vector<std::string>& notes, double& chosen_distance,
                            double& held_out_distance) {
   chosen_distance = held_out_distance = 0.0;  // no candidates scored
@@ -236,29 +274,59 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
   const std::size_t candidates = weights.size() * options.remainder_clamps.size() * level_counts.size();
   const std::uint32_t draws =
       candidates > 1 ? options.selection_draws : 1;  // one candidate needs no choosing
-  // The mean distance over `draws` draws of a candidate's model image, as the render pass composes it
-  // (smooth texture x its share of the tone x relit factor, plus the highlights). Draw d of every
-  // candidate uses the same noise, so only the model differs between candidates.
+  // The pairs each candidate is scored at: the representative first.
+  std::vector<ScoredPair> scored;
+  scored.push_back(
+      {measured, relit, highlight, ParallaxView(range_map, dataset.views()[pair.view].vector()), {}});
+  for (const LightView member : also_scored) {
+    std::vector<float> member_rgb(rgb.size());
+    dataset.linear_rgb(member, member_rgb);
+    std::vector<double> mean(3, 0.0);
+    for (std::size_t p = 0; p < member_rgb.size(); ++p)
+      mean[p % 3] += member_rgb[p] / static_cast<double>(dataset.pixel_count());
+    const std::array<double, 3> light = dataset.lights()[member.light].vector(),
+                                view = dataset.views()[member.view].vector();
+    scored.push_back({distribution_statistics(member_rgb, width, height),
+                      relit_factor(range_map, light, light_z_floor, horizons),
+                      lobe_of(specular, range_map, light, view, horizons), ParallaxView(range_map, view),
+                      std::move(mean)});
+  }
+  // The mean distance over `draws` draws and the scored pairs of a candidate's model image as the render
+  // pass shows it: smooth texture x its share of the tone x the pair's relit factor, plus its highlights,
+  // through its view's parallax. Draw d of every candidate uses the same noise, so only the model differs
+  // between candidates.
   const auto distance_of = [&](const SubspaceModel& model, const std::vector<Plane>& share,
                                std::uint64_t first_seed) {
     Material single;
     single.subspaces.push_back(model);
     double distance = 0.0;
-    std::vector<float> image(rgb.size());
+    std::vector<float> texture(rgb.size()), image(rgb.size());
     for (std::uint32_t draw = 0; draw < draws; ++draw) {
       reference::SubspaceBlock block;  // the default burn-in, as synthesis uses
       block.seed = first_seed + draw;
       block.width = width;
       block.height = height;
-      reference::synthesize_subspace(single, 0, block, image);
-      apply_relief(image, share, relit);
-      if (specular.strength > 0.0) {
-        for (std::size_t p = 0; p < image.size(); ++p)
-          image[p] += static_cast<float>(
-              highlight(static_cast<Eigen::Index>(p / 3 / width), static_cast<Eigen::Index>(p / 3 % width)));
+      reference::synthesize_subspace(single, 0, block, texture);
+      for (const ScoredPair& at : scored) {
+        image = texture;
+        apply_relief(image, share, at.relit);
+        if (specular.strength > 0.0) {
+          for (std::size_t p = 0; p < image.size(); ++p)
+            image[p] += static_cast<float>(at.highlight(static_cast<Eigen::Index>(p / 3 / width),
+                                                        static_cast<Eigen::Index>(p / 3 % width)));
+        }
+        std::vector<float> shown = at.view.shown(image, 3);
+        if (!at.mean.empty()) {
+          std::array<double, 3> sum{};
+          for (std::size_t p = 0; p < shown.size(); ++p) sum[p % 3] += shown[p];
+          for (std::size_t p = 0; p < shown.size(); ++p) {
+            const double model_mean = sum[p % 3] / static_cast<double>(dataset.pixel_count());
+            if (model_mean > 0.0) shown[p] = static_cast<float>(shown[p] * at.mean[p % 3] / model_mean);
+          }
+        }
+        distance += distribution_distance(distribution_statistics(shown, width, height), at.measured).total /
+                    (draws * static_cast<double>(scored.size()));
       }
-      distance +=
-          distribution_distance(distribution_statistics(image, width, height), measured).total / draws;
     }
     return distance;
   };
@@ -307,8 +375,10 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
     for (std::size_t b = 0; b < chosen.bands.size(); ++b) any = any || selected(b);
     if (!any) continue;  // a one-level model has no coarser levels
     std::vector<double> gains = options.noise_gains;
-    if (g.gains == Gains::lower_or_raise)
-      gains.insert(gains.end(), options.noise_raises.begin(), options.noise_raises.end());
+    if (g.gains == Gains::lower_or_raise) {
+      const std::vector<double>& raises = g.chroma_only ? options.chroma_raises : options.noise_raises;
+      gains.insert(gains.end(), raises.begin(), raises.end());
+    }
     for (const double gain : gains) {
       if (gain == 1.0) continue;
       ++gain_candidates;
@@ -335,9 +405,15 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, const Plan
                   chosen_gains[group]);
     line += part;
   }
-  std::snprintf(part, sizeof part, " chosen of %zu candidates (texture distance %.3f, mean of %u draws)",
+  std::snprintf(part, sizeof part, " chosen of %zu candidates (texture distance %.3f, mean of %u draws",
                 candidates + gain_candidates, best_distance, draws);
-  notes.push_back(line + part);
+  line += part;
+  for (std::size_t m = 0; m < also_scored.size(); ++m) {
+    std::snprintf(part, sizeof part, "%s(light %u, view %u)", m == 0 ? " and of the pairs " : ", ",
+                  also_scored[m].light, also_scored[m].view);
+    line += part;
+  }
+  notes.push_back(line + ")");
   chosen_distance = best_distance;
   // The chosen model's distance at draws no candidate was chosen on: the minimum over the candidates is
   // biased low by the draw's own noise, this is not, so two analyses compare fairly by it.
@@ -484,10 +560,10 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
     // The analysis goes on with the lobe as stored, as the render pass will draw it.
     const SpecularLobe lobe = stored_lobe(result.material);
     detail::parallel_for(representatives.size(), options.threads, [&](std::size_t s) {
-      result.material.subspaces[s] =
-          fit_subspace(dataset, representatives[s], result.range_map, result.horizons, result.tone_planes,
-                       result.material.range.tone_chroma, lobe, z_floor, options, subspace_notes[s],
-                       distances[s], held_out[s]);
+      result.material.subspaces[s] = fit_subspace(
+          dataset, representatives[s], also_scored_pairs(dataset, result.segmentation, s), result.range_map,
+          result.horizons, result.tone_planes, result.material.range.tone_chroma, lobe, z_floor, options,
+          subspace_notes[s], distances[s], held_out[s]);
       progress.advance();
     });
     SubspaceScores scores;

@@ -44,6 +44,7 @@ const std::vector<ModelVariant>& model_variants() {
        [](AnalysisOptions& o) {
          o.noise_gains = {1.0};
          o.noise_raises = {1.0};
+         o.chroma_raises = {1.0};
        }},
       {"four_bit_colour_tone", "the default with its colour tone planes at 4 bits, as the grey tone",
        [](AnalysisOptions& o) { o.tiles.colour_tone_bits = 4; }},

@@ -1,6 +1,6 @@
 // `carbtf fidelity`: the calibrated measure through the render pass must see a deliberately broken
 // model (its range map flattened) as worse than the fitted one, on each sample material (issues 13 and
-// 42: the measure can fail), and the model without its relief tone or pair gains as worse too.
+// 42: the measure can fail), and the model without its relief tone, pair gains or highlights as worse too.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -108,13 +108,12 @@ void check_fidelity_ranking(const std::string& name) {
   INFO(name << ": fitted rel " << fitted_rel << ", without the relief tone " << without_tone_rel);
   CHECK(without_tone_rel > fitted_rel);
   // The pair gains (on by default) give each pair its measured mean colour: the colour group and rel fall.
-  // Not on fabric, whose tone planes already give each thread its colour: there the gains cost a little
-  // (mean s 0.540 without, 0.547 with, at 256^2 over fidelity seeds 1-3; docs/design.md 5.2). Nor on
-  // leather at this size since the range map is stored as integrated (not band-limited): its 64^2 colour
-  // group is then 0.732 / 0.797 / 0.789 with the gains and 0.732 / 0.790 / 0.778 without (fidelity seeds
-  // 1-3; with the relief's chroma two levels up, 0.727 / 0.787 / 0.782 and 0.716 / 0.770 / 0.754), while
-  // at 256^2 the gains still take it from 0.716 to 0.520 (seeds 1-3; docs/design.md 5.2).
-  if (name == "coast_sand_rocks") {
+  // Since the subspace models are chosen as the render shows them (docs/design.md 5.2), at 64^2 the colour
+  // group is, with the gains / without, fidelity seeds 1-3: leather 0.623 / 0.633 / 0.614 against 0.730 /
+  // 0.722 / 0.717, fabric 0.327 / 0.364 / 0.337 against 0.466 / 0.466 / 0.460; coast_sand_rocks' no longer
+  // falls at this size (0.283 / 0.321 / 0.385 against 0.273 / 0.268 / 0.344), though at 256^2 the gains
+  // pay there too (docs/design.md 5.2).
+  if (name != "coast_sand_rocks") {
     const fs::path without_gains = folder / "without_gains.cbtf";
     REQUIRE(run("analyze " + btf.string() + " --no-pair-gains --out " + without_gains.string()).status == 0);
     const double without_gains_rel = fidelity_of(without_gains, btf, folder / "without_gains");
@@ -123,32 +122,35 @@ void check_fidelity_ranking(const std::string& name) {
     INFO(name << ": fitted rel " << fitted_rel << " colour " << colour << ", without pair gains rel "
               << without_gains_rel << " colour " << without_gains_colour);
     CHECK(without_gains_colour > colour);
-    // On the whole (rel) as well: coast_sand_rocks' colour is most of the difference (-0.008 against
-    // 0.001 when this was written).
+    // On the whole (rel) as well: leather 0.099 / 0.098 / 0.092 with, 0.130 / 0.124 / 0.115 without;
+    // fabric 0.073 / 0.080 / 0.078 with, 0.079 / 0.084 / 0.083 without.
     CHECK(without_gains_rel > fitted_rel);
   }
+  const std::string info = run("info " + fitted_path.string()).output;
   if (name == "fabric") {
     // Its threads are blue and white: the analysis gives the tone a plane per colour channel.
-    CHECK_THAT(run("info " + fitted_path.string()).output,
-               Catch::Contains("tone colour:  per texel (R, G and B planes)"));
-    // Its threads are glossy: the analysis keeps the relief's specular lobe, which puts their highlights
-    // on the thread tops where the CAR could only scatter them, and the model without it looks further.
-    CHECK_THAT(run("info " + fitted_path.string()).output,
-               Catch::Contains("highlights:   a specular lobe on the relief"));
-    Material dull = fitted;
-    dull.range.specular_strength = 0.0f;
-    const fs::path dull_path = folder / "without_highlights.cbtf";
-    REQUIRE(write_material_file(dull_path.string(), dull).ok());
-    const double dull_rel = fidelity_of(dull_path, btf, folder / "without_highlights");
-    INFO(name << ": fitted rel " << fitted_rel << ", without its highlights " << dull_rel);
-    CHECK(dull_rel > fitted_rel);
-  } else {
-    // Creases that darken every channel alike: the analysis keeps the tone grey. At 64^2 neither
-    // leather's models (its sample's faint sheen) nor coast_sand_rocks' (whose stereo view a lobe
-    // explains better) look nearer with a lobe by kSpecularKeepMargin, and the analysis leaves it out.
-    CHECK_THAT(run("info " + fitted_path.string()).output,
-               Catch::Contains("tone colour:  grey") && Catch::Contains("highlights:   none"));
+    CHECK_THAT(info, Catch::Contains("tone colour:  per texel (R, G and B planes)"));
   }
+  if (name == "coast_sand_rocks") {
+    // Relief that darkens every channel alike: the analysis keeps the tone grey. Leather's is grey at
+    // 256^2 (colour deviation 0.084), but at 64^2 its lobe (gloss 16) is wider than the sample's
+    // highlights, and the tone of the images with that lobe taken out is coloured (deviation 0.181; 0.026
+    // with their highlights left in). Decided on the images with their highlights (a temporary build), its
+    // tone was grey and its lobe left out, and the model looked further (rel 0.111 / 0.168 / 0.142 against
+    // 0.099 / 0.098 / 0.092, fidelity seeds 1-3).
+    CHECK_THAT(info, Catch::Contains("tone colour:  grey"));
+  }
+  // The analysis keeps the relief's specular lobe on every sample: fabric's glossy threads, leather's
+  // faint sheen and coast_sand_rocks' stones. It puts their highlights on the relief's facets where the
+  // CAR could only scatter them, and the model without it looks further.
+  CHECK_THAT(info, Catch::Contains("highlights:   a specular lobe on the relief"));
+  Material dull = fitted;
+  dull.range.specular_strength = 0.0f;
+  const fs::path dull_path = folder / "without_highlights.cbtf";
+  REQUIRE(write_material_file(dull_path.string(), dull).ok());
+  const double dull_rel = fidelity_of(dull_path, btf, folder / "without_highlights");
+  INFO(name << ": fitted rel " << fitted_rel << ", without its highlights " << dull_rel);
+  CHECK(dull_rel > fitted_rel);
   fs::remove_all(folder);
 }
 

@@ -6,9 +6,9 @@
 #include <stdexcept>
 
 #include "carbtf/analysis/model/deshade.hpp"
+#include "carbtf/analysis/model/parallax_view.hpp"
 #include "carbtf/analysis/model/relief_tone.hpp"
 #include "carbtf/analysis/segmentation/lab_histogram.hpp"
-#include "carbtf/reference/parallax_march.hpp"
 #include "carbtf/reference/parallel_for.hpp"
 #include "carbtf/reference/subspace_synthesis.hpp"
 
@@ -103,51 +103,11 @@ std::vector<std::uint8_t> fit_pair_gains(const BtfDataset& dataset, const Materi
         toned[s][3 * p + k] *= static_cast<float>(share[static_cast<std::size_t>(k)](r, c));
     }
   }
-  // Per view, where each grid pixel of the render reads the textures: where the render pass's parallax
-  // march (carbtf_parallax_uv) finds the relief along the pixel's view ray, so that facets turned towards
-  // the view cover more pixels and those hidden behind a ridge none, as in the render and the photograph.
-  struct Tap {
-    std::size_t texel;        // top-left of the bilinear footprint
-    std::size_t right, down;  // offsets of the next column and row, 0 at the clamped edge
-    float fx, fy;
-  };
-  const glm::vec2 size(static_cast<float>(width), static_cast<float>(height));
-  // The bilinear footprint of uv, edges clamped, as the render's sampler reads the textures.
-  const auto tap_at = [&](glm::vec2 uv) {
-    const glm::vec2 t = glm::clamp(uv * size - 0.5f, glm::vec2(0.0f), size - 1.0f);
-    const auto c0 = static_cast<std::size_t>(t.x), r0 = static_cast<std::size_t>(t.y);
-    return Tap{r0 * width + c0, c0 + 1 < width ? 1u : 0u, r0 + 1 < height ? std::size_t{width} : 0u,
-               t.x - static_cast<float>(c0), t.y - static_cast<float>(r0)};
-  };
-  const auto bilinear = [](const float* values, const Tap& t, std::size_t channels, std::size_t k) {
-    const auto at = [&](std::size_t texel) { return values[texel * channels + k]; };
-    const float top = at(t.texel) + t.fx * (at(t.texel + t.right) - at(t.texel));
-    const float bottom =
-        at(t.texel + t.down) + t.fx * (at(t.texel + t.down + t.right) - at(t.texel + t.down));
-    return top + t.fy * (bottom - top);
-  };
-  // The render's heights (float, minus their mean) and the march over them, as the render pass marches.
-  std::vector<float> heights(static_cast<std::size_t>(relief.range_map.size()));
-  for (std::size_t i = 0; i < heights.size(); ++i)
-    heights[i] = static_cast<float>(
-        relief.range_map(static_cast<Eigen::Index>(i / width), static_cast<Eigen::Index>(i % width)));
-  const ReliefExtent extent = relief_extent(heights, static_cast<float>(kAnalysisParallaxScale));
-  const auto height_at = [&](glm::vec2 uv) {
-    return bilinear(heights.data(), tap_at(uv), 1, 0) - extent.mean;
-  };
-  std::vector<std::vector<Tap>> taps(views, std::vector<Tap>(grid.size()));
-  for (std::size_t v = 0; v < views; ++v) {
-    const std::array<double, 3> direction = dataset.views()[v].vector();
-    const glm::vec3 view(static_cast<float>(direction[0]), static_cast<float>(direction[1]),
-                         static_cast<float>(direction[2]));
-    for (std::size_t i = 0; i < grid.size(); ++i) {
-      const glm::vec2 pixel(static_cast<float>(grid[i] % width) + 0.5f,
-                            static_cast<float>(grid[i] / width) + 0.5f);
-      taps[v][i] = tap_at(reference::parallax_march(height_at, pixel / size, view, size,
-                                                    static_cast<float>(kAnalysisParallaxScale), extent,
-                                                    kDefaultParallaxSteps));
-    }
-  }
+  // Per view, where each grid pixel of the render reads the textures.
+  std::vector<ParallaxView> shown;
+  shown.reserve(views);
+  for (std::size_t v = 0; v < views; ++v)
+    shown.emplace_back(relief.range_map, dataset.views()[v].vector(), grid);
 
   std::vector<std::uint8_t> codes(3 * pairs, static_cast<std::uint8_t>(kPairGainZero));
   const double z_floor = relight_floor(material);
@@ -174,13 +134,13 @@ std::vector<std::uint8_t> fit_pair_gains(const BtfDataset& dataset, const Materi
         highlight.resize(grid.size());
       }
       const float* base = toned[subspace_of(material, pair.light, pair.view)].data();
+      const ParallaxView& view = shown[v];
       for (std::size_t i = 0; i < grid.size(); ++i) {
-        const Tap& t = taps[v][i];
-        const float factor = bilinear(relit.data(), t, 1, 0);
-        if (!lobe.empty()) highlight[i] = bilinear(lobe.data(), t, 1, 0);
+        const float factor = view.sample(relit.data(), 1, i, 0);
+        if (!lobe.empty()) highlight[i] = view.sample(lobe.data(), 1, i, 0);
         for (std::size_t k = 0; k < 3; ++k) {
           measured[3 * i + k] = image[3 * grid[i] + k];
-          model[3 * i + k] = bilinear(base, t, 3, k) * factor;
+          model[3 * i + k] = view.sample(base, 3, i, k) * factor;
         }
       }
       const Rgb target = lab_mean(measured, {1.0, 1.0, 1.0});

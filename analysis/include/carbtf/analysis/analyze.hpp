@@ -106,15 +106,21 @@ struct AnalysisOptions {
   // With the relief tone and a clamp list: after the clamp, tone weight and level count, the candidate
   // gains on the bands' sigma (the smooth texture's contrast around its mean), chosen per subspace by the
   // same measure, group after group (analyze.cpp, kGainGroups): the finest pyramid level's bands, its
-  // chroma, the coarser levels' bands, their chroma (these two may also take noise_raises), then every
-  // band and the chroma bands. Where the tone and the relit range map already draw what the image holds,
-  // the CAR's remainder is mostly the relief's misregistration, and at full strength it puts speckle on
-  // leather's flat cells. Empty or {1}: the fitted sigma.
+  // chroma, the coarser levels' bands, their chroma (these two may also take noise_raises and
+  // chroma_raises), then every band and the chroma bands. Where the tone and the relit range map already
+  // draw what the image holds, the CAR's remainder is mostly the relief's misregistration, and at full
+  // strength it puts speckle on leather's flat cells. Empty or {1}: the fitted sigma.
   std::vector<double> noise_gains = {1.0, 0.7, 0.5, 0.35, 0.25, 0.125, 0.0};
   // The coarser levels' raises: at 256^2 coast_sand_rocks' mean s over the five pairs, seed 1, went from
   // 0.694 (one gain for every level) to 0.276 with the gains per scale (docs/design.md 5.3). Empty or {1}:
   // none.
   std::vector<double> noise_raises = {1.0, 1.4, 2.0, 2.8};
+  // The coarser levels' chroma raises, on top of their bands' gain. Wider than noise_raises: the CAR's
+  // chroma at those levels is far weaker than leather's measured colour texture, and once the models are
+  // scored as the render shows them the coarser levels' luma is lowered, chroma with it; at 2.8 the
+  // chroma took the largest raise in most of leather's subspaces, and its mirror pair (45, 180) / (45, 0)
+  // lost 4-8 dB of a* (docs/design.md 5.2). Empty or {1}: none.
+  std::vector<double> chroma_raises = {1.0, 1.4, 2.0, 2.8, 4.0, 5.6, 8.0, 11.0};
   // False: only the gains on every band and on the chroma bands, the model before the gains per scale.
   bool gains_per_scale = true;
   // Per measured pair, colour gains that give its render its measurement's mean Lab colour
