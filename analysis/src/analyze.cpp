@@ -312,8 +312,7 @@ SubspaceModel fit_subspace(const BtfDataset& dataset, LightView pair, std::span<
         apply_relief(image, share, at.relit);
         if (specular.strength > 0.0) {
           for (std::size_t p = 0; p < image.size(); ++p)
-            image[p] += static_cast<float>(at.highlight(static_cast<Eigen::Index>(p / 3 / width),
-                                                        static_cast<Eigen::Index>(p / 3 % width)));
+            image[p] += static_cast<float>(at.highlight.data()[p / 3]);  // a row-major plane
         }
         std::vector<float> shown = at.view.shown(image, 3);
         if (!at.mean.empty()) {

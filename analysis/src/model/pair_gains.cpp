@@ -104,10 +104,10 @@ std::vector<std::uint8_t> fit_pair_gains(const BtfDataset& dataset, const Materi
     }
   }
   // Per view, where each grid pixel of the render reads the textures.
-  std::vector<ParallaxView> shown;
-  shown.reserve(views);
+  std::vector<ParallaxView> parallax;
+  parallax.reserve(views);
   for (std::size_t v = 0; v < views; ++v)
-    shown.emplace_back(relief.range_map, dataset.views()[v].vector(), grid);
+    parallax.emplace_back(relief.range_map, dataset.views()[v].vector(), grid);
 
   std::vector<std::uint8_t> codes(3 * pairs, static_cast<std::uint8_t>(kPairGainZero));
   const double z_floor = relight_floor(material);
@@ -134,7 +134,7 @@ std::vector<std::uint8_t> fit_pair_gains(const BtfDataset& dataset, const Materi
         highlight.resize(grid.size());
       }
       const float* base = toned[subspace_of(material, pair.light, pair.view)].data();
-      const ParallaxView& view = shown[v];
+      const ParallaxView& view = parallax[v];
       for (std::size_t i = 0; i < grid.size(); ++i) {
         const float factor = view.sample(relit.data(), 1, i, 0);
         if (!lobe.empty()) highlight[i] = view.sample(lobe.data(), 1, i, 0);
