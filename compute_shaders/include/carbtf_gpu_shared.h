@@ -321,6 +321,8 @@ CARBTF_FUNCTION bool carbtf_staircase_next_is_light(float light_left, float view
 CARBTF_CONST_FLOAT(CARBTF_RELIEF_SHADOW_SOFTNESS, 0.1f)
 // The relief's ambient share of the relit factor (kReliefAmbient, material.hpp).
 CARBTF_CONST_FLOAT(CARBTF_RELIEF_AMBIENT, 0.1f)
+// The view's z below which the specular lobe grows no more (kSpecularViewFloor, material.hpp).
+CARBTF_CONST_FLOAT(CARBTF_SPECULAR_VIEW_FLOOR, 0.25f)
 // The relief's chroma is mixed in values encoded about as a camera stores them (sRGB's exponent), by
 // Rec. 601's luma weights, JPEG's YCbCr (carbtf_material_shade(), relief_chroma_mix()).
 CARBTF_CONST_FLOAT(CARBTF_CHROMA_GAMMA, 1.0f / 2.4f)
@@ -382,7 +384,7 @@ struct MaterialTablesHeader {
   // How many mip levels above its brightness the relief's chroma is read (RangeTiles::chroma_levels): the
   // measured images' own colour resolution.
   uint relief_chroma_levels;
-  uint reserved1;
+  float specular_view_power;  // the lobe's growth with the view's tilt (RangeTiles::specular_view_power)
   uint reserved2;
 };
 

@@ -569,7 +569,15 @@ struct CarbtfLit {
   float lobe;
 };
 
-CarbtfLit carbtf_relief_lit(CarbtfRelief relief, vec3 light, vec3 half_vector, CarbtfHorizonWeights horizon) {
+// The lobe's gain at `view` (specular_view_gain(), material.hpp).
+float carbtf_specular_view_gain(vec3 view) {
+  if (carbtf_header.specular_view_power == 0.0) return 1.0;
+  return pow(max(view.z, CARBTF_SPECULAR_VIEW_FLOOR), -carbtf_header.specular_view_power);
+}
+
+// `lobe_strength`: the lobe's at this view, carbtf_header.specular_strength times its view gain.
+CarbtfLit carbtf_relief_lit(CarbtfRelief relief, vec3 light, vec3 half_vector, float lobe_strength,
+                            CarbtfHorizonWeights horizon) {
   float n_dot_l = max(dot(relief.normal, light), 0.0);
   float visibility = 1.0;
   if (carbtf_shadows_compiled && carbtf_header.shadows != 0u) visibility = carbtf_relief_visibility(relief, horizon);
@@ -577,9 +585,9 @@ CarbtfLit carbtf_relief_lit(CarbtfRelief relief, vec3 light, vec3 half_vector, C
   lit.relit = CARBTF_RELIEF_AMBIENT +
               (1.0 - CARBTF_RELIEF_AMBIENT) * n_dot_l / max(light.z, carbtf_header.light_z_floor) * visibility;
   lit.lobe = 0.0;
-  if (carbtf_header.specular_strength > 0.0) {
+  if (lobe_strength > 0.0) {
     float n_dot_h = max(dot(relief.normal, half_vector), 0.0) / relief.normal_length;
-    lit.lobe = carbtf_header.specular_strength * n_dot_l * visibility * pow(n_dot_h, carbtf_header.specular_gloss);
+    lit.lobe = lobe_strength * n_dot_l * visibility * pow(n_dot_h, carbtf_header.specular_gloss);
   }
   return lit;
 }
@@ -603,8 +611,9 @@ vec3 carbtf_material_shade(CarbtfSurface surface, vec3 light) {
   if (light.z <= 0.0 || view.z <= 0.0) return vec3(0.0);
   vec3 half_vector = normalize(light + view);
   CarbtfHorizonWeights horizon = carbtf_horizon_weights(light);
-  CarbtfLit lit = carbtf_relief_lit(surface.relief, light, half_vector, horizon);
-  CarbtfLit chroma_lit = carbtf_relief_lit(surface.chroma_relief, light, half_vector, horizon);
+  float lobe_strength = carbtf_header.specular_strength * carbtf_specular_view_gain(view);
+  CarbtfLit lit = carbtf_relief_lit(surface.relief, light, half_vector, lobe_strength, horizon);
+  CarbtfLit chroma_lit = carbtf_relief_lit(surface.chroma_relief, light, half_vector, lobe_strength, horizon);
   vec3 chroma_tone = carbtf_header.tone_planes == 1u ? surface.chroma_relief.tone : surface.relief.tone;
   CarbtfBtf btf = carbtf_interpolated_btf(surface.uv, light, surface.view_index, surface.view_weight,
                                           surface.relief.tone, chroma_tone, surface.lod);

@@ -106,8 +106,13 @@ void print_material_summary(const std::string& path) {
       std::printf("shadows:      none\n");
     }
     if (material.range.specular_strength > 0.0f) {
-      std::printf("highlights:   a specular lobe on the relief, strength %.4g, gloss %.0f\n",
+      std::printf("highlights:   a specular lobe on the relief, strength %.4g, gloss %.0f",
                   material.range.specular_strength, material.range.specular_gloss);
+      if (material.range.specular_view_power > 0.0f) {
+        std::printf(", growing with the view's tilt as (1 / cos theta)^%.2g",
+                    material.range.specular_view_power);
+      }
+      std::printf("\n");
     } else {
       std::printf("highlights:   none\n");
     }

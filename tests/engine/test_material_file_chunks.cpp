@@ -253,6 +253,32 @@ TEST_CASE("a specular lobe reads back while a file without SPEC has none and hos
   CHECK_THAT(validate_material(tileless).message(), Catch::Contains("tile size 0 but tile data present"));
 }
 
+TEST_CASE(
+    "a specular view power reads back while a file without SPVW has none and hostile values are "
+    "refused",
+    "[material_file][specular]") {
+  const auto with_lobe = [](Material& m) {
+    m.range.specular_strength = 0.08f;
+    m.range.specular_gloss = 32.0f;
+  };
+  Material lobed = sample_material();
+  with_lobe(lobed);
+  auto [bytes, at] = checked_optional_chunk(
+      lobed, "SPVW", [](Material& m) { m.range.specular_view_power = 0.5f; },
+      [](const Material& m) { return m.range.specular_view_power == 0.0f; });
+  check_refused_floats(bytes, at, {-0.5f, 2.5f, std::nanf(""), std::numeric_limits<float>::infinity()},
+                       {"specular view power", "outside 0..2"});
+  // The gain is 1 at the top view and without a power, (1 / z)^power above the floor and constant below it.
+  CHECK(specular_view_gain(0.0f, 0.3f) == 1.0f);
+  CHECK(specular_view_gain(0.5f, 1.0f) == 1.0f);
+  CHECK(specular_view_gain(0.5f, 0.5f) == Approx(std::sqrt(2.0)));
+  CHECK(specular_view_gain(1.0f, 0.1f) == Approx(1.0 / kSpecularViewFloor));
+  Material tileless = sample_material();
+  tileless.range = RangeTiles{};
+  tileless.range.specular_view_power = 0.5f;
+  CHECK_THAT(validate_material(tileless).message(), Catch::Contains("tile size 0 but tile data present"));
+}
+
 TEST_CASE("pair gains read back while a file without PGAN has none and a hostile table is refused",
           "[material_file][pair_gains]") {
   const auto with_gains = [](Material& m) {

@@ -75,7 +75,8 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
   const bool three_planes = GENERATE(false, true);
   // With and without the relief's cast shadows (relief_horizons.hpp): both sides compute the horizons
   // of the enlarged heights, filter them as textures and hide the light below them. With them, the
-  // relief's specular lobe too (RangeTiles::specular_strength), which both sides add and hide alike.
+  // relief's specular lobe too (RangeTiles::specular_strength), which both sides add and hide alike, and
+  // grow with the view's tilt (RangeTiles::specular_view_power) alike.
   const bool shadows = GENERATE(false, true);
   const Material m = [&] {
     Material coloured = test::bumpy_material(true);
@@ -83,6 +84,7 @@ TEST_CASE("a plane rendered on the GPU matches the CPU reference of the fragment
     coloured.range.shadow_scale = shadows ? 1.0f : 0.0f;
     coloured.range.specular_strength = shadows ? 0.4f : 0.0f;
     coloured.range.specular_gloss = 12.0f;
+    coloured.range.specular_view_power = shadows ? (three_planes ? 1.0f : 0.5f) : 0.0f;
     // The relief's chroma two levels up (a JPEG's data), one (files before format 1.11) and at the
     // fragment's own level (full-resolution colour).
     coloured.range.chroma_levels = !shadows ? 2u : three_planes ? 0u : 1u;

@@ -142,22 +142,22 @@ ReliefPoint relief_point(const Sampler& sampler, glm::vec2 uv, float lod, bool s
   return point;
 }
 
-// The shader's carbtf_relief_lit(): the relit factor and the specular lobe of a relief point.
+// The shader's carbtf_relief_lit(): the relit factor and the specular lobe of a relief point, the lobe of
+// strength `lobe_strength` (the material's at this view).
 struct ReliefLight {
   float relit;
   float lobe;
 };
 
 ReliefLight relief_light(const Material& material, const ReliefPoint& point, glm::vec3 l,
-                         glm::vec3 half_vector, float light_z_floor, bool shadows) {
+                         glm::vec3 half_vector, float lobe_strength, float light_z_floor, bool shadows) {
   const float n_dot_l = std::max(glm::dot(point.normal, l), 0.0f);
   const float visibility = shadows ? relief_visibility(point.horizons, {l.x, l.y, l.z}) : 1.0f;
   ReliefLight lit{
       kReliefAmbient + (1.0f - kReliefAmbient) * n_dot_l / std::max(l.z, light_z_floor) * visibility, 0.0f};
-  if (material.range.specular_strength > 0.0f) {
+  if (lobe_strength > 0.0f) {
     const float n_dot_h = std::max(glm::dot(point.normal, half_vector), 0.0f) / point.normal_length;
-    lit.lobe = material.range.specular_strength * n_dot_l * visibility *
-               std::pow(n_dot_h, material.range.specular_gloss);
+    lit.lobe = lobe_strength * n_dot_l * visibility * std::pow(n_dot_h, material.range.specular_gloss);
   }
   return lit;
 }
@@ -325,8 +325,12 @@ std::vector<float> render_plane(const ReferenceRenderInput& input, const RenderS
           chroma_btf += glm::max(1.0f + tone_weight * chroma_tone_offset, glm::vec3(0.0f)) * part;
         }
         const glm::vec3 half_vector = glm::normalize(l + view);
-        const ReliefLight lit = relief_light(material, fine, l, half_vector, light_z_floor, shadows);
-        const ReliefLight chroma_lit = relief_light(material, coarse, l, half_vector, light_z_floor, shadows);
+        const float lobe_strength =
+            material.range.specular_strength * specular_view_gain(material.range.specular_view_power, view.z);
+        const ReliefLight lit =
+            relief_light(material, fine, l, half_vector, lobe_strength, light_z_floor, shadows);
+        const ReliefLight chroma_lit =
+            relief_light(material, coarse, l, half_vector, lobe_strength, light_z_floor, shadows);
         const glm::vec3 shade =
             chroma_from(lit.relit * btf + lit.lobe, chroma_lit.relit * chroma_btf + chroma_lit.lobe);
         colour += falloff * glm::vec3(light.colour[0], light.colour[1], light.colour[2]) * shade;

@@ -61,7 +61,8 @@ SubspaceFidelity subspace_fidelity(const Material& material, const SynthesizedIm
                  weighted_tone(tone, material.subspaces[s].tone_weight, material.range.tone_chroma),
                  relit_factor(height_plane, light, relight_floor(material), horizons));
     if (material.range.specular_strength > 0.0f) {
-      const Plane highlight = lobe_of({material.range.specular_strength, material.range.specular_gloss},
+      const Plane highlight = lobe_of({material.range.specular_strength, material.range.specular_gloss,
+                                       material.range.specular_view_power},
                                       height_plane, light, view, horizons);
       for (std::size_t p = 0; p < model.rgb.size(); ++p)
         model.rgb[p] += static_cast<float>(

@@ -133,6 +133,10 @@ Status validate_range(const RangeTiles& r) {
     return invalid("range map: specular gloss " + std::to_string(r.specular_gloss) + " is outside 1.." +
                    std::to_string(int(kMaxSpecularGloss)));
   }
+  if (!(r.specular_view_power >= 0.0f && r.specular_view_power <= kMaxSpecularViewPower)) {
+    return invalid("range map: specular view power " + std::to_string(r.specular_view_power) +
+                   " is outside 0.." + std::to_string(int(kMaxSpecularViewPower)));
+  }
   if (r.chroma_levels > kMaxReliefChromaLevels)
     return invalid("range map: the relief's chroma " + std::to_string(r.chroma_levels) +
                    " levels above its brightness (at most " + std::to_string(kMaxReliefChromaLevels) + ")");
@@ -141,7 +145,7 @@ Status validate_range(const RangeTiles& r) {
                    std::to_string(kMaxFeather) + ")");
   if (r.tile_size == 0) {
     if (!r.patches.empty() || !r.cuts.empty() || !r.tone.empty() || r.shadow_scale > 0.0f ||
-        r.specular_strength > 0.0f) {
+        r.specular_strength > 0.0f || r.specular_view_power > 0.0f) {
       return invalid("range map: tile size 0 but tile data present");
     }
     return {};
@@ -200,6 +204,11 @@ float pair_gain(const Material& material, std::uint32_t light, std::uint32_t vie
   const std::size_t pairs = material.lights.size() * material.views.size();
   return pair_gain_of_code(
       material.pair_gains[channel * pairs + std::size_t{light} * material.views.size() + view]);
+}
+
+float specular_view_gain(float power, float view_z) {
+  if (power == 0.0f) return 1.0f;
+  return std::pow(std::max(view_z, kSpecularViewFloor), -power);
 }
 
 float pair_gain_of_code(std::uint8_t code) {

@@ -15,6 +15,8 @@
 
 static_assert(carbtf::kReliefAmbient == carbtf::gpu::CARBTF_RELIEF_AMBIENT,
               "the relit factor's ambient share differs between the C++ and GLSL");
+static_assert(carbtf::kSpecularViewFloor == carbtf::gpu::CARBTF_SPECULAR_VIEW_FLOOR,
+              "the specular lobe's view floor differs between the C++ and GLSL");
 
 namespace carbtf {
 namespace {
@@ -132,6 +134,7 @@ Status build_material_tables(const Material& material, const MaterialLayers& lay
   header.shadows = material.range.shadow_scale > 0.0f ? 1u : 0u;
   header.specular_strength = material.range.specular_strength;
   header.specular_gloss = material.range.specular_gloss;
+  header.specular_view_power = material.range.specular_view_power;
   const ReliefExtent extent = relief_extent(relief.heights, info.parallax_scale);
   header.range_mean = extent.mean;
   header.parallax_top = extent.top;

@@ -8,12 +8,12 @@ namespace carbtf::detail {
 // The chunks' codecs, each defined in chunks/ with its layout.
 extern const ChunkCodec kSettingsChunk, kDirectionsChunk, kIndexChunk, kSubspacesChunk, kRangeChunk,
     kToneChunk, kToneWeightsChunk, kToneChromaChunk, kFeatherChunk, kShadowsChunk, kPairGainsChunk,
-    kSpecularChunk, kReliefChromaChunk;
+    kSpecularChunk, kReliefChromaChunk, kSpecularViewChunk;
 
 namespace {
 
 // The writer's order. A reader takes the chunks in any order; a new chunk is one more row here.
-constexpr std::array<const ChunkCodec*, 13> kMaterialChunks{
+constexpr std::array<const ChunkCodec*, 14> kMaterialChunks{
     &kSettingsChunk,      // SETT
     &kDirectionsChunk,    // DIRS
     &kIndexChunk,         // INDX
@@ -27,6 +27,7 @@ constexpr std::array<const ChunkCodec*, 13> kMaterialChunks{
     &kPairGainsChunk,     // PGAN (1.9)
     &kSpecularChunk,      // SPEC (1.10)
     &kReliefChromaChunk,  // RCHL (1.11)
+    &kSpecularViewChunk,  // SPVW (1.12)
 };
 
 }  // namespace

@@ -119,6 +119,12 @@ struct RangeTiles {
   // chunk): no lobe. Above 0 only with range tiles (validate_material).
   float specular_strength = 0.0f;
   float specular_gloss = 0.0f;
+  // The lobe grows with the view's tilt as (1 / max(V.z, kSpecularViewFloor))^specular_view_power
+  // (specular_view_gain()), V the unit view in the tangent frame: the facets finer than the range map
+  // resolves that turn to the half vector cover more of the image as the view tilts (the 1 / N.V of a
+  // microfacet lobe over the macro surface), and the range map resolves only part of the relief. The
+  // strength is the lobe's at the top view. 0 (any file without an SPVW chunk): the same at every view.
+  float specular_view_power = 0.0f;
   // How many mip levels above its brightness the render pass reads the relief's chroma: the relief's
   // facets and creases finer than 4 * 2^chroma_levels texels change the colour's brightness and not its
   // chroma, as in measured images whose colour has less resolution than their brightness (a JPEG's 4:2:0
@@ -162,6 +168,10 @@ inline constexpr std::uint32_t kMaxFeather = 4;
 inline constexpr float kMaxShadowScale = 4.0f;
 inline constexpr float kMaxSpecularStrength = 16.0f;  // in the images' linear units; measured 0.03-0.09
 inline constexpr float kMaxSpecularGloss = 1024.0f;
+inline constexpr float kMaxSpecularViewPower = 2.0f;
+// The view's z below which the lobe grows no more (about 75.5 degrees, the widest measured views').
+// CARBTF_SPECULAR_VIEW_FLOOR in carbtf_gpu_shared.h.
+inline constexpr float kSpecularViewFloor = 0.25f;
 inline constexpr std::uint32_t kMaxSettings = 256;
 inline constexpr std::uint32_t kMaxSettingLength = 4096;
 // Every model number (colour mean and transform, band mean, std, sigma, gamma, range heights in
@@ -189,6 +199,10 @@ inline std::size_t tone_planes(const RangeTiles& range) {
 inline std::uint32_t subspace_of(const Material& material, std::uint32_t light, std::uint32_t view) {
   return material.subspace_index[std::size_t{light} * material.views.size() + view];
 }
+
+// The specular lobe's gain at a view of tangent-frame z `view_z` for a view power `power`
+// (RangeTiles::specular_view_power); the shaders' carbtf_specular_view_gain() is the same.
+float specular_view_gain(float power, float view_z);
 
 // The gain a pair gain code means.
 float pair_gain_of_code(std::uint8_t code);
