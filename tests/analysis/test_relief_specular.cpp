@@ -114,4 +114,21 @@ TEST_CASE("the specular lobe peaks where the facet faces the half vector", "[ton
   CHECK(lobe_of({2.0, 32.0}, ramp, mirror, top)(4, 4) == Approx(2.0 * peak(4, 4)));
 }
 
+TEST_CASE("the lobe grows with the view's tilt as the render pass draws it", "[tone][specular]") {
+  Plane ramp(8, 8);
+  for (Eigen::Index r = 0; r < 8; ++r)
+    for (Eigen::Index c = 0; c < 8; ++c) ramp(r, c) = 0.3 * static_cast<double>(c);
+  // The top view, one 60 degrees from the normal (z 0.5) and one beyond the floor (z 0.1), lit from above.
+  for (const double z : {1.0, 0.5, 0.1}) {
+    const std::array<double, 3> view{-std::sqrt(1.0 - z * z), 0.0, z};
+    const std::array<double, 3> light{0.0, 0.0, 1.0};
+    const Plane same = lobe_of({2.0, 8.0, 0.0}, ramp, light, view);
+    const double expected_gain = std::pow(std::max(z, double{kSpecularViewFloor}), -0.5);
+    REQUIRE(same(4, 4) > 0.0);
+    CHECK(lobe_of({2.0, 8.0, 0.5}, ramp, light, view)(4, 4) == Approx(expected_gain * same(4, 4)));
+    CHECK(lobe_of({2.0, 8.0, 0.5}, ramp, light, view)(4, 4) ==
+          Approx(specular_view_gain(0.5f, static_cast<float>(z)) * same(4, 4)).epsilon(1e-6));
+  }
+}
+
 }  // namespace carbtf
