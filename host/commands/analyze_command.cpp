@@ -129,8 +129,9 @@ void register_analyze_command(CLI::App& app) {
       "--specular", [&a] { a.relief_specular = AutoChoice::always; },
       "Opt-in: keep the relief's specular lobe wherever it is fitted (highlights where the range map's "
       "facets turn to the half vector of light and view). By default it is kept only where the subspace "
-      "models look nearer the measurement with it (fabric, leather); forced, it makes coast_sand_rocks "
-      "look further (docs/figures.md, variants specular and default)");
+      "models look nearer the measurement with it: the three built-in samples keep it at 256^2, so forcing "
+      "it changes their files in nothing; where it was left out, forcing it made coast_sand_rocks look "
+      "further (docs/design.md 5.2)");
   command->add_flag(
       "!--no-pair-gains", a.pair_gains,
       "For comparison: leave out the pair gains, per measured light and view the colour gains that give the "

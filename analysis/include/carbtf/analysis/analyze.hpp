@@ -129,8 +129,10 @@ struct AnalysisOptions {
   // With the relief tone: fit the relief's specular lobe (model/relief_specular.hpp) to the
   // photometric-stereo view's images, where it explains them better; automatic: keep it where the
   // subspace models look nearer the measurement with it by kSpecularKeepMargin (docs/design.md 5.2 and
-  // 5.3: leather's and fabric's sheen; coast_sand_rocks, whose images it also explains, looks further
-  // with it, and its models are under 1% nearer); always: keep it wherever fitted.
+  // 5.3: leather's and fabric's sheen; since the models are scored as the render shows them,
+  // coast_sand_rocks keeps it too, 1.7% nearer, where before it looked further with it). Either way the
+  // lobe grows with the view's tilt where the models look nearer so (SpecularLobe::view_power; leather).
+  // Always: keep it wherever fitted.
   AutoChoice relief_specular = AutoChoice::automatic;
   // With the relief tone: band-limit it (model/relief_tone.hpp, band_limited_tone); automatic: where the
   // subspace models, refitted over the band-limited tone (the tiling and the lobe as chosen before), look
