@@ -7,11 +7,11 @@
 //   DIRS directions, INDX subspace index, SUBS subspace models, RNGE range tiles; and, optional, SETT
 //   analysis settings, TONE relief tone (1.1), TWGT tone weights (1.2), TCHR tone chroma (1.4), FTHR
 //   feathered cuts (1.6), SHDW cast shadows (1.8), PGAN pair gains (1.9), SPEC specular lobe (1.10),
-//   RCHL the relief's chroma levels (1.11), SPVW the specular lobe's view power (1.12). Each chunk's layout
-//   is written at the top of its codec, src/material/file/chunks/<name>_chunk.cpp, and the table of them is
-//   src/material/file/chunk_table.cpp. An optional chunk is absent when it would hold its default, so an
-//   earlier reader skips it and reads the material without that feature. DEFL  (1.1) any chunk but SETT
-//   deflated, through a filter for its rasters (1.3: residuals of a median
+//   RCHL the relief's chroma levels (1.11), SPVW the specular lobe's view power (1.12). Each chunk's
+//   layout is written at the top of its codec, src/material/file/chunks/<name>_chunk.cpp, and the table
+//   of them is src/material/file/chunk_table.cpp. An optional chunk is absent when it would hold its
+//   default, so an earlier reader skips it and reads the material without that feature.
+//   DEFL  (1.1) any chunk but SETT deflated, through a filter for its rasters (1.3: residuals of a median
 //         edge predictor; 1.5: windows of one map stored once): src/material/file/deflated_chunk.hpp and
 //         chunk_filters.hpp. The reader bounds the claimed size (64 MiB, and 1100:1 over the stream)
 //         and checks the filter's layout before it allocates.
