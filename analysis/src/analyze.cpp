@@ -657,33 +657,34 @@ AnalysisResult analyze_btf(const BtfDataset& dataset, const AnalysisOptions& opt
   {
     StageClock clock(result, "subspace models");
     SubspaceScores first = subspace_stage();
-    // A fitted lobe grows with the view's tilt (SpecularLobe::view_power) where the subspace models, scored
-    // at their pairs' views, look nearer with it by kSpecularKeepMargin; else it is the same at every view.
+    // A fitted lobe grows with the view's tilt (SpecularLobe::view_power, kSpecularViewPower) where the
+    // subspace models, scored at their pairs' views, look nearer with it by kSpecularKeepMargin; else it is
+    // the same at every view, as fitted.
     // Leather's look nearer (0.4447 against 0.4588 at 256^2), fabric's and coast_sand_rocks' do not (0.4676
     // against 0.4621, 0.3582 against 0.3439), and coast_sand_rocks' would then leave the lobe out
     // (docs/design.md 5.2).
-    if (specular.strength > 0.0 && specular.view_power > 0.0) {
-      ReliefModels growing = keep_models();
-      // The same lobe at the stereo view, where it was fitted.
-      SpecularLobe flat = specular;
-      flat.strength *=
-          specular_view_gain(static_cast<float>(specular.view_power),
+    if (specular.strength > 0.0) {
+      ReliefModels same = keep_models();
+      // The fitted lobe, which is the stereo view's, with the same highlights at that view.
+      SpecularLobe growing = specular;
+      growing.view_power = kSpecularViewPower;
+      growing.strength /=
+          specular_view_gain(static_cast<float>(growing.view_power),
                              static_cast<float>(dataset.views()[result.stereo_view].vector()[2]));
-      flat.view_power = 0.0;
-      relief_stage(flat, shadow_scale, tone_band_limited);
-      const SubspaceScores same = subspace_stage();
-      const bool grows = first.chosen < same.chosen * (1.0 - kSpecularKeepMargin);
+      relief_stage(growing, shadow_scale, tone_band_limited);
+      const SubspaceScores growing_scores = subspace_stage();
+      const bool grows = growing_scores.chosen < first.chosen * (1.0 - kSpecularKeepMargin);
       std::snprintf(line, sizeof line,
                     "relief specular: %s (the subspace models' mean texture distance %.4f growing, %.4f the "
                     "same at every view)",
-                    grows ? "grows with the view's tilt" : "the same at every view", first.chosen,
-                    same.chosen);
+                    grows ? "grows with the view's tilt" : "the same at every view", growing_scores.chosen,
+                    first.chosen);
       note(line);
       if (grows) {
-        restore_models(std::move(growing));
+        specular = growing;
+        first = growing_scores;
       } else {
-        specular = flat;
-        first = same;
+        restore_models(std::move(same));
       }
     }
     const double with_lobe = first.chosen;

@@ -73,9 +73,6 @@ SpecularFit fit_relief_specular(const BtfDataset& dataset, std::uint32_t view, c
   SpecularFit fit;
   if (lights.empty()) return fit;
   const auto view_vector = dataset.views()[view].vector();
-  // The lobe at this view is the top view's times its view gain, so k is the strength at the top view.
-  const double view_gain =
-      specular_view_gain(static_cast<float>(kSpecularViewPower), static_cast<float>(view_vector[2]));
   // The error of I_l = a_l diffuse_l + k lobe_l, a_l by least squares for the given k.
   auto error_of = [&](double k, const std::vector<Plane>* lobes) {
     double sum = 0.0;
@@ -92,8 +89,8 @@ SpecularFit fit_relief_specular(const BtfDataset& dataset, std::uint32_t view, c
     lobes.reserve(lights.size());
     double numerator = 0.0, denominator = 0.0;
     for (const LightImages& li : lights) {
-      lobes.push_back(view_gain * specular_lobe(range_map, dataset.lights()[li.light].vector(), view_vector,
-                                                gloss, horizons));
+      lobes.push_back(
+          specular_lobe(range_map, dataset.lights()[li.light].vector(), view_vector, gloss, horizons));
       // The lobe and the image with their projections on the diffuse predictor taken out, so that k is
       // the joint least-squares estimate with every a_l.
       const double dd = (li.diffuse * li.diffuse).sum();
@@ -108,7 +105,7 @@ SpecularFit fit_relief_specular(const BtfDataset& dataset, std::uint32_t view, c
     const double error = error_of(k, &lobes);
     if (error < fit.error) {
       fit.error = error;
-      fit.lobe = {k, gloss, kSpecularViewPower};
+      fit.lobe = {k, gloss};
     }
   }
   if (fit.error > (1.0 - kSpecularFitGain) * fit.error_without) {
